@@ -1,0 +1,25 @@
+# Build options shared by every target. Targets link meshwave_options to get
+# the warning flags and the sanitizer flags.
+option(MESHWAVE_TESTS "Build the unit and end-to-end tests" ON)
+option(MESHWAVE_BENCH "Build the Google Benchmark programs in bench/" OFF)
+option(MESHWAVE_WERROR "Treat compiler warnings as errors" OFF)
+set(MESHWAVE_SANITIZE "" CACHE STRING
+    "Semicolon list of sanitizers, e.g. address;undefined or thread")
+# Where the shared development meshes live (tests skip nothing silently: a
+# missing directory fails the tests that need it, with its path).
+set(MESHWAVE_SHARED_MESHES "${PROJECT_SOURCE_DIR}/../shared/data/meshes" CACHE PATH
+    "Directory of the shared development meshes")
+
+add_library(meshwave_options INTERFACE)
+target_compile_options(meshwave_options INTERFACE
+  -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor -Wold-style-cast
+  -Wcast-align -Woverloaded-virtual -Wnull-dereference -Wimplicit-fallthrough)
+if(MESHWAVE_WERROR)
+  target_compile_options(meshwave_options INTERFACE -Werror)
+endif()
+if(MESHWAVE_SANITIZE)
+  list(JOIN MESHWAVE_SANITIZE "," _mw_sanitizers)
+  target_compile_options(meshwave_options INTERFACE
+    -fsanitize=${_mw_sanitizers} -fno-omit-frame-pointer -fno-sanitize-recover=all)
+  target_link_options(meshwave_options INTERFACE -fsanitize=${_mw_sanitizers})
+endif()
