@@ -7,6 +7,7 @@
 #define MESHWAVE_MESH_H_
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>  // cross products on Vec3
 #include <array>
 #include <cstdint>
 #include <filesystem>
@@ -42,13 +43,16 @@ Result<MeshFormat> FormatFromPath(const std::filesystem::path& path);
 Result<TriMesh> ParseMesh(std::string_view bytes, MeshFormat format,
                           std::string_view name);
 
-// Reads and parses a file; the format comes from its extension.
+// Reads and parses a file; the format comes from its extension. Files over
+// 4 GiB are refused. IoError (naming the path) when it cannot be read; the
+// parse errors name the path as given.
 Result<TriMesh> ReadMesh(const std::filesystem::path& path);
 
-// Writes binary little-endian PLY (float32 coordinates) or OBJ (17
-// significant digits, lossless for doubles) by the path's extension. The file
-// is written to a temporary name and renamed, so a failure never leaves half
-// a file behind.
+// Writes binary little-endian PLY (float32 coordinates) or OBJ (the shortest
+// decimal form that reads back as the same double, at most 17 significant
+// digits: lossless) by the path's extension. The file is written to
+// `<path>.tmp-<pid>`, fsynced and renamed, so a failure never leaves half a
+// file behind. IoError names the path; .off gives kUnsupported.
 Status WriteMesh(const TriMesh& mesh, const std::filesystem::path& path);
 // In-memory forms of the writers.
 std::string SerializePly(const TriMesh& mesh);
@@ -70,7 +74,10 @@ struct CleanReport {
   size_t zero_area_faces = 0;  // distinct corners but no area; kept
 };
 
-// Cleans in place. Vertex order is kept (stable compaction).
+// Cleans in place. Vertex order is kept (stable compaction); of merged
+// vertices and duplicate faces the first one stays. Merged duplicates are
+// always removed; `unreferenced_vertices` counts the others whether or not
+// they are dropped. Faces must index existing vertices.
 CleanReport CleanMesh(TriMesh& mesh, const CleanOptions& options = {});
 
 struct Aabb {
@@ -99,6 +106,9 @@ struct MeshStats {
   // Sum of the genera of the components; only meaningful when manifold.
   long genus = -1;
 };
+// Faces must index existing vertices. Linear time apart from tiny
+// per-vertex sorts. Boundary loops are the connected components of the
+// boundary-edge graph, which on a manifold boundary are exactly its cycles.
 MeshStats ComputeStats(const TriMesh& mesh);
 
 }  // namespace meshwave

@@ -1,0 +1,183 @@
+// File-level mesh I/O: format by extension, whole-file reads, atomic writes
+// (temporary file, fsync, rename), and the parser dispatch.
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cctype>
+#include <cerrno>
+#include <cstdint>
+#include <cstring>
+#include <string>
+#include <utility>
+
+#include "mesh/mesh_readers.h"
+#include "meshwave/mesh.h"
+
+namespace meshwave {
+namespace {
+
+// Larger inputs are refused before reading: the biggest meshes we handle are
+// a few hundred MB, and every reader needs a few times the file in memory.
+constexpr uint64_t kMaxFileBytes = uint64_t{4} << 30;
+
+Status ErrnoError(const std::filesystem::path& path, const char* action,
+                  int error) {
+  return IoError(path.string() + ": cannot " + action + ": " +
+                 std::strerror(error));
+}
+
+// Closes a file descriptor on every path out of a function.
+class FdCloser {
+ public:
+  explicit FdCloser(int fd) : fd_(fd) {}
+  FdCloser(const FdCloser&) = delete;
+  FdCloser& operator=(const FdCloser&) = delete;
+  ~FdCloser() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  // Closes now and reports the result (close can report a failed write).
+  int Close() {
+    int result = ::close(fd_);
+    fd_ = -1;
+    return result;
+  }
+
+ private:
+  int fd_;
+};
+
+Status WriteAll(int fd, std::string_view bytes,
+                const std::filesystem::path& path) {
+  while (!bytes.empty()) {
+    ssize_t written = ::write(fd, bytes.data(), bytes.size());
+    if (written < 0) {
+      if (errno == EINTR) continue;
+      return ErrnoError(path, "write", errno);
+    }
+    bytes.remove_prefix(static_cast<size_t>(written));
+  }
+  return Status::Ok();
+}
+
+Status WriteFileAtomically(std::string_view bytes,
+                           const std::filesystem::path& path) {
+  std::filesystem::path temp = path;
+  temp += ".tmp-" + std::to_string(::getpid());
+  int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) return ErrnoError(temp, "create", errno);
+  FdCloser closer(fd);
+  Status status = WriteAll(fd, bytes, temp);
+  if (status.ok() && ::fsync(fd) != 0)
+    status = ErrnoError(temp, "fsync", errno);
+  if (closer.Close() != 0 && status.ok())
+    status = ErrnoError(temp, "close", errno);
+  if (status.ok() && ::rename(temp.c_str(), path.c_str()) != 0) {
+    status = ErrnoError(path, "rename the temporary file to", errno);
+  }
+  if (!status.ok()) {
+    ::unlink(temp.c_str());
+    return status;
+  }
+  // Make the rename itself durable; a failure here loses nothing written.
+  std::filesystem::path dir = path.parent_path();
+  int dir_fd = ::open(dir.empty() ? "." : dir.c_str(),
+                      O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (dir_fd >= 0) {
+    ::fsync(dir_fd);
+    ::close(dir_fd);
+  }
+  return Status::Ok();
+}
+
+}  // namespace
+
+Result<MeshFormat> FormatFromPath(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  for (char& c : ext)
+    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext == ".ply") return MeshFormat::kPly;
+  if (ext == ".obj") return MeshFormat::kObj;
+  if (ext == ".off") return MeshFormat::kOff;
+  return InvalidArgument(path.string() + ": unknown mesh format \"" +
+                         path.extension().string() +
+                         "\" (expected .ply, .obj or .off)");
+}
+
+Result<TriMesh> ParseMesh(std::string_view bytes, MeshFormat format,
+                          std::string_view name) {
+  Result<TriMesh> mesh = [&]() -> Result<TriMesh> {
+    switch (format) {
+      case MeshFormat::kPly:
+        return ParsePly(bytes, name);
+      case MeshFormat::kObj:
+        return ParseObj(bytes, name);
+      case MeshFormat::kOff:
+        return ParseOff(bytes, name);
+    }
+    return InvalidArgument(std::string(name) + ": unknown mesh format");
+  }();
+  if (mesh.ok() && mesh->faces.empty()) {
+    return ParseError(std::string(name) + ": no faces (" +
+                      std::to_string(mesh->positions.size()) + " vertices)");
+  }
+  return mesh;
+}
+
+Result<TriMesh> ReadMesh(const std::filesystem::path& path) {
+  MW_ASSIGN_OR_RETURN(MeshFormat format, FormatFromPath(path));
+  int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return ErrnoError(path, "open", errno);
+  FdCloser closer(fd);
+  struct stat info {};
+  if (::fstat(fd, &info) != 0) return ErrnoError(path, "stat", errno);
+  if (!S_ISREG(info.st_mode))
+    return IoError(path.string() + ": not a regular file");
+  const uint64_t size = static_cast<uint64_t>(info.st_size);
+  if (size > kMaxFileBytes) {
+    return IoError(path.string() + ": " + std::to_string(size) +
+                   " bytes is larger than the 4 GiB limit");
+  }
+  std::string bytes(static_cast<size_t>(size), '\0');
+  size_t done = 0;
+  while (done < bytes.size()) {
+    ssize_t got = ::read(fd, bytes.data() + done, bytes.size() - done);
+    if (got < 0) {
+      if (errno == EINTR) continue;
+      return ErrnoError(path, "read", errno);
+    }
+    if (got == 0) {
+      return IoError(path.string() + ": file shrank while being read");
+    }
+    done += static_cast<size_t>(got);
+  }
+  return ParseMesh(bytes, format, path.string());
+}
+
+Status WriteMesh(const TriMesh& mesh, const std::filesystem::path& path) {
+  MW_ASSIGN_OR_RETURN(MeshFormat format, FormatFromPath(path));
+  switch (format) {
+    case MeshFormat::kPly:
+      return WriteFileAtomically(SerializePly(mesh), path);
+    case MeshFormat::kObj:
+      return WriteFileAtomically(SerializeObj(mesh), path);
+    case MeshFormat::kOff:
+      break;
+  }
+  return Status(
+      StatusCode::kUnsupported,
+      path.string() + ": writing OFF is not supported (use .ply or .obj)");
+}
+
+Aabb BoundingBox(const std::vector<Vec3>& positions) {
+  Aabb box;
+  if (positions.empty()) return box;
+  box.min = box.max = positions.front();
+  for (const Vec3& p : positions) {
+    box.min = box.min.cwiseMin(p);
+    box.max = box.max.cwiseMax(p);
+  }
+  return box;
+}
+
+}  // namespace meshwave

@@ -1,0 +1,364 @@
+// SimplifyByEdgeCollapse: a lazy priority queue of edges keyed by quadric
+// error; stale entries are recognised by per-vertex stamps.
+#include "remesh/qem_simplifier.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <queue>
+#include <utility>
+
+#include "remesh/quadric.h"
+
+namespace meshwave::remesh {
+namespace {
+
+constexpr uint32_t kNone = SimplifiedMesh::kNone;
+// Boundary planes weigh this many times the squared edge length: enough
+// that collapsing along a curved boundary costs like the face planes of a
+// sharp crease, so holes keep their shape.
+constexpr double kBoundaryWeight = 10.0;
+// Edge-length term: cost += kLengthWeight · |uv|^4 (same units as an
+// area-weighted squared distance). Breaks ties in flat regions in favour of
+// short edges, so the base has even triangles there; in curved regions the
+// quadric dominates (the term equals the quadric when a face spans about 5°
+// of curvature).
+constexpr double kLengthWeight = 1e-3;
+// A face may turn by at most acos(0.25) ≈ 75° in one collapse.
+constexpr double kMinNormalCos = 0.25;
+// Compactness 4√3·area / Σ edge² (1 for an equilateral triangle): below this
+// a collapse may not make the worst triangle around it worse.
+constexpr double kMinQuality = 0.05;
+
+double Compactness(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const double sum = (b - a).squaredNorm() + (c - b).squaredNorm() +
+                     (a - c).squaredNorm();
+  if (!(sum > 0)) return 0;
+  return 2 * std::sqrt(3.0) * (b - a).cross(c - a).norm() / sum;
+}
+
+bool Contains(const Face& f, uint32_t v) {
+  return f[0] == v || f[1] == v || f[2] == v;
+}
+
+uint32_t ThirdCorner(const Face& f, uint32_t a, uint32_t b) {
+  for (uint32_t x : f) {
+    if (x != a && x != b) return x;
+  }
+  return kNone;
+}
+
+class Simplifier {
+ public:
+  Simplifier(const TriMesh& mesh, const Components& components,
+             const SimplifyOptions& options)
+      : options_(options),
+        positions_(mesh.positions),
+        faces_(mesh.faces),
+        face_alive_(mesh.faces.size(), 1),
+        vertex_faces_(mesh.positions.size()),
+        quadrics_(mesh.positions.size()),
+        boundary_(mesh.positions.size(), 0),
+        stamp_(mesh.positions.size(), 0),
+        source_(mesh.positions.size()),
+        component_(components.of_vertex),
+        component_faces_(components.count, 0) {
+    for (uint32_t v = 0; v < source_.size(); ++v) source_[v] = v;
+    for (uint32_t f = 0; f < faces_.size(); ++f) {
+      for (uint32_t v : faces_[f]) vertex_faces_[v].push_back(f);
+      ++component_faces_[components.of_face[f]];
+    }
+  }
+
+  SimplifiedMesh Run() {
+    const std::vector<std::pair<uint64_t, uint32_t>> edges = InitQuadrics();
+    size_t planned = 0;
+    for (size_t c = 0; c < component_faces_.size(); ++c) {
+      if (component_faces_[c] > options_.target_faces[c]) {
+        planned += (component_faces_[c] - options_.target_faces[c]) / 2;
+      }
+    }
+    std::vector<Entry> storage;
+    storage.reserve(edges.size() + 8 * planned);
+    queue_ = std::priority_queue<Entry, std::vector<Entry>, std::greater<>>(
+        std::greater<>(), std::move(storage));
+    for (const auto& [key, count] : edges) {
+      (void)count;
+      Push(static_cast<uint32_t>(key >> 32), static_cast<uint32_t>(key));
+    }
+    size_t done = 0;
+    const size_t report_every = std::max<size_t>(planned / 100, 1000);
+    while (!queue_.empty()) {
+      const Entry e = queue_.top();
+      queue_.pop();
+      if (stamp_[e.u] != e.stamp_u || stamp_[e.v] != e.stamp_v) continue;
+      const uint32_t c = component_[e.u];
+      if (component_faces_[c] <= options_.target_faces[c]) continue;
+      const Candidate cand = Evaluate(e.u, e.v);
+      // keep == 0: u's position, so u survives; otherwise v survives.
+      const uint32_t kept = cand.keep == 0 ? e.u : e.v;
+      const uint32_t removed = kept == e.u ? e.v : e.u;
+      if (!CanCollapse(removed, kept, cand.position)) continue;
+      Collapse(removed, kept, cand);
+      if (++done % report_every == 0 && options_.progress && planned > 0) {
+        options_.progress(std::min(1.0, static_cast<double>(done) /
+                                            static_cast<double>(planned)));
+      }
+    }
+    return Compact(done);
+  }
+
+ private:
+  struct Candidate {
+    double cost;
+    Vec3 position;
+    uint8_t keep;  // 0: u's position, 1: v's position, 2: a new point
+  };
+  struct Entry {
+    double cost;
+    uint32_t u, v, stamp_u, stamp_v;
+    bool operator>(const Entry& o) const { return cost > o.cost; }
+  };
+
+  // Face and boundary quadrics, boundary flags; returns the undirected
+  // edges with their face counts.
+  std::vector<std::pair<uint64_t, uint32_t>> InitQuadrics() {
+    std::vector<std::pair<uint64_t, uint32_t>> keyed;
+    keyed.reserve(faces_.size() * 3);
+    for (uint32_t f = 0; f < faces_.size(); ++f) {
+      const Face& t = faces_[f];
+      const Vec3 n = (positions_[t[1]] - positions_[t[0]])
+                         .cross(positions_[t[2]] - positions_[t[0]]);
+      const double twice_area = n.norm();
+      if (twice_area > 0) {
+        const Vec3 unit = n / twice_area;
+        const Quadric q =
+            Quadric::Plane(unit, -unit.dot(positions_[t[0]]), twice_area / 2);
+        for (uint32_t v : t) quadrics_[v] += q;
+      }
+      for (int i = 0; i < 3; ++i) {
+        uint32_t a = t[i], b = t[(i + 1) % 3];
+        if (a > b) std::swap(a, b);
+        keyed.push_back({(uint64_t{a} << 32) | b, f});
+      }
+    }
+    std::sort(keyed.begin(), keyed.end());
+    std::vector<std::pair<uint64_t, uint32_t>> edges;
+    for (size_t i = 0; i < keyed.size();) {
+      size_t j = i + 1;
+      while (j < keyed.size() && keyed[j].first == keyed[i].first) ++j;
+      edges.push_back({keyed[i].first, static_cast<uint32_t>(j - i)});
+      if (j - i == 1) AddBoundaryPlane(keyed[i].first, keyed[i].second);
+      i = j;
+    }
+    return edges;
+  }
+
+  void AddBoundaryPlane(uint64_t key, uint32_t f) {
+    const uint32_t a = static_cast<uint32_t>(key >> 32);
+    const uint32_t b = static_cast<uint32_t>(key);
+    boundary_[a] = boundary_[b] = 1;
+    const Face& t = faces_[f];
+    const Vec3 n = (positions_[t[1]] - positions_[t[0]])
+                       .cross(positions_[t[2]] - positions_[t[0]]);
+    const Vec3 edge = positions_[b] - positions_[a];
+    Vec3 m = edge.cross(n);
+    const double length = m.norm();
+    if (!(length > 0)) return;
+    m /= length;
+    const Quadric q = Quadric::Plane(m, -m.dot(positions_[a]),
+                                     kBoundaryWeight * edge.squaredNorm());
+    quadrics_[a] += q;
+    quadrics_[b] += q;
+  }
+
+  Candidate Evaluate(uint32_t u, uint32_t v) const {
+    const Quadric q = quadrics_[u] + quadrics_[v];
+    Candidate best{std::numeric_limits<double>::infinity(), Vec3::Zero(), 0};
+    auto consider = [&](const Vec3& p, uint8_t keep) {
+      const double e = q.Error(p);
+      if (e < best.cost) best = {e, p, keep};
+    };
+    const Vec3& pu = positions_[u];
+    const Vec3& pv = positions_[v];
+    if (boundary_[u] || boundary_[v]) {
+      if (boundary_[u]) consider(pu, 0);
+      if (boundary_[v]) consider(pv, 1);
+    } else {
+      consider(pu, 0);
+      consider(pv, 1);
+      const Vec3 mid = (pu + pv) / 2;
+      consider(mid, 2);
+      Vec3 optimum;
+      if (q.Minimizer(&optimum) &&
+          (optimum - mid).squaredNorm() <= (pu - pv).squaredNorm()) {
+        consider(optimum, 2);
+      }
+    }
+    const double length2 = (pu - pv).squaredNorm();
+    best.cost = std::max(best.cost, 0.0) + kLengthWeight * length2 * length2;
+    return best;
+  }
+
+  void Push(uint32_t u, uint32_t v) {
+    const Candidate c = Evaluate(u, v);
+    queue_.push({c.cost, u, v, stamp_[u], stamp_[v]});
+  }
+
+  void Neighbours(uint32_t v, uint32_t skip, std::vector<uint32_t>& out) const {
+    out.clear();
+    for (uint32_t f : vertex_faces_[v]) {
+      for (uint32_t x : faces_[f]) {
+        if (x != v && x != skip) out.push_back(x);
+      }
+    }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+  }
+
+  bool CanCollapse(uint32_t removed, uint32_t kept, const Vec3& p) {
+    uint32_t apex[2];
+    int shared = 0;
+    for (uint32_t f : vertex_faces_[removed]) {
+      if (!Contains(faces_[f], kept)) continue;
+      if (shared == 2) return false;
+      apex[shared++] = ThirdCorner(faces_[f], removed, kept);
+    }
+    if (shared == 0) return false;  // the edge no longer exists
+    const bool both_boundary = boundary_[removed] && boundary_[kept];
+    if (both_boundary && shared == 2) return false;  // would pinch
+    if (shared == 1 && !both_boundary) return false;
+    // Link condition.
+    Neighbours(removed, kept, ring_a_);
+    Neighbours(kept, removed, ring_b_);
+    size_t common = 0;
+    for (size_t i = 0, j = 0; i < ring_a_.size() && j < ring_b_.size();) {
+      if (ring_a_[i] < ring_b_[j]) {
+        ++i;
+      } else if (ring_b_[j] < ring_a_[i]) {
+        ++j;
+      } else {
+        ++common, ++i, ++j;
+      }
+    }
+    if (common != static_cast<size_t>(shared)) return false;
+    for (int i = 0; i < shared; ++i) {
+      const size_t faces = vertex_faces_[apex[i]].size();
+      if (faces <= (boundary_[apex[i]] ? 1u : 3u)) return false;
+    }
+    const size_t after = vertex_faces_[removed].size() +
+                         vertex_faces_[kept].size() - 2 * shared;
+    if (after < (both_boundary || boundary_[removed] || boundary_[kept] ? 1u
+                                                                        : 3u)) {
+      return false;
+    }
+    // Geometry: no fold, no new sliver worse than what is there.
+    double worst_before = 1, worst_after = 1;
+    for (uint32_t moved : {removed, kept}) {
+      for (uint32_t f : vertex_faces_[moved]) {
+        const Face& t = faces_[f];
+        if (Contains(t, removed) && Contains(t, kept)) continue;
+        Vec3 corner[3], moved_corner[3];
+        for (int i = 0; i < 3; ++i) {
+          corner[i] = positions_[t[i]];
+          moved_corner[i] = t[i] == moved ? p : corner[i];
+        }
+        const Vec3 before = (corner[1] - corner[0]).cross(corner[2] - corner[0]);
+        const Vec3 after_n = (moved_corner[1] - moved_corner[0])
+                                 .cross(moved_corner[2] - moved_corner[0]);
+        const double nb = before.norm(), na = after_n.norm();
+        if (!(na > 0)) return false;
+        if (nb > 0 && before.dot(after_n) < kMinNormalCos * nb * na) {
+          return false;
+        }
+        worst_before =
+            std::min(worst_before, Compactness(corner[0], corner[1], corner[2]));
+        worst_after = std::min(worst_after, Compactness(moved_corner[0],
+                                                        moved_corner[1],
+                                                        moved_corner[2]));
+      }
+    }
+    return !(worst_after < kMinQuality && worst_after < worst_before);
+  }
+
+  void Collapse(uint32_t removed, uint32_t kept, const Candidate& cand) {
+    for (uint32_t f : vertex_faces_[removed]) {
+      Face& t = faces_[f];
+      if (Contains(t, kept)) {
+        face_alive_[f] = 0;
+        --component_faces_[component_[kept]];
+        for (uint32_t x : t) {
+          if (x == removed) continue;
+          auto& list = vertex_faces_[x];
+          list.erase(std::find(list.begin(), list.end(), f));
+        }
+        continue;
+      }
+      for (uint32_t& x : t) {
+        if (x == removed) x = kept;
+      }
+      vertex_faces_[kept].push_back(f);
+    }
+    vertex_faces_[removed].clear();
+    vertex_faces_[removed].shrink_to_fit();
+    if (cand.keep == 2) {
+      source_[kept] = kNone;
+    }
+    positions_[kept] = cand.position;
+    quadrics_[kept] += quadrics_[removed];
+    boundary_[kept] = boundary_[kept] || boundary_[removed];
+    ++stamp_[kept];
+    ++stamp_[removed];  // every queued edge of `removed` is now stale
+    Neighbours(kept, kNone, ring_a_);
+    for (uint32_t w : ring_a_) Push(kept, w);
+  }
+
+  SimplifiedMesh Compact(size_t collapses) const {
+    SimplifiedMesh out;
+    out.collapses = collapses;
+    std::vector<uint32_t> index(positions_.size(), kNone);
+    for (uint32_t f = 0; f < faces_.size(); ++f) {
+      if (!face_alive_[f]) continue;
+      Face g;
+      for (int i = 0; i < 3; ++i) {
+        const uint32_t v = faces_[f][i];
+        if (index[v] == kNone) {
+          index[v] = static_cast<uint32_t>(out.mesh.positions.size());
+          out.mesh.positions.push_back(positions_[v]);
+          out.source_vertex.push_back(source_[v]);
+          out.component.push_back(component_[v]);
+        }
+        g[i] = index[v];
+      }
+      out.mesh.faces.push_back(g);
+    }
+    return out;
+  }
+
+  const SimplifyOptions& options_;
+  std::vector<Vec3> positions_;
+  std::vector<Face> faces_;
+  std::vector<uint8_t> face_alive_;
+  std::vector<std::vector<uint32_t>> vertex_faces_;
+  std::vector<Quadric> quadrics_;
+  std::vector<uint8_t> boundary_;
+  std::vector<uint32_t> stamp_;
+  std::vector<uint32_t> source_;
+  std::vector<uint32_t> component_;
+  std::vector<uint32_t> component_faces_;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue_;
+  std::vector<uint32_t> ring_a_, ring_b_;
+};
+
+}  // namespace
+
+SimplifiedMesh SimplifyByEdgeCollapse(const TriMesh& mesh,
+                                      const Components& components,
+                                      const SimplifyOptions& options) {
+  Simplifier simplifier(mesh, components, options);
+  return simplifier.Run();
+}
+
+}  // namespace meshwave::remesh

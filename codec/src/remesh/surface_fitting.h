@@ -1,0 +1,75 @@
+// Surface fitting: places the vertices of every level of a semi-regular
+// hierarchy on the input surface, level by level, as normal meshes do
+// (Guskov et al. 2000) with the fit-relax-repair loop of V-DMC
+// (CODEC_NOTES 1.4).
+#ifndef MESHWAVE_REMESH_SURFACE_FITTING_H_
+#define MESHWAVE_REMESH_SURFACE_FITTING_H_
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "meshwave/semiregular.h"
+#include "meshwave/status.h"
+#include "remesh/input_surface.h"
+#include "remesh/qem_simplifier.h"
+
+namespace meshwave::remesh {
+
+// Where a remesh vertex sits on the input surface.
+struct SurfaceAnchor {
+  uint32_t face = InputSurface::kNoFace;  // input face it lies on
+  uint32_t component = 0;                 // input component it belongs to
+  uint32_t loop = BoundaryLoops::kNone;   // input boundary loop, if on one
+  double s = 0;                           // arc length along that loop
+};
+
+struct FitOptions {
+  // Tangential relaxation rounds after each level, and the step (fraction
+  // of the way to the one-ring centroid).
+  int relax_rounds = 3;
+  double relax_step = 0.5;
+  // Rounds of untangling for faces that end up folded or degenerate.
+  int repair_rounds = 8;
+  // How far along the interpolated normal a new vertex may move, as a
+  // multiple of the length of the edge it splits.
+  double normal_reach = 1.0;
+  int threads = 2;
+  // Called after each level with (level reached, fraction of all work).
+  std::function<void(int level, double fraction)> progress;
+};
+
+struct FitStats {
+  size_t normal_hits = 0;        // new vertices placed along the normal
+  size_t closest_fallbacks = 0;  // ... at the closest point instead
+  size_t boundary_vertices = 0;  // ... on an input boundary loop
+  size_t repair_moves = 0;       // moves made to untangle folds and slivers
+  size_t unrepaired_faces = 0;   // folded or degenerate after the last level
+};
+
+// Base positions and anchors: base vertices that kept an input vertex stay
+// there (boundary ones learn their loop and arc length); the others move to
+// the closest point of their component facing their normal.
+void PlaceBaseVertices(const SimplifiedMesh& base, const InputSurface& surface,
+                       std::vector<Vec3>& positions,
+                       std::vector<SurfaceAnchor>& anchors);
+
+// Fits levels 1..J. On entry `positions` and `anchors` hold the V_0 base
+// vertices (from PlaceBaseVertices); on return all V_J, in the canonical
+// order of `hierarchy`. For each level: butterfly prediction of the new
+// vertices, then each is moved to where its interpolated normal meets the
+// input (within normal_reach edge lengths; else the closest point of its
+// component facing that normal); new boundary vertices go to the arc-length
+// midpoint of their edge on the input loop. Then tangential relaxation of
+// the new vertices with re-projection, and untangling of folded faces
+// (normal opposing the input's) and degenerate ones. Vertices of coarser
+// levels do not move.
+Status FitLevels(std::shared_ptr<const SemiRegularHierarchy> hierarchy,
+                 const InputSurface& surface, const FitOptions& options,
+                 std::vector<Vec3>& positions,
+                 std::vector<SurfaceAnchor>& anchors, FitStats* stats);
+
+}  // namespace meshwave::remesh
+
+#endif  // MESHWAVE_REMESH_SURFACE_FITTING_H_

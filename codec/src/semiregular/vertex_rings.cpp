@@ -1,0 +1,117 @@
+#include "semiregular/vertex_rings.h"
+
+#include <algorithm>
+#include <string>
+#include <utility>
+
+namespace meshwave {
+
+Result<VertexRings> VertexRings::Build(uint32_t vertex_count,
+                                       std::span<const Face> faces) {
+  // Incident faces per vertex, as (next, previous) corner pairs: a face
+  // (v, a, b) seen from v contributes the wedge a -> b.
+  std::vector<uint32_t> face_offsets(size_t{vertex_count} + 1, 0);
+  for (size_t f = 0; f < faces.size(); ++f) {
+    const Face& t = faces[f];
+    for (int i = 0; i < 3; ++i) {
+      if (t[i] >= vertex_count) {
+        return InvalidArgument("face " + std::to_string(f) + ": vertex " +
+                               std::to_string(t[i]) + " out of range");
+      }
+    }
+    if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) {
+      return InvalidArgument("face " + std::to_string(f) +
+                             " repeats a corner");
+    }
+    for (int i = 0; i < 3; ++i) ++face_offsets[t[i] + 1];
+  }
+  for (uint32_t v = 0; v < vertex_count; ++v) {
+    if (face_offsets[v + 1] == 0) {
+      return InvalidArgument("vertex " + std::to_string(v) +
+                             " is not used by any face");
+    }
+    face_offsets[v + 1] += face_offsets[v];
+  }
+  std::vector<std::pair<uint32_t, uint32_t>> wedges(face_offsets.back());
+  {
+    std::vector<uint32_t> fill(face_offsets.begin(), face_offsets.end() - 1);
+    for (const Face& t : faces) {
+      for (int i = 0; i < 3; ++i) {
+        wedges[fill[t[i]]++] = {t[(i + 1) % 3], t[(i + 2) % 3]};
+      }
+    }
+  }
+
+  VertexRings rings;
+  rings.offsets_.assign(size_t{vertex_count} + 1, 0);
+  rings.boundary_.assign(vertex_count, 0);
+  rings.neighbours_.reserve(wedges.size() + vertex_count);
+  std::vector<std::pair<uint32_t, uint32_t>> local;
+  std::vector<uint32_t> ends;
+  for (uint32_t v = 0; v < vertex_count; ++v) {
+    local.assign(wedges.begin() + face_offsets[v],
+                 wedges.begin() + face_offsets[v + 1]);
+    const size_t n = local.size();
+    // Sorted by start vertex so the wedge that starts at x is found by a
+    // binary search: linear in valence·log(valence), even for huge fans.
+    std::sort(local.begin(), local.end());
+    for (size_t i = 1; i < n; ++i) {
+      if (local[i].first == local[i - 1].first) {
+        return Status(StatusCode::kNotManifold,
+                      "edge (" + std::to_string(v) + ", " +
+                          std::to_string(local[i].first) +
+                          ") is used by more than two faces or by two faces "
+                          "of opposite orientation");
+      }
+    }
+    auto find_wedge = [&](uint32_t first) -> size_t {
+      auto it = std::lower_bound(
+          local.begin(), local.end(), first,
+          [](const auto& w, uint32_t x) { return w.first < x; });
+      return (it != local.end() && it->first == first)
+                 ? static_cast<size_t>(it - local.begin())
+                 : n;
+    };
+    // A wedge starts the fan when no wedge ends where it starts.
+    ends.clear();
+    for (const auto& w : local) ends.push_back(w.second);
+    std::sort(ends.begin(), ends.end());
+    size_t start = n;
+    for (size_t i = 0; i < n; ++i) {
+      if (!std::binary_search(ends.begin(), ends.end(), local[i].first)) {
+        if (start != n) {
+          return Status(StatusCode::kNotManifold,
+                        "vertex " + std::to_string(v) +
+                            " joins several fans of faces (non-manifold vertex)");
+        }
+        start = i;
+      }
+    }
+    const bool boundary = start != n;
+    if (!boundary) start = 0;
+    size_t current = start;
+    size_t visited = 0;
+    rings.neighbours_.push_back(local[current].first);
+    while (true) {
+      ++visited;
+      const uint32_t next_vertex = local[current].second;
+      const size_t next = find_wedge(next_vertex);
+      if (next == n || next == start || visited > n) {
+        if (boundary) rings.neighbours_.push_back(next_vertex);
+        break;
+      }
+      rings.neighbours_.push_back(next_vertex);
+      current = next;
+    }
+    if (visited != n) {
+      return Status(StatusCode::kNotManifold,
+                    "vertex " + std::to_string(v) +
+                        " joins several fans of faces (non-manifold vertex)");
+    }
+    rings.boundary_[v] = boundary ? 1 : 0;
+    rings.offsets_[v + 1] = static_cast<uint32_t>(rings.neighbours_.size());
+  }
+  return rings;
+}
+
+}  // namespace meshwave

@@ -1,0 +1,188 @@
+#include <string>
+
+#include "meshwave/wavelet.h"
+#include "semiregular/vertex_rings.h"
+#include "wavelet/local_frames.h"
+#include "wavelet/prediction_stencils.h"
+
+namespace meshwave {
+
+struct WaveletTransform::Level {
+  StencilTable stencils;
+  std::vector<std::array<double, 2>> update;  // empty when unlifted
+};
+
+namespace {
+
+Vec3 Predict(const StencilTable& s, uint32_t k, const Vec3* x) {
+  const uint32_t begin = s.offsets[k], end = s.offsets[k + 1];
+  const double* w = s.weights.data() + s.weight_start[k];
+  const uint32_t* idx = s.indices.data() + begin;
+  Vec3 p = Vec3::Zero();
+  for (uint32_t i = 0; i < end - begin; ++i) p += w[i] * x[idx[i]];
+  return p;
+}
+
+// Face normals of the level being transformed; kept per thread so repeated
+// transforms of large meshes do not allocate (and fault in) new pages.
+std::vector<Vec3>& FaceNormalScratch() {
+  thread_local std::vector<Vec3> scratch;
+  return scratch;
+}
+
+}  // namespace
+
+Result<WaveletTransform> WaveletTransform::Create(
+    std::shared_ptr<const SemiRegularHierarchy> hierarchy,
+    const TransformSettings& settings) {
+  if (!hierarchy) return InvalidArgument("no hierarchy");
+  auto levels = std::make_shared<std::vector<Level>>();
+  for (int j = 0; j < hierarchy->levels(); ++j) {
+    auto rings =
+        VertexRings::Build(hierarchy->vertex_count(j), hierarchy->faces(j));
+    if (!rings.ok()) {
+      return rings.status().WithContext("level " + std::to_string(j));
+    }
+    Level level;
+    level.stencils =
+        BuildPredictionStencils(*hierarchy, j, *rings, settings.predictor);
+    level.update = BuildUpdateWeights(*hierarchy, j, *rings, settings.update);
+    levels->push_back(std::move(level));
+  }
+  WaveletTransform t;
+  t.hierarchy_ = std::move(hierarchy);
+  t.settings_ = settings;
+  t.levels_ = std::move(levels);
+  return t;
+}
+
+Pyramid WaveletTransform::Forward(std::span<const Vec3> positions) const {
+  Pyramid pyramid;
+  Forward(positions, pyramid);
+  return pyramid;
+}
+
+void WaveletTransform::Forward(std::span<const Vec3> positions,
+                               Pyramid& pyramid) const {
+  const SemiRegularHierarchy& h = *hierarchy_;
+  const int num_levels = h.levels();
+  // Work in place in `x`: each level's odd slots first receive the detail
+  // in xyz, which is then moved to its subband (in the local frame).
+  std::vector<Vec3>& x = pyramid.base;
+  x.assign(positions.begin(), positions.end());
+  x.resize(h.vertex_count(num_levels));
+  pyramid.hierarchy = hierarchy_;
+  pyramid.settings = settings_;
+  pyramid.subbands.resize(num_levels);
+  for (int j = num_levels - 1; j >= 0; --j) {
+    const Level& level = (*levels_)[j];
+    const uint32_t vj = h.vertex_count(j);
+    const uint32_t n = static_cast<uint32_t>(h.subband_size(j));
+    Vec3* odd = x.data() + vj;
+    for (uint32_t k = 0; k < n; ++k) {
+      odd[k] -= Predict(level.stencils, k, x.data());
+    }
+    if (!level.update.empty()) {
+      const auto& edges = h.edges(j);
+      for (uint32_t k = 0; k < n; ++k) {
+        x[edges[k][0]] += level.update[k][0] * odd[k];
+        x[edges[k][1]] += level.update[k][1] * odd[k];
+      }
+    }
+    std::vector<Vec3>& d = pyramid.subbands[j];
+    d.resize(n);
+    if (settings_.frames == FrameMode::kLocal) {
+      const LevelFrames frames(h, j, std::span<const Vec3>(x.data(), vj),
+                                FaceNormalScratch());
+      for (uint32_t k = 0; k < n; ++k) d[k] = frames(k).ToLocal(odd[k]);
+    } else {
+      std::copy(odd, odd + n, d.begin());
+    }
+  }
+  x.resize(h.vertex_count(0));
+}
+
+std::vector<Vec3> WaveletTransform::Inverse(const Pyramid& pyramid,
+                                            int max_level) const {
+  std::vector<Vec3> x;
+  Inverse(pyramid, max_level, x);
+  return x;
+}
+
+void WaveletTransform::Inverse(const Pyramid& pyramid, int max_level,
+                               std::vector<Vec3>& x) const {
+  const SemiRegularHierarchy& h = *hierarchy_;
+  if (max_level < 0 || max_level > h.levels()) max_level = h.levels();
+  x.resize(h.vertex_count(max_level));
+  std::copy(pyramid.base.begin(), pyramid.base.end(), x.begin());
+  for (int j = 0; j < max_level; ++j) {
+    const Level& level = (*levels_)[j];
+    const uint32_t vj = h.vertex_count(j);
+    const uint32_t n = static_cast<uint32_t>(h.subband_size(j));
+    const std::vector<Vec3>& coded = pyramid.subbands[j];
+    // The odd slots hold the detail in xyz until the prediction is added.
+    Vec3* odd = x.data() + vj;
+    if (settings_.frames == FrameMode::kLocal) {
+      const LevelFrames frames(h, j, std::span<const Vec3>(x.data(), vj),
+                                FaceNormalScratch());
+      for (uint32_t k = 0; k < n; ++k) odd[k] = frames(k).ToGlobal(coded[k]);
+    } else {
+      std::copy(coded.begin(), coded.end(), odd);
+    }
+    if (!level.update.empty()) {
+      const auto& edges = h.edges(j);
+      for (uint32_t k = 0; k < n; ++k) {
+        x[edges[k][0]] -= level.update[k][0] * odd[k];
+        x[edges[k][1]] -= level.update[k][1] * odd[k];
+      }
+    }
+    for (uint32_t k = 0; k < n; ++k) {
+      odd[k] += Predict(level.stencils, k, x.data());
+    }
+  }
+}
+
+void WaveletTransform::PredictLevel(int j, std::span<Vec3> positions) const {
+  const Level& level = (*levels_)[j];
+  const uint32_t vj = hierarchy_->vertex_count(j);
+  const uint32_t n = static_cast<uint32_t>(hierarchy_->subband_size(j));
+  for (uint32_t k = 0; k < n; ++k) {
+    positions[vj + k] = Predict(level.stencils, k, positions.data());
+  }
+}
+
+Result<Predictor> ParsePredictor(const std::string& name) {
+  if (name == "linear" || name == "midpoint") return Predictor::kLinear;
+  if (name == "butterfly") return Predictor::kButterfly;
+  if (name == "loop") return Predictor::kLoop;
+  return InvalidArgument("unknown predictor \"" + name +
+                         "\" (expected linear, butterfly or loop)");
+}
+
+const char* PredictorName(Predictor predictor) {
+  switch (predictor) {
+    case Predictor::kLinear: return "linear";
+    case Predictor::kButterfly: return "butterfly";
+    case Predictor::kLoop: return "loop";
+  }
+  return "?";
+}
+
+Result<UpdateWeights> ParseUpdateWeights(const std::string& name) {
+  if (name == "none" || name == "unlifted") return UpdateWeights::kNone;
+  if (name == "constant" || name == "lifted") return UpdateWeights::kConstant;
+  if (name == "valence") return UpdateWeights::kValence;
+  return InvalidArgument("unknown update \"" + name +
+                         "\" (expected none, constant or valence)");
+}
+
+const char* UpdateWeightsName(UpdateWeights update) {
+  switch (update) {
+    case UpdateWeights::kNone: return "none";
+    case UpdateWeights::kConstant: return "constant";
+    case UpdateWeights::kValence: return "valence";
+  }
+  return "?";
+}
+
+}  // namespace meshwave

@@ -1,0 +1,173 @@
+// meshwave info FILE [--json]: what a mesh file holds.
+#include <cstdio>
+#include <iostream>
+
+#include "cli_util.h"
+#include "commands.h"
+#include "meshwave.pb.h"
+#include "meshwave/mesh.h"
+#include "meshwave/semiregular.h"
+
+namespace meshwave::cli {
+namespace {
+
+struct InfoArgs {
+  std::string file;
+  bool json = false;
+  int max_levels = 12;
+};
+
+void FillTopology(const MeshStats& s, proto::Topology& t) {
+  t.set_vertices(s.vertices);
+  t.set_unreferenced_vertices(s.unreferenced_vertices);
+  t.set_faces(s.faces);
+  t.set_edges(s.edges);
+  t.set_boundary_edges(s.boundary_edges);
+  t.set_boundary_loops(s.boundary_loops);
+  t.set_components(s.components);
+  t.set_manifold(s.manifold);
+  t.set_closed(s.closed);
+  t.set_non_manifold_edges(s.non_manifold_edges);
+  t.set_non_manifold_vertices(s.non_manifold_vertices);
+  t.set_inconsistently_oriented_edges(s.inconsistently_oriented_edges);
+  t.set_euler_characteristic(s.euler_characteristic);
+  if (s.manifold && s.genus >= 0) t.set_genus(s.genus);
+}
+
+Result<proto::MeshInfo> Describe(const InfoArgs& args) {
+  MW_ASSIGN_OR_RETURN(MeshFormat format, FormatFromPath(args.file));
+  MW_ASSIGN_OR_RETURN(TriMesh mesh, ReadMesh(args.file));
+  proto::MeshInfo info;
+  info.set_file(args.file);
+  info.set_format(format == MeshFormat::kPly   ? "ply"
+                  : format == MeshFormat::kObj ? "obj"
+                                               : "off");
+  info.set_file_vertices(mesh.positions.size());
+  info.set_file_faces(mesh.faces.size());
+  FillTopology(ComputeStats(mesh), *info.mutable_as_read());
+  const Aabb box = BoundingBox(mesh.positions);
+  for (int i = 0; i < 3; ++i) {
+    info.mutable_bbox()->add_min(box.min[i]);
+    info.mutable_bbox()->add_max(box.max[i]);
+  }
+  info.mutable_bbox()->set_diagonal(box.Diagonal());
+
+  const CleanReport clean = CleanMesh(mesh);
+  proto::Cleaning& c = *info.mutable_cleaning();
+  c.set_merged_vertices(clean.merged_vertices);
+  c.set_degenerate_faces(clean.degenerate_faces);
+  c.set_duplicate_faces(clean.duplicate_faces);
+  c.set_unreferenced_vertices(clean.unreferenced_vertices);
+  c.set_zero_area_faces(clean.zero_area_faces);
+  FillTopology(ComputeStats(mesh), *info.mutable_cleaned());
+
+  DetectOptions options;
+  options.max_levels = args.max_levels;
+  auto detected = DetectSemiRegular(mesh, options);
+  if (detected.ok()) {
+    const auto& h = *detected->mesh.hierarchy;
+    info.set_semiregular_levels(h.levels());
+    info.set_base_vertices(h.vertex_count(0));
+    info.set_base_faces(h.faces(0).size());
+    info.set_semiregular_note("stopped: " + detected->stop_reason);
+  } else {
+    info.set_semiregular_levels(0);
+    info.set_semiregular_note(detected.status().message());
+  }
+  return info;
+}
+
+// One row of the as-read / cleaned table; the cleaned column is left empty
+// when cleaning changed nothing there.
+void Row(const char* key, const std::string& as_read, const std::string& cleaned) {
+  std::printf("%-23s %-16s %s\n", key, as_read.c_str(),
+              cleaned == as_read ? "" : cleaned.c_str());
+}
+
+void PrintTopology(const proto::Topology& a, const proto::Topology& b) {
+  auto num = [](uint64_t v) { return std::to_string(v); };
+  auto manifold = [&](const proto::Topology& t) {
+    if (t.manifold()) return std::string("yes");
+    return "no (" + num(t.non_manifold_edges()) + " edges, " +
+           num(t.non_manifold_vertices()) + " vertices)";
+  };
+  auto genus = [](const proto::Topology& t) {
+    return t.has_genus() ? std::to_string(t.genus()) : std::string("n/a");
+  };
+  Row("", "as read", "cleaned");
+  Row("vertices:", num(a.vertices()), num(b.vertices()));
+  Row("unreferenced vertices:", num(a.unreferenced_vertices()),
+      num(b.unreferenced_vertices()));
+  Row("faces:", num(a.faces()), num(b.faces()));
+  Row("edges:", num(a.edges()), num(b.edges()));
+  Row("boundary edges:", num(a.boundary_edges()), num(b.boundary_edges()));
+  Row("boundary loops:", num(a.boundary_loops()), num(b.boundary_loops()));
+  Row("components:", num(a.components()), num(b.components()));
+  Row("manifold:", manifold(a), manifold(b));
+  Row("closed:", a.closed() ? "yes" : "no", b.closed() ? "yes" : "no");
+  Row("misoriented edges:", num(a.inconsistently_oriented_edges()),
+      num(b.inconsistently_oriented_edges()));
+  Row("euler characteristic:", std::to_string(a.euler_characteristic()),
+      std::to_string(b.euler_characteristic()));
+  Row("genus:", genus(a), genus(b));
+}
+
+void PrintHuman(const proto::MeshInfo& i) {
+  auto line = [](const char* key, const std::string& value) {
+    std::printf("%-23s %s\n", key, value.c_str());
+  };
+  auto num = [](uint64_t v) { return std::to_string(v); };
+  line("file:", i.file() + " (" + i.format() + ", " + num(i.file_vertices()) +
+                    " vertex records, " + num(i.file_faces()) + " triangles)");
+  PrintTopology(i.as_read(), i.cleaned());
+  char box[256];
+  std::snprintf(box, sizeof box, "[%.6g %.6g %.6g] - [%.6g %.6g %.6g]",
+                i.bbox().min(0), i.bbox().min(1), i.bbox().min(2),
+                i.bbox().max(0), i.bbox().max(1), i.bbox().max(2));
+  line("bounding box:", box);
+  std::snprintf(box, sizeof box, "%.6g", i.bbox().diagonal());
+  line("diagonal:", box);
+  const proto::Cleaning& c = i.cleaning();
+  line("cleaning:", num(c.merged_vertices()) + " duplicate vertices merged, " +
+                        num(c.degenerate_faces()) + " degenerate and " +
+                        num(c.duplicate_faces()) + " duplicate faces dropped, " +
+                        num(c.unreferenced_vertices()) +
+                        " unreferenced vertices dropped, " +
+                        num(c.zero_area_faces()) + " zero-area faces kept");
+  if (i.semiregular_levels() > 0) {
+    line("semi-regular levels:",
+         num(i.semiregular_levels()) + " (base " + num(i.base_vertices()) +
+             " vertices, " + num(i.base_faces()) + " faces)");
+  } else {
+    line("semi-regular levels:", "0 (" + i.semiregular_note() + ")");
+  }
+}
+
+}  // namespace
+
+void AddInfoCommand(CLI::App& app, int& exit_code) {
+  auto args = std::make_shared<InfoArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "info", "Describe a mesh file: counts, topology, bounding box and "
+              "semi-regular levels");
+  cmd->add_option("file", args->file, "Mesh file (.ply, .obj, .off)")
+      ->required();
+  cmd->add_flag("--json", args->json, "Print JSON instead of text");
+  cmd->add_option("--max-levels", args->max_levels,
+                  "Stop looking for subdivision levels after this many")
+      ->check(CLI::Range(0, 12));
+  cmd->callback([args, &exit_code] {
+    auto info = Describe(*args);
+    if (!info.ok()) {
+      exit_code = Fail("info", info.status());
+      return;
+    }
+    if (args->json) {
+      PrintJson(*info);
+    } else {
+      PrintHuman(*info);
+    }
+  });
+}
+
+}  // namespace meshwave::cli
