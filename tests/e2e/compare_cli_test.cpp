@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -100,12 +101,14 @@ TEST_F(CompareCliTest, ReorderedVerticesAreMatchedByNearestNeighbour) {
     shuffled.positions[new_index[i]] = original.positions[i];
   }
   for (const Face& f : original.faces) {
-    shuffled.faces.push_back({new_index[f[0]], new_index[f[1]], new_index[f[2]]});
+    shuffled.faces.push_back(
+        {new_index[f[0]], new_index[f[1]], new_index[f[2]]});
   }
   const auto path = dir_ / "shuffled.obj";
   ASSERT_TRUE(WriteMesh(shuffled, path).ok());
 
-  const proto::CompareReport r = CompareJson({elephant_.string(), path.string()});
+  const proto::CompareReport r =
+      CompareJson({elephant_.string(), path.string()});
   ASSERT_TRUE(r.has_vertex_error());
   EXPECT_EQ(r.vertex_error().matching(), "nearest_neighbour");
   EXPECT_EQ(r.vertex_error().rms().absolute(), 0);
@@ -116,15 +119,17 @@ TEST_F(CompareCliTest, ReorderedVerticesAreMatchedByNearestNeighbour) {
   const testing::CliResult text =
       RunCli({"compare", elephant_.string(), path.string()});
   EXPECT_EQ(text.exit_code, 0) << text.err;
-  EXPECT_NE(text.out.find("vertices matched by nearest neighbour (orders differ)"),
-            std::string::npos)
+  EXPECT_NE(
+      text.out.find("vertices matched by nearest neighbour (orders differ)"),
+      std::string::npos)
       << text.out;
 }
 
 TEST_F(CompareCliTest, DifferentVertexCountsGiveOnlySurfaceDistance) {
   const auto holes = testing::SampleMesh("holes.off");
   const proto::CompareReport r =
-      CompareJson({elephant_.string(), holes.string()});
+      CompareJson({"--samples-per-face", "1", "--min-samples", "1000",
+                   elephant_.string(), holes.string()});
   EXPECT_FALSE(r.has_vertex_error());
   EXPECT_NE(r.vertex_note().find("vertex counts differ"), std::string::npos);
   EXPECT_GT(r.surface().hausdorff().absolute(), 0);
@@ -157,8 +162,16 @@ TEST_F(CompareCliTest, PrintsAlignedKeyValueLines) {
 
 TEST_F(CompareCliTest, SameSeedGivesTheSameReport) {
   const auto holes = testing::SampleMesh("holes.off");
-  const std::vector<std::string> args = {"compare", "--json", "--seed", "7",
-                                         elephant_.string(), holes.string()};
+  const std::vector<std::string> args = {"compare",
+                                         "--json",
+                                         "--seed",
+                                         "7",
+                                         "--samples-per-face",
+                                         "1",
+                                         "--min-samples",
+                                         "1000",
+                                         elephant_.string(),
+                                         holes.string()};
   const testing::CliResult first = RunCli(args);
   const testing::CliResult second = RunCli(args);
   EXPECT_EQ(first.exit_code, 0) << first.err;
@@ -176,44 +189,55 @@ TEST_F(CompareCliTest, MissingFileFailsNamingIt) {
 TEST_F(CompareCliTest, MalformedFileFailsWithReason) {
   const auto bad = dir_ / "bad.off";
   std::ofstream(bad) << "OFF\n3 1 0\n0 0 0\n1 0 0\n";  // truncated
-  const testing::CliResult r = RunCli({"compare", bad.string(), elephant_.string()});
+  const testing::CliResult r =
+      RunCli({"compare", bad.string(), elephant_.string()});
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find(bad.string()), std::string::npos) << r.err;
 }
 
 TEST_F(CompareCliTest, RejectsNegativeSampleCount) {
-  const testing::CliResult r =
-      RunCli({"compare", "--samples-per-face", "-1", elephant_.string(),
-              elephant_.string()});
+  const testing::CliResult r = RunCli({"compare", "--samples-per-face", "-1",
+                                       elephant_.string(), elephant_.string()});
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.err.find("samples-per-face"), std::string::npos) << r.err;
 }
 
 // Every shared mesh against itself: zero distance, or a refusal with a
-// reason. Few samples per face keep this quick; the metric itself is
-// covered by the unit tests.
-TEST(CompareCliSharedMeshesTest, EveryMeshAgainstItselfIsAtZeroDistance) {
-  const std::vector<std::filesystem::path> meshes = testing::AllSharedMeshes();
-  ASSERT_FALSE(meshes.empty()) << "no meshes in " << MESHWAVE_SHARED_MESHES;
-  for (const std::filesystem::path& mesh : meshes) {
-    SCOPED_TRACE(mesh.string());
-    const testing::CliResult r =
-        RunCli({"compare", "--json", "--samples-per-face", "2",
-                mesh.string(), mesh.string()});
-    if (r.exit_code != 0) {
-      EXPECT_EQ(r.exit_code, 1);
-      EXPECT_FALSE(r.err.empty()) << "refused without a reason";
-      ADD_FAILURE() << "refused: " << r.err;
-      continue;
-    }
-    proto::CompareReport report;
-    ASSERT_TRUE(
-        google::protobuf::util::JsonStringToMessage(r.out, &report).ok());
-    ASSERT_TRUE(report.has_vertex_error());
-    EXPECT_EQ(report.vertex_error().rms().absolute(), 0);
-    EXPECT_LT(report.surface().hausdorff().absolute(),
-              1e-12 * report.diagonal());
+// reason. One test per mesh, so each has its own time limit. Few samples per
+// face keep this quick; the metric itself is covered by the unit tests.
+class CompareCliSharedMeshTest
+    : public ::testing::TestWithParam<std::filesystem::path> {};
+
+TEST_P(CompareCliSharedMeshTest, ComparesWithItselfAtZeroDistance) {
+  const std::filesystem::path& mesh = GetParam();
+  const testing::CliResult r =
+      RunCli({"compare", "--json", "--samples-per-face", "1", mesh.string(),
+              mesh.string()});
+  ASSERT_EQ(r.exit_code, 0) << "refused: " << r.err;
+  proto::CompareReport report;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(r.out, &report).ok());
+  ASSERT_TRUE(report.has_vertex_error());
+  EXPECT_EQ(report.vertex_error().rms().absolute(), 0);
+  EXPECT_LT(report.surface().hausdorff().absolute(), 1e-12 * report.diagonal());
+}
+
+std::string MeshTestName(
+    const ::testing::TestParamInfo<std::filesystem::path>& info) {
+  std::string name = info.param.filename().string();
+  for (char& c : name) {
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
   }
+  return name;
+}
+
+INSTANTIATE_TEST_SUITE_P(SharedMeshes, CompareCliSharedMeshTest,
+                         ::testing::ValuesIn(testing::AllSharedMeshes()),
+                         MeshTestName);
+// A missing directory must fail loudly, not instantiate nothing.
+GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(CompareCliSharedMeshTest);
+TEST(CompareCliSharedMeshesTest, SharedMeshesArePresent) {
+  EXPECT_FALSE(testing::AllSharedMeshes().empty())
+      << "no meshes in " << MESHWAVE_SHARED_MESHES;
 }
 
 }  // namespace

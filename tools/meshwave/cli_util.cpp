@@ -2,7 +2,13 @@
 
 #include <google/protobuf/util/json_util.h>
 
+#include <unistd.h>
+
+#include <cctype>
+#include <cstdio>
+#include <fstream>
 #include <iostream>
+#include <sstream>
 
 namespace meshwave::cli {
 
@@ -23,6 +29,70 @@ void PrintJson(const google::protobuf::Message& message) {
     return;
   }
   std::cout << out;
+}
+
+Result<uint64_t> ParseByteSize(const std::string& text) {
+  size_t used = 0;
+  double value = 0;
+  try {
+    value = std::stod(text, &used);
+  } catch (const std::exception&) {
+    return InvalidArgument("not a byte count: \"" + text + "\"");
+  }
+  std::string unit = text.substr(used);
+  for (char& c : unit) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  double scale = 1;
+  if (unit.empty() || unit == "b") {
+    scale = 1;
+  } else if (unit == "k" || unit == "kib") {
+    scale = 1024;
+  } else if (unit == "kb") {
+    scale = 1000;
+  } else if (unit == "m" || unit == "mib") {
+    scale = 1024.0 * 1024;
+  } else if (unit == "mb") {
+    scale = 1e6;
+  } else if (unit == "g" || unit == "gib") {
+    scale = 1024.0 * 1024 * 1024;
+  } else if (unit == "gb") {
+    scale = 1e9;
+  } else {
+    return InvalidArgument("unknown unit in byte count \"" + text +
+                           "\" (use B, kB, KiB, MB, MiB, GB, GiB)");
+  }
+  const double bytes = value * scale;
+  if (!(bytes >= 0) || bytes > 1e18) {
+    return InvalidArgument("byte count out of range: \"" + text + "\"");
+  }
+  return static_cast<uint64_t>(bytes);
+}
+
+Result<std::string> ReadFileBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return Status(StatusCode::kNotFound, path + ": cannot open");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  if (in.bad()) return IoError(path + ": read failed");
+  return ss.str();
+}
+
+Status WriteFileBytes(const std::string& path, std::string_view bytes) {
+  const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) return IoError(path + ": cannot create");
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    out.flush();
+    if (!out) {
+      std::remove(tmp.c_str());
+      return IoError(path + ": write failed");
+    }
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    std::remove(tmp.c_str());
+    return IoError(path + ": cannot rename the temporary file into place");
+  }
+  return Status::Ok();
 }
 
 }  // namespace meshwave::cli

@@ -4,7 +4,9 @@
 
 #include <google/protobuf/message.h>
 
+#include <cstdint>
 #include <string>
+#include <string_view>
 
 #include "meshwave/status.h"
 
@@ -16,6 +18,15 @@ int Fail(const std::string& command, const Status& status);
 // Prints a protobuf message as indented JSON on stdout (field names as in
 // the .proto, zero values included so the output has a fixed shape).
 void PrintJson(const google::protobuf::Message& message);
+
+// Parses a byte count: "65536", "64KiB", "64k", "1.5MB", "2MiB", "1G".
+// Decimal (kB, MB) and binary (KiB, MiB, k, M) units.
+Result<uint64_t> ParseByteSize(const std::string& text);
+
+// Reads a whole file; IoError naming the path when it cannot.
+Result<std::string> ReadFileBytes(const std::string& path);
+// Writes bytes to `path` through a temporary file and a rename.
+Status WriteFileBytes(const std::string& path, std::string_view bytes);
 
 }  // namespace meshwave::cli
 

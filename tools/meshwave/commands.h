@@ -11,6 +11,9 @@ namespace meshwave::cli {
 void AddInfoCommand(CLI::App& app, int& exit_code);
 void AddCompareCommand(CLI::App& app, int& exit_code);
 void AddSubdivideCommand(CLI::App& app, int& exit_code);
+void AddRemeshCommand(CLI::App& app, int& exit_code);
+void AddEncodeCommand(CLI::App& app, int& exit_code);
+void AddDecodeCommand(CLI::App& app, int& exit_code);
 
 }  // namespace meshwave::cli
 

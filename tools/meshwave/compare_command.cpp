@@ -44,10 +44,9 @@ proto::ScaledDistance Scaled(double distance, double diagonal) {
 Status AddVertexError(const TriMesh& a, const TriMesh& b, double diagonal,
                       proto::CompareReport& report) {
   if (a.positions.size() != b.positions.size()) {
-    report.set_vertex_note("vertex counts differ (" +
-                           std::to_string(a.positions.size()) + " vs " +
-                           std::to_string(b.positions.size()) +
-                           "): no per-vertex error");
+    report.set_vertex_note(
+        "vertex counts differ (" + std::to_string(a.positions.size()) + " vs " +
+        std::to_string(b.positions.size()) + "): no per-vertex error");
     return Status::Ok();
   }
   MW_ASSIGN_OR_RETURN(const VertexErrorStats same,
@@ -138,8 +137,8 @@ void PrintHuman(const proto::CompareReport& r) {
   const auto num = [](uint64_t v) { return std::to_string(v); };
   line("file A", r.file_a());
   line("file B", r.file_b());
-  line("vertices", num(r.vertices_a()) + " (A), " + num(r.vertices_b()) +
-                       " (B)");
+  line("vertices",
+       num(r.vertices_a()) + " (A), " + num(r.vertices_b()) + " (B)");
   line("faces", num(r.faces_a()) + " (A), " + num(r.faces_b()) + " (B)");
   line("diagonal of A (peak)", Format("%.6g", r.diagonal()));
   line("vertex matching", r.vertex_note());
@@ -150,14 +149,13 @@ void PrintHuman(const proto::CompareReport& r) {
     line("vertex mean", Describe(v.mean()));
     if (v.matching() == "nearest_neighbour") {
       line("vertex rms by index", Format("%.6g", v.same_index_rms()));
-      line("distinct matches", num(v.distinct_matches()) + " of " +
-                                   num(v.count()));
+      line("distinct matches",
+           num(v.distinct_matches()) + " of " + num(v.count()));
     }
   }
   const proto::SurfaceDistanceReport& s = r.surface();
-  line("surface samples", num(s.samples_a()) + " on A, " +
-                              num(s.samples_b()) + " on B (seed " +
-                              num(s.seed()) + ")");
+  line("surface samples", num(s.samples_a()) + " on A, " + num(s.samples_b()) +
+                              " on B (seed " + num(s.seed()) + ")");
   line("surface rms A->B", Describe(s.rms_ab()));
   line("surface rms B->A", Describe(s.rms_ba()));
   line("surface rms (max of both)", Describe(s.rms()));
@@ -180,8 +178,7 @@ void AddCompareCommand(CLI::App& app, int& exit_code) {
       "diagonal of A");
   cmd->add_option("a", args->file_a, "Reference mesh A (.ply, .obj, .off)")
       ->required();
-  cmd->add_option("b", args->file_b, "Mesh B to measure against A")
-      ->required();
+  cmd->add_option("b", args->file_b, "Mesh B to measure against A")->required();
   cmd->add_flag("--json", args->json,
                 "Print a CompareReport as JSON instead of text");
   cmd->add_option("--samples-per-face", args->samples_per_face,

@@ -80,8 +80,11 @@ Result<proto::MeshInfo> Describe(const InfoArgs& args) {
 // One row of the as-read / cleaned table; the cleaned column is left empty
 // when cleaning changed nothing there.
 void Row(const char* key, const std::string& as_read, const std::string& cleaned) {
-  std::printf("%-23s %-16s %s\n", key, as_read.c_str(),
-              cleaned == as_read ? "" : cleaned.c_str());
+  if (cleaned == as_read) {
+    std::printf("%-23s %s\n", key, as_read.c_str());
+  } else {
+    std::printf("%-23s %-16s %s\n", key, as_read.c_str(), cleaned.c_str());
+  }
 }
 
 void PrintTopology(const proto::Topology& a, const proto::Topology& b) {
@@ -94,7 +97,12 @@ void PrintTopology(const proto::Topology& a, const proto::Topology& b) {
   auto genus = [](const proto::Topology& t) {
     return t.has_genus() ? std::to_string(t.genus()) : std::string("n/a");
   };
-  Row("", "as read", "cleaned");
+  // One column when cleaning changed nothing.
+  if (a.SerializeAsString() == b.SerializeAsString()) {
+    Row("", "as read (cleaning changed nothing)", "as read (cleaning changed nothing)");
+  } else {
+    Row("", "as read", "cleaned");
+  }
   Row("vertices:", num(a.vertices()), num(b.vertices()));
   Row("unreferenced vertices:", num(a.unreferenced_vertices()),
       num(b.unreferenced_vertices()));

@@ -20,6 +20,9 @@ int main(int argc, char** argv) {
   meshwave::cli::AddInfoCommand(app, exit_code);
   meshwave::cli::AddCompareCommand(app, exit_code);
   meshwave::cli::AddSubdivideCommand(app, exit_code);
+  meshwave::cli::AddRemeshCommand(app, exit_code);
+  meshwave::cli::AddEncodeCommand(app, exit_code);
+  meshwave::cli::AddDecodeCommand(app, exit_code);
 
   CLI11_PARSE(app, argc, argv);
   return exit_code;

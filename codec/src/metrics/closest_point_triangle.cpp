@@ -16,8 +16,8 @@ PointOnTriangle At(const Vec3& p, const Vec3& q) {
 // |ab × ac|², and for such slivers the edges are as accurate anyway.
 constexpr double kDegenerateSin2 = 1e-24;
 
-PointOnTriangle ClosestPointOnEdges(const Vec3& p, const Vec3& a,
-                                   const Vec3& b, const Vec3& c) {
+PointOnTriangle ClosestPointOnEdges(const Vec3& p, const Vec3& a, const Vec3& b,
+                                    const Vec3& c) {
   PointOnTriangle best = ClosestPointOnSegment(p, a, b);
   for (const PointOnTriangle& other :
        {ClosestPointOnSegment(p, b, c), ClosestPointOnSegment(p, c, a)}) {
@@ -75,8 +75,8 @@ PointOnTriangle ClosestPointOnTriangle(const Vec3& p, const Vec3& a,
     return At(p, a + (ac_ap / (ac_ap - ac_cp)) * ac);  // |ac|² > 0
   }
   const double bary_a = ab_bp * ac_cp - ab_cp * ac_bp;  // opposite edge bc
-  const double along_b = ac_bp - ab_bp;  // (p - b)·(c - b)
-  const double along_c = ab_cp - ac_cp;  // (p - c)·(b - c)
+  const double along_b = ac_bp - ab_bp;                 // (p - b)·(c - b)
+  const double along_c = ab_cp - ac_cp;                 // (p - c)·(b - c)
   if (bary_a <= 0 && along_b >= 0 && along_c >= 0) {
     return At(p, b + (along_b / (along_b + along_c)) * (c - b));  // |bc|²
   }

@@ -8,7 +8,7 @@
 namespace meshwave::metrics {
 
 struct PointOnTriangle {
-  Vec3 point = Vec3::Zero();     // closest point of the triangle
+  Vec3 point = Vec3::Zero();    // closest point of the triangle
   double distance_squared = 0;  // ||p - point||²
 };
 

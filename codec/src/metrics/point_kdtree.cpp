@@ -21,7 +21,8 @@ PointKdTree::PointKdTree(const std::vector<Vec3>& points) {
   axis_.assign(n, 0);
   points_ = points;
   Build(0, n);
-  for (uint32_t slot = 0; slot < n; ++slot) points_[slot] = points[index_[slot]];
+  for (uint32_t slot = 0; slot < n; ++slot)
+    points_[slot] = points[index_[slot]];
 }
 
 // Sorts index_[begin, end) into tree order. points_ still holds the points

@@ -37,9 +37,9 @@ class PointKdTree {
  private:
   void Build(uint32_t begin, uint32_t end);
 
-  std::vector<Vec3> points_;       // in tree order
-  std::vector<uint32_t> index_;    // original index of each tree slot
-  std::vector<uint8_t> axis_;      // split axis of the range centred there
+  std::vector<Vec3> points_;     // in tree order
+  std::vector<uint32_t> index_;  // original index of each tree slot
+  std::vector<uint8_t> axis_;    // split axis of the range centred there
 };
 
 }  // namespace meshwave::metrics

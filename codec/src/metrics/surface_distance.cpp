@@ -76,8 +76,7 @@ Result<SurfaceDistance> SymmetricSurfaceDistance(
       std::max(static_cast<double>(options.min_samples),
                std::ceil(options.samples_per_face * denser));
   if (face_samples > kMaxFaceSamples) {
-    return InvalidArgument("surface distance: " +
-                           std::to_string(face_samples) +
+    return InvalidArgument("surface distance: " + std::to_string(face_samples) +
                            " samples per mesh asked for, more than 2^31");
   }
 

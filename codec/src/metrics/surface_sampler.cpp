@@ -33,12 +33,12 @@ uint64_t FaceSampleCounts::Next(double face_area) {
   // The same additions in the same order as in the constructor, so the
   // last face ends exactly at total_weight_ and the counts sum to total_.
   cumulative_weight_ += by_area_ ? face_area : 1.0;
-  const double scaled = std::min(
-      static_cast<double>(total_),
-      std::floor(static_cast<double>(total_) *
-                 (cumulative_weight_ / total_weight_)));
-  const auto cumulative = std::max(cumulative_count_,
-                                   static_cast<uint64_t>(scaled));
+  const double scaled =
+      std::min(static_cast<double>(total_),
+               std::floor(static_cast<double>(total_) *
+                          (cumulative_weight_ / total_weight_)));
+  const auto cumulative =
+      std::max(cumulative_count_, static_cast<uint64_t>(scaled));
   const uint64_t count = cumulative - cumulative_count_;
   cumulative_count_ = cumulative;
   return std::max<uint64_t>(count, 1);

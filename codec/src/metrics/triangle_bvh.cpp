@@ -17,11 +17,11 @@ constexpr uint32_t kLeafSize = 4;
 // Surface-area-heuristic splits, tried on 16 bins, gave 5-10 % faster
 // queries than plain median splits on igea.ply. They can be lopsided, so
 // from depth kMaxSahDepth on only median splits are made: those halve the
-// range, which keeps the depth below kMaxSahDepth + 32 for fewer than 2^32
-// faces, and the traversal stack, at most depth + 1 entries, below kMaxStack.
+// range, so at most 30 more levels follow (2^32 faces / 4 per leaf).
 constexpr int kSahBins = 16;
-constexpr int kMaxSahDepth = 40;
-constexpr int kMaxStack = 80;
+constexpr int kMaxSahDepth = 32;
+static_assert(kLeafSize >= 4 && kMaxSahDepth + 30 <= TriangleBvh::kMaxDepth);
+constexpr int kMaxStack = TriangleBvh::kMaxDepth + 1;
 constexpr double kHuge = std::numeric_limits<double>::max();
 // Below this sin² of the angle at a corner a triangle gets no normal:
 // rounding makes the direction of a sliver's cross product unreliable.
@@ -123,10 +123,9 @@ uint32_t TriangleBvh::Build(std::vector<BuildItem>& items, uint32_t begin,
   if (end - begin <= kLeafSize) {
     depth_ = std::max(depth_, depth);
     // Face order inside a leaf fixes which of equally near faces wins.
-    std::sort(items.begin() + begin, items.begin() + end,
-              [](const BuildItem& x, const BuildItem& y) {
-                return x.face < y.face;
-              });
+    std::sort(
+        items.begin() + begin, items.begin() + end,
+        [](const BuildItem& x, const BuildItem& y) { return x.face < y.face; });
     node.start = begin;
     node.count = end - begin;
     nodes_[index] = node;
@@ -159,8 +158,8 @@ uint32_t TriangleBvh::Split(std::vector<BuildItem>& items, uint32_t begin,
       uint32_t count = 0;
     };
     const auto bin_of = [&](const BuildItem& item) {
-      const int b =
-          static_cast<int>(kSahBins * ((item.centroid[axis] - origin) / extent));
+      const int b = static_cast<int>(kSahBins *
+                                     ((item.centroid[axis] - origin) / extent));
       return std::clamp(b, 0, kSahBins - 1);
     };
     Bin bins[kSahBins];

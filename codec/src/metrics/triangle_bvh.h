@@ -21,6 +21,11 @@ namespace meshwave::metrics {
 class TriangleBvh {
  public:
   static constexpr uint32_t kNoFace = std::numeric_limits<uint32_t>::max();
+  // Bound on depth(): area-heuristic splits down to depth 32, then median
+  // splits, at most 30 more levels for fewer than 2^32 faces and 4 faces a
+  // leaf. A depth-first traversal that keeps one pending sibling per level
+  // needs a stack of kMaxDepth + 1 entries.
+  static constexpr int kMaxDepth = 62;
 
   struct Hit {
     double distance_squared = std::numeric_limits<double>::infinity();

@@ -49,9 +49,9 @@ class ErrorAccumulator {
 Status CheckVertexSets(const std::vector<Vec3>& reference,
                        const std::vector<Vec3>& test, double peak) {
   if (reference.empty() || test.empty()) {
-    return InvalidArgument(std::string("vertex error needs vertices, but the ") +
-                           (reference.empty() ? "reference" : "test") +
-                           " set is empty");
+    return InvalidArgument(
+        std::string("vertex error needs vertices, but the ") +
+        (reference.empty() ? "reference" : "test") + " set is empty");
   }
   if (reference.size() >= std::numeric_limits<uint32_t>::max() ||
       test.size() >= std::numeric_limits<uint32_t>::max()) {

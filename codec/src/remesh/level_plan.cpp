@@ -57,21 +57,4 @@ Result<LevelPlan> PlanLevels(size_t input_vertices, int levels,
   return plan;
 }
 
-std::vector<uint32_t> ShareBaseFaces(size_t total,
-                                     const std::vector<double>& areas,
-                                     const std::vector<uint32_t>& faces,
-                                     uint32_t min_faces) {
-  double area_sum = 0;
-  for (double a : areas) area_sum += a;
-  std::vector<uint32_t> out(areas.size());
-  for (size_t c = 0; c < areas.size(); ++c) {
-    const double share =
-        area_sum > 0 ? static_cast<double>(total) * areas[c] / area_sum : 0;
-    const double floor = std::min(faces[c], min_faces);
-    out[c] = static_cast<uint32_t>(std::clamp(
-        std::round(share), floor, static_cast<double>(faces[c])));
-  }
-  return out;
-}
-
 }  // namespace meshwave::remesh

@@ -5,7 +5,6 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <vector>
 
 #include "meshwave/status.h"
 
@@ -24,14 +23,6 @@ struct LevelPlan {
 // Errors: levels outside [1, 8] or base_faces < 1 when given.
 Result<LevelPlan> PlanLevels(size_t input_vertices, int levels,
                              int base_faces);
-
-// Splits `total` base faces between components in proportion to their
-// area; a component gets at least min(its faces, min_faces) and at most
-// all of its faces.
-std::vector<uint32_t> ShareBaseFaces(size_t total,
-                                     const std::vector<double>& areas,
-                                     const std::vector<uint32_t>& faces,
-                                     uint32_t min_faces);
 
 }  // namespace meshwave::remesh
 

@@ -13,10 +13,22 @@
 namespace meshwave::remesh {
 
 struct SimplifyOptions {
-  // Faces to stop at, per component (indexed like Components); a component
-  // at or below its target is left alone. A collapse removes two faces (one
-  // on a boundary), so a component may end one face below its target.
-  std::vector<uint32_t> target_faces;
+  // Stop once the whole mesh has at most this many faces. The cheapest
+  // collapse anywhere goes first, so components share the faces by how
+  // much error their simplification costs, not by size.
+  size_t target_faces = 0;
+  // Faces each component keeps at least (indexed like Components; empty:
+  // no floor beyond what topology needs). A collapse removes two faces
+  // (one on a boundary), so a component may end one face below its floor.
+  std::vector<uint32_t> min_faces;
+  // Collapses that the simplifier puts off (they make a sliver, a valence-3
+  // vertex, or a face spanning a bend of more than 90°) are made only once
+  // nothing else is left, and only in components above this many faces
+  // (indexed like Components; empty: everywhere). The remesher passes each
+  // component's share of the target by area, so parts that cannot shrink
+  // cleanly (claws, teeth) still shrink to their share, while no part is
+  // forced below its share at the cost of folds.
+  std::vector<uint32_t> late_floor;
   // Called now and then with the fraction of the planned collapses done.
   std::function<void(double fraction)> progress;
 };

@@ -20,8 +20,9 @@ double Angle(const Vec3& at, const Vec3& b, const Vec3& c) {
 
 }  // namespace
 
-QualityFigures MeasureQuality(const TriMesh& mesh, const InputSurface& input,
-                              int threads) {
+QualityFigures MeasureQuality(const TriMesh& mesh,
+                              const std::vector<uint32_t>& face_component,
+                              const InputSurface& input, int threads) {
   std::atomic<size_t> flipped{0}, degenerate{0};
   std::mutex mutex;
   double min_angle = std::numbers::pi;
@@ -39,8 +40,8 @@ QualityFigures MeasureQuality(const TriMesh& mesh, const InputSurface& input,
       const double compactness = sum > 0 ? 2 * std::sqrt(3.0) * n.norm() / sum : 0;
       if (compactness < kDegenerateCompactness) ++my_degenerate;
       my_min = std::min({my_min, Angle(a, b, c), Angle(b, c, a), Angle(c, a, b)});
-      const InputSurface::Projection p =
-          input.ClosestAnywhere((a + b + c) / 3, hint);
+      const InputSurface::Projection p = input.Closest(
+          (a + b + c) / 3, Vec3::Zero(), face_component[f], hint);
       if (!p.found()) continue;
       hint = p.face;
       if (n.dot(input.FaceNormal(p.face)) < 0) ++my_flipped;

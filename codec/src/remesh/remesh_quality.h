@@ -4,6 +4,8 @@
 #define MESHWAVE_REMESH_REMESH_QUALITY_H_
 
 #include <cstddef>
+#include <cstdint>
+#include <vector>
 
 #include "meshwave/mesh.h"
 #include "remesh/input_surface.h"
@@ -21,10 +23,13 @@ struct QualityFigures {
 inline constexpr double kDegenerateCompactness = 1e-4;
 
 // A face is flipped when its normal has a negative dot product with the
-// normal of the input face closest to its centroid (found over all input
-// faces, as an outside measurement would). Faces must index `mesh`.
-QualityFigures MeasureQuality(const TriMesh& mesh, const InputSurface& input,
-                              int threads);
+// normal of the input face closest to its centroid, among the faces of the
+// input component it approximates (face_component[f]; where components
+// touch, the nearest face of another one says nothing about orientation).
+// Faces must index `mesh`.
+QualityFigures MeasureQuality(const TriMesh& mesh,
+                              const std::vector<uint32_t>& face_component,
+                              const InputSurface& input, int threads);
 
 }  // namespace meshwave::remesh
 

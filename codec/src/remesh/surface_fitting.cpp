@@ -8,20 +8,18 @@
 #include <cmath>
 #include <span>
 #include <utility>
+#include <cstdio>
+#include <cstdlib>
 
 #include "meshwave/wavelet.h"
 #include "remesh/parallel_for.h"
+#include "remesh/remesh_quality.h"
 #include "semiregular/vertex_rings.h"
 
 namespace meshwave::remesh {
 namespace {
 
 constexpr uint32_t kNone = 0xffffffffu;
-// Compactness (4√3·area / Σ edge², 1 for equilateral) under which a fitted
-// face counts as degenerate and gets untangled: a minimum angle of about
-// 0.005°.
-constexpr double kDegenerateCompactness = 1e-4;
-
 double Compactness(const Vec3& a, const Vec3& b, const Vec3& c) {
   const double sum = (b - a).squaredNorm() + (c - b).squaredNorm() +
                      (a - c).squaredNorm();
@@ -73,6 +71,15 @@ class Fitter {
     // Work grows 4x per level; the fractions reported follow the faces.
     double total = 0, done = 0;
     for (int j = 1; j <= levels; ++j) total += static_cast<double>(h_.faces(j).size());
+    if (getenv("MW_DEBUG")) {
+      size_t b0 = 0;
+      for (const Face& f : h_.faces(0)) {
+        Vec3 in = Vec3::Zero();
+        for (uint32_t v : f) if (anchors_[v].face != InputSurface::kNoFace) in += surface_.FaceNormal(anchors_[v].face);
+        if ((positions_[f[1]]-positions_[f[0]]).cross(positions_[f[2]]-positions_[f[0]]).dot(in) <= 0) ++b0;
+      }
+      fprintf(stderr, "level 0: bad %zu\n", b0);
+    }
     for (int j = 0; j < levels; ++j) {
       transform.PredictLevel(
           j, std::span<Vec3>(positions_.data(), h_.vertex_count(j + 1)));
@@ -81,13 +88,18 @@ class Fitter {
           VertexRings rings,
           VertexRings::Build(h_.vertex_count(j + 1), h_.faces(j + 1)));
       for (int r = 0; r < options_.relax_rounds; ++r) Relax(j + 1, rings, false);
+      // Untangling: first the new vertices alone, then (second half of the
+      // rounds) every vertex of a bad face, coarser levels included.
       size_t bad = 0;
-      for (int r = 0; r < options_.repair_rounds; ++r) {
-        bad = MarkBadFaces(j + 1);
+      if (getenv("MW_DEBUG")) fprintf(stderr, "level %d: bad after relax %zu\n", j+1, MarkBadFaces(j+1, false));
+      const int repair_rounds = getenv("MW_REPAIR") ? atoi(getenv("MW_REPAIR")) : options_.repair_rounds;
+      for (int r = 0; r < repair_rounds; ++r) {
+        bad = MarkBadFaces(j + 1, 2 * r < options_.repair_rounds);
         if (bad == 0) break;
         Relax(j + 1, rings, true);
       }
-      if (bad > 0) bad = MarkBadFaces(j + 1);
+      bad = MarkBadFaces(j + 1, false);
+      if (getenv("MW_DEBUG")) fprintf(stderr, "level %d: bad after repair %zu\n", j+1, bad);
       if (j + 1 == levels) stats_.unrepaired_faces = bad;
       done += static_cast<double>(h_.faces(j + 1).size());
       if (options_.progress) options_.progress(j + 1, done / total);
@@ -174,18 +186,20 @@ class Fitter {
     stats_.boundary_vertices += boundary;
   }
 
-  // One Jacobi round over the new inner vertices of `level` (only the
-  // marked ones when `marked_only`): a step toward the one-ring centroid in
-  // the tangent plane, then back onto the surface, on the sheet the vertex
-  // is on. Marked vertices (untangling) take the full step.
-  void Relax(int level, const VertexRings& rings, bool marked_only) {
-    const uint32_t first = h_.vertex_count(level - 1);
+  // One Jacobi round of relaxation at `level`: a step toward the one-ring
+  // centroid in the tangent plane, then back onto the surface, on the sheet
+  // the vertex is on. Normally the new inner vertices take a step of
+  // relax_step; when untangling, every marked inner vertex (of any level)
+  // takes the full step, in the tangent plane of the input face it is on
+  // (the remesh's own normal is unreliable inside a fold).
+  void Relax(int level, const VertexRings& rings, bool untangle) {
+    const uint32_t first = untangle ? 0 : h_.vertex_count(level - 1);
     const uint32_t count = h_.vertex_count(level);
     const std::vector<Vec3> normals =
         VertexNormals(h_.faces(level), positions_, count);
     std::vector<Vec3> next(count - first);
     std::vector<uint32_t> next_face(count - first);
-    const double step = marked_only ? 1.0 : options_.relax_step;
+    const double step = untangle ? 1.0 : options_.relax_step;
     std::atomic<size_t> moves{0};
     ParallelFor(count - first, options_.threads, [&](size_t begin, size_t end) {
       size_t my_moves = 0;
@@ -194,21 +208,21 @@ class Fitter {
         next[i] = positions_[v];
         next_face[i] = anchors_[v].face;
         if (rings.IsBoundary(v) || anchors_[v].loop != kNone) continue;
-        if (marked_only && !marked_[v]) continue;
+        if (untangle && !marked_[v]) continue;
         Vec3 centroid = Vec3::Zero();
         const auto ring = rings.Ring(v);
         for (uint32_t u : ring) centroid += positions_[u];
         centroid /= static_cast<double>(ring.size());
-        const Vec3& n = normals[v];
-        Vec3 d = centroid - positions_[v];
-        d -= d.dot(n) * n;
-        const Vec3 q = positions_[v] + step * d;
         // Facing is judged against the input face the vertex is on, which
         // is on the right sheet even where the remesh is tangled.
         const uint32_t face = anchors_[v].face;
         const Vec3 facing = face != InputSurface::kNoFace
                                 ? surface_.FaceNormal(face)
-                                : Vec3(n);
+                                : Vec3(normals[v]);
+        const Vec3& n = untangle && facing.norm() > 0 ? facing : normals[v];
+        Vec3 d = centroid - positions_[v];
+        d -= d.dot(n) * n;
+        const Vec3 q = positions_[v] + step * d;
         const InputSurface::Projection p = surface_.Closest(
             q, facing.norm() > 0 ? facing : n, anchors_[v].component, face);
         if (!p.found()) continue;
@@ -219,34 +233,58 @@ class Fitter {
       moves += my_moves;
     });
     for (uint32_t i = 0; i < count - first; ++i) {
+      if (untangle && getenv("MW_DEBUG") && (positions_[first+i]-next[i]).norm() > 0.003*surface_.diagonal()) {
+        int lv = 0; while (first+i >= h_.vertex_count(lv)) ++lv;
+        fprintf(stderr, "  untangle L%d: v%u (level %d) moved %.4f diag to (%.4f %.4f %.4f)\n", level, first+i, lv, (positions_[first+i]-next[i]).norm()/surface_.diagonal(), next[i].x(), next[i].y(), next[i].z());
+      }
       positions_[first + i] = next[i];
       anchors_[first + i].face = next_face[i];
     }
-    if (marked_only) stats_.repair_moves += moves;
+    if (untangle) stats_.repair_moves += moves;
   }
 
-  // Marks the new vertices of folded or degenerate faces of `level`;
+  // Marks the vertices of folded or degenerate faces of `level`;
   // returns the number of such faces. Folded: the face normal opposes the
-  // input normals at its corners.
-  size_t MarkBadFaces(int level) {
-    const uint32_t first = h_.vertex_count(level - 1);
+  // input normal at the point of its component closest to its centroid.
+  // That query runs only for faces whose normal already opposes the sum of
+  // the input normals at their corners (a cheap test that is reliable for
+  // small faces, but not for coarse ones spanning a sharp bend).
+  // With `new_only`, vertices of coarser levels are not marked.
+  size_t MarkBadFaces(int level, bool new_only) {
+    const uint32_t first = new_only ? h_.vertex_count(level - 1) : 0;
     marked_.assign(h_.vertex_count(level), 0);
-    size_t bad = 0;
-    for (const Face& f : h_.faces(level)) {
-      const Vec3& a = positions_[f[0]];
-      const Vec3& b = positions_[f[1]];
-      const Vec3& c = positions_[f[2]];
-      Vec3 input_normal = Vec3::Zero();
-      for (uint32_t v : f) {
-        if (anchors_[v].face != InputSurface::kNoFace) {
-          input_normal += surface_.FaceNormal(anchors_[v].face);
+    const auto& faces = h_.faces(level);
+    std::vector<uint8_t> bad_face(faces.size(), 0);
+    ParallelFor(faces.size(), options_.threads, [&](size_t begin, size_t end) {
+      for (size_t i = begin; i < end; ++i) {
+        const Face& f = faces[i];
+        const Vec3& a = positions_[f[0]];
+        const Vec3& b = positions_[f[1]];
+        const Vec3& c = positions_[f[2]];
+        if (Compactness(a, b, c) < kDegenerateCompactness) {
+          bad_face[i] = 1;
+          continue;
         }
+        const Vec3 n = (b - a).cross(c - a);
+        Vec3 input_normal = Vec3::Zero();
+        for (uint32_t v : f) {
+          if (anchors_[v].face != InputSurface::kNoFace) {
+            input_normal += surface_.FaceNormal(anchors_[v].face);
+          }
+        }
+        if (n.dot(input_normal) > 0) continue;
+        const InputSurface::Projection p =
+            surface_.Closest((a + b + c) / 3, Vec3::Zero(),
+                             anchors_[f[0]].component, anchors_[f[0]].face);
+        if (p.found() && n.dot(surface_.FaceNormal(p.face)) > 0) continue;
+        bad_face[i] = 1;
       }
-      const bool folded = (b - a).cross(c - a).dot(input_normal) <= 0;
-      const bool degenerate = Compactness(a, b, c) < kDegenerateCompactness;
-      if (!folded && !degenerate) continue;
+    });
+    size_t bad = 0;
+    for (size_t i = 0; i < faces.size(); ++i) {
+      if (!bad_face[i]) continue;
       ++bad;
-      for (uint32_t v : f) {
+      for (uint32_t v : faces[i]) {
         if (v >= first) marked_[v] = 1;
       }
     }

@@ -50,10 +50,10 @@ TEST_F(BvhClosestPointTest, PointsBeyondCornersMapToTheCorners) {
 }
 
 TEST_F(BvhClosestPointTest, PointsBeyondEdgesProjectOnTheEdges) {
-  ExpectClosest({1, -1, 1}, {1, 0, 0});         // edge ab
-  ExpectClosest({-2, 0.5, -1}, {0, 0.5, 0});    // edge ca
-  ExpectClosest({2, 2, 0.5}, {1, 1, 0});        // edge bc
-  ExpectClosest({1.5, 1.5, 0}, {1, 1, 0});      // in the plane, beyond bc
+  ExpectClosest({1, -1, 1}, {1, 0, 0});       // edge ab
+  ExpectClosest({-2, 0.5, -1}, {0, 0.5, 0});  // edge ca
+  ExpectClosest({2, 2, 0.5}, {1, 1, 0});      // edge bc
+  ExpectClosest({1.5, 1.5, 0}, {1, 1, 0});    // in the plane, beyond bc
 }
 
 TEST_F(BvhClosestPointTest, PointsAboveTheFaceProjectOnThePlane) {

@@ -77,8 +77,7 @@ TEST(VertexErrorTest, RejectsNonFiniteCoordinatesAndBadPeaks) {
   EXPECT_FALSE(VertexErrorByNearest(bad, v, 1).ok());
   EXPECT_FALSE(VertexError(v, v, 0).ok());
   EXPECT_FALSE(VertexError(v, v, -1).ok());
-  EXPECT_FALSE(
-      VertexError(v, v, std::numeric_limits<double>::infinity()).ok());
+  EXPECT_FALSE(VertexError(v, v, std::numeric_limits<double>::infinity()).ok());
 }
 
 TEST(VertexErrorByNearestTest, RecoversAPermutation) {

@@ -1,0 +1,46 @@
+// The .mwv container: "MWV1" | u32 little-endian header length |
+// StreamHeader (protobuf) | the payloads of the packets listed in the
+// header's `present` field, in that order. Any subset of the packets that is
+// closed under the packet dependencies makes a valid container.
+#ifndef MESHWAVE_CONTAINER_H_
+#define MESHWAVE_CONTAINER_H_
+
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "meshwave/encoder.h"
+#include "meshwave/status.h"
+#include "stream.pb.h"
+
+namespace meshwave {
+
+// Writes a container holding the packets `ids` (payloads from `stream`).
+std::string SerializeContainer(const EncodedStream& stream,
+                               std::span<const uint32_t> ids);
+// All packets in canonical order.
+std::string SerializeFullContainer(const EncodedStream& stream);
+
+// The size SerializeContainer would produce, without building it.
+uint64_t ContainerSize(const proto::StreamHeader& header,
+                       std::span<const uint32_t> ids);
+
+struct ParsedContainer {
+  proto::StreamHeader header;
+  std::vector<uint32_t> ids;               // packets whose payload is whole
+  std::vector<std::string_view> payloads;  // views into the parsed bytes
+  uint64_t missing_bytes = 0;  // > 0: the container was cut short
+};
+
+// Safe on untrusted bytes. Rejects a wrong magic, an unknown version, a
+// header that does not parse, packet ids out of range or repeated, and
+// trailing bytes. With allow_truncated, a container cut inside its payloads
+// yields the complete packets before the cut (missing_bytes says how much
+// is missing); otherwise that is an error too.
+Result<ParsedContainer> ParseContainer(std::string_view bytes,
+                                       bool allow_truncated = false);
+
+}  // namespace meshwave
+
+#endif  // MESHWAVE_CONTAINER_H_

@@ -1,0 +1,43 @@
+// Encoding a semi-regular mesh into an embedded 3xC (or SIM) bitstream:
+// wavelet transform, deadzone quantisation, bitplane coding into packets.
+#ifndef MESHWAVE_ENCODER_H_
+#define MESHWAVE_ENCODER_H_
+
+#include <string>
+#include <vector>
+
+#include "meshwave/semiregular.h"
+#include "meshwave/status.h"
+#include "meshwave/wavelet.h"
+#include "stream.pb.h"
+
+namespace meshwave {
+
+enum class CoderKind { k3xC, kSim };
+Result<CoderKind> ParseCoderKind(const std::string& name);  // "3xc", "sim"
+const char* CoderKindName(CoderKind coder);
+
+struct EncodeOptions {
+  TransformSettings transform;
+  CoderKind coder = CoderKind::k3xC;
+  // Finest step = bounding-box diagonal * 2^-precision; 16 gives a complete
+  // stream well above 90 dB PSNR.
+  int precision = 16;
+  uint32_t octree_leaf_size = 2;
+  int deadzone = 0;  // xi0 code (quant/deadzone_quantizer.h): 0 = SAQ
+  std::string name;
+};
+
+// The complete stream: a header whose packet index lists every packet, and
+// the packets' payloads in the same (canonical) order.
+struct EncodedStream {
+  proto::StreamHeader header;
+  std::vector<std::string> packets;
+};
+
+Result<EncodedStream> EncodeMesh(const SemiRegularMesh& mesh,
+                                 const EncodeOptions& options);
+
+}  // namespace meshwave
+
+#endif  // MESHWAVE_ENCODER_H_

@@ -1,0 +1,54 @@
+// Orders in which a stream's packets can be sent, and the longest prefix of
+// an order that fits a byte budget. Every prefix of every order is closed
+// under the packet dependencies, so it decodes.
+#ifndef MESHWAVE_PROGRESSION_H_
+#define MESHWAVE_PROGRESSION_H_
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "meshwave/status.h"
+#include "stream.pb.h"
+
+namespace meshwave {
+
+enum class Progression {
+  kQuality,     // bitplane-major, coarse subbands first within a bitplane
+  kResolution,  // subband-major: all bitplanes of d^0, then d^1, ...
+  kRd,          // greedy by distortion reduction per byte
+};
+Result<Progression> ParseProgression(const std::string& name);
+const char* ProgressionName(Progression p);
+
+// The packets (ids into the header's index) of subbands below max_level
+// (-1: all) in the given order. The header must have passed validation
+// (ProgressiveDecoder::Create or ValidateStreamHeader).
+std::vector<uint32_t> PacketOrder(const proto::StreamHeader& header,
+                                  Progression progression, int max_level = -1);
+
+// The packets that packet `id` needs first (at most two).
+std::vector<uint32_t> PacketDependencies(const proto::StreamHeader& header,
+                                         uint32_t id);
+
+struct Selection {
+  std::vector<uint32_t> ids;  // order[cursor .. next_cursor)
+  size_t next_cursor = 0;
+  uint64_t bytes = 0;  // container size (cursor 0) or payload bytes
+};
+
+// The longest run of `order` starting at `cursor` that fits `budget` bytes:
+// counting the whole container (header included) when cursor is 0, and the
+// packets' payloads only when continuing from a cursor.
+Selection SelectPackets(const proto::StreamHeader& header,
+                        const std::vector<uint32_t>& order, uint64_t budget,
+                        size_t cursor = 0);
+
+// Checks that an untrusted header is complete and consistent: version,
+// transform, quantizers, and a packet index holding exactly the packets
+// (j, b), b from the subband's top bitplane down to 0, in that order.
+Status ValidateStreamHeader(const proto::StreamHeader& header);
+
+}  // namespace meshwave
+
+#endif  // MESHWAVE_PROGRESSION_H_

@@ -1,0 +1,66 @@
+// ProgressiveDecoder: takes a stream header, then packets one at a time in
+// any order that respects their dependencies, and gives the current mesh at
+// any time. The same object serves a file, an HTTP response and a WebSocket
+// session; it does no I/O. Safe on untrusted input: every header field and
+// every packet is checked (bounds, CRC32C, dependencies) before use.
+#ifndef MESHWAVE_PROGRESSIVE_DECODER_H_
+#define MESHWAVE_PROGRESSIVE_DECODER_H_
+
+#include <memory>
+#include <string_view>
+#include <vector>
+
+#include "meshwave/mesh.h"
+#include "meshwave/status.h"
+#include "stream.pb.h"
+
+namespace meshwave {
+
+struct DecoderOptions {
+  // Reconstruction point inside a quantiser cell, as a fraction of the cell
+  // (0.5: midpoint). Does not affect parsing.
+  double gamma = 0.5;
+  uint32_t max_base_vertices = 1u << 24;
+};
+
+class ProgressiveDecoder {
+ public:
+  static Result<std::unique_ptr<ProgressiveDecoder>> Create(
+      const proto::StreamHeader& header, const DecoderOptions& options = {});
+  ~ProgressiveDecoder();
+
+  const proto::StreamHeader& header() const;
+  size_t packet_count() const;
+  bool HasPacket(uint32_t id) const;
+  // True when every packet `id` depends on has been added.
+  bool DependenciesMet(uint32_t id) const;
+
+  // Checks and decodes one packet. Errors: unknown id, packet already added,
+  // missing dependency (kInvalidArgument: nothing changed, the decoder stays
+  // usable), CRC or length mismatch (kParseError, nothing changed), and a
+  // payload that passed the CRC but does not decode (kParseError; the
+  // decoder is then unusable, as its state is half-updated).
+  Status AddPacket(uint32_t id, std::string_view payload);
+
+  size_t packets_decoded() const;
+  uint64_t payload_bytes_decoded() const;
+  // The finest level whose subbands have all received at least one packet
+  // (0: only the base mesh).
+  int CompleteLevels() const;
+  // Estimated PSNR (peak = bounding-box diagonal) from the index's
+  // distortion figures for the packets held.
+  double EstimatedPsnr() const;
+
+  // The mesh at level max_level (-1: the finest level, J).
+  std::vector<Vec3> Positions(int max_level = -1) const;
+  TriMesh Mesh(int max_level = -1) const;
+
+ private:
+  struct Impl;
+  explicit ProgressiveDecoder(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace meshwave
+
+#endif  // MESHWAVE_PROGRESSIVE_DECODER_H_

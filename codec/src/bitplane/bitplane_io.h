@@ -1,0 +1,64 @@
+// The two symbol I/O policies of CodeBitplane: EncoderIo codes the true
+// symbols of known coefficients, DecoderIo reads them back.
+#ifndef MESHWAVE_BITPLANE_BITPLANE_IO_H_
+#define MESHWAVE_BITPLANE_BITPLANE_IO_H_
+
+#include <cstdint>
+#include <span>
+
+#include "bitplane/coefficient_octree.h"
+#include "entropy/arithmetic_decoder.h"
+#include "entropy/arithmetic_encoder.h"
+
+namespace meshwave {
+
+class EncoderIo {
+ public:
+  EncoderIo(ArithmeticEncoder& enc, const CoefficientOctree& tree,
+            std::span<const uint32_t> q0, std::span<const uint8_t> negative)
+      : enc_(enc), tree_(tree), q0_(q0), negative_(negative) {}
+
+  int SigCoef(uint32_t k, int b, BinaryContext& ctx) {
+    return Put((q0_[k] >> b) & 1, ctx);
+  }
+  int SigNode(const OctreeNode& node, int b, BinaryContext& ctx) {
+    const uint32_t threshold = 1u << b;
+    int sig = 0;
+    for (uint32_t p = node.begin; p < node.end && !sig; ++p) {
+      sig = q0_[tree_.At(p)] >= threshold;
+    }
+    return Put(sig, ctx);
+  }
+  int Sign(uint32_t k, BinaryContext& ctx) { return Put(negative_[k], ctx); }
+  int Refine(uint32_t k, int b, BinaryContext& ctx) {
+    return Put((q0_[k] >> b) & 1, ctx);
+  }
+
+ private:
+  int Put(int bit, BinaryContext& ctx) {
+    enc_.Encode(bit, ctx);
+    return bit;
+  }
+  ArithmeticEncoder& enc_;
+  const CoefficientOctree& tree_;
+  std::span<const uint32_t> q0_;
+  std::span<const uint8_t> negative_;
+};
+
+class DecoderIo {
+ public:
+  explicit DecoderIo(ArithmeticDecoder& dec) : dec_(dec) {}
+  int SigCoef(uint32_t, int, BinaryContext& ctx) { return dec_.Decode(ctx); }
+  int SigNode(const OctreeNode&, int, BinaryContext& ctx) {
+    return dec_.Decode(ctx);
+  }
+  int Sign(uint32_t, BinaryContext& ctx) { return dec_.Decode(ctx); }
+  int Refine(uint32_t, int, BinaryContext& ctx) { return dec_.Decode(ctx); }
+
+ private:
+  ArithmeticDecoder& dec_;
+};
+
+}  // namespace meshwave
+
+#endif  // MESHWAVE_BITPLANE_BITPLANE_IO_H_

@@ -1,0 +1,135 @@
+#include "meshwave/container.h"
+
+#include <google/protobuf/io/coded_stream.h>
+
+#include <cstring>
+#include <unordered_set>
+
+#include "stream/stream_format.h"
+
+namespace meshwave {
+namespace {
+
+void PutU32(std::string& out, uint32_t v) {
+  for (int i = 0; i < 4; ++i) out.push_back(static_cast<char>((v >> (8 * i)) & 0xff));
+}
+
+uint32_t GetU32(std::string_view b) {
+  uint32_t v = 0;
+  for (int i = 3; i >= 0; --i) v = (v << 8) | static_cast<uint8_t>(b[i]);
+  return v;
+}
+
+}  // namespace
+
+uint64_t ContainerSize(const proto::StreamHeader& header,
+                       std::span<const uint32_t> ids) {
+  proto::StreamHeader h = header;
+  h.clear_present();
+  uint64_t size = 8 + h.ByteSizeLong();
+  uint64_t id_bytes = 0;
+  for (uint32_t id : ids) {
+    id_bytes += google::protobuf::io::CodedOutputStream::VarintSize32(id);
+    size += header.packets().length(static_cast<int>(id));
+  }
+  if (!ids.empty()) {
+    size += 1 +
+            google::protobuf::io::CodedOutputStream::VarintSize64(id_bytes) +
+            id_bytes;
+  }
+  return size;
+}
+
+std::string SerializeContainer(const EncodedStream& stream,
+                               std::span<const uint32_t> ids) {
+  proto::StreamHeader header = stream.header;
+  header.clear_present();
+  for (uint32_t id : ids) header.add_present(id);
+  const std::string head = header.SerializeAsString();
+  std::string out(kContainerMagic, 4);
+  PutU32(out, static_cast<uint32_t>(head.size()));
+  out += head;
+  for (uint32_t id : ids) out += stream.packets[id];
+  return out;
+}
+
+std::string SerializeFullContainer(const EncodedStream& stream) {
+  std::vector<uint32_t> ids(stream.packets.size());
+  for (uint32_t i = 0; i < ids.size(); ++i) ids[i] = i;
+  return SerializeContainer(stream, ids);
+}
+
+Result<ParsedContainer> ParseContainer(std::string_view bytes,
+                                       bool allow_truncated) {
+  if (bytes.size() < 8) {
+    return ParseError("container: " + std::to_string(bytes.size()) +
+                      " bytes, shorter than the 8-byte preamble");
+  }
+  if (std::memcmp(bytes.data(), kContainerMagic, 4) != 0) {
+    return ParseError("container: wrong magic (not a meshwave .mwv stream)");
+  }
+  const uint32_t header_length = GetU32(bytes.substr(4, 4));
+  if (header_length > kMaxHeaderBytes) {
+    return ParseError("container: header length " + std::to_string(header_length) +
+                      " exceeds the limit");
+  }
+  if (header_length > bytes.size() - 8) {
+    return Status(allow_truncated ? StatusCode::kNeedMoreInput
+                                  : StatusCode::kParseError,
+                  "container: header of " + std::to_string(header_length) +
+                      " bytes but only " + std::to_string(bytes.size() - 8) +
+                      " follow");
+  }
+  ParsedContainer out;
+  if (!out.header.ParseFromArray(bytes.data() + 8,
+                                 static_cast<int>(header_length))) {
+    return ParseError("container: the stream header does not parse");
+  }
+  if (out.header.format_version() != kFormatVersion) {
+    return Status(StatusCode::kUnsupported,
+                  "container: format version " +
+                      std::to_string(out.header.format_version()) +
+                      " (this build reads version " +
+                      std::to_string(kFormatVersion) + ")");
+  }
+  const auto& index = out.header.packets();
+  const int count = index.length_size();
+  std::unordered_set<uint32_t> seen;
+  std::string_view rest = bytes.substr(8 + header_length);
+  for (uint32_t id : out.header.present()) {
+    if (id >= static_cast<uint32_t>(count)) {
+      return ParseError("container: packet id " + std::to_string(id) +
+                        " is not in the index of " + std::to_string(count));
+    }
+    if (!seen.insert(id).second) {
+      return ParseError("container: packet " + std::to_string(id) +
+                        " is listed twice");
+    }
+    const uint32_t length = index.length(static_cast<int>(id));
+    if (length > rest.size()) {
+      if (!allow_truncated) {
+        return ParseError("container: truncated inside packet " +
+                          std::to_string(id) + " (" + std::to_string(length) +
+                          " bytes expected, " + std::to_string(rest.size()) +
+                          " left)");
+      }
+      out.missing_bytes += length - rest.size();
+      rest = {};
+      continue;
+    }
+    if (out.missing_bytes == 0) {
+      out.ids.push_back(id);
+      out.payloads.push_back(rest.substr(0, length));
+      rest.remove_prefix(length);
+    } else {
+      out.missing_bytes += length;
+    }
+  }
+  if (!rest.empty()) {
+    return ParseError("container: " + std::to_string(rest.size()) +
+                      " bytes after the last packet");
+  }
+  return out;
+}
+
+}  // namespace meshwave

@@ -1,0 +1,170 @@
+// EncodeMesh: transform, quantise, and code every (subband, bitplane)
+// packet. See docs/FORMAT.md for what each step writes.
+#include <cmath>
+#include <string>
+
+#include "bitplane/bitplane_io.h"
+#include "bitplane/bitplane_passes.h"
+#include "bitplane/subband_layout.h"
+#include "meshwave/encoder.h"
+#include "quant/deadzone_quantizer.h"
+#include "quant/subband_gains.h"
+#include "stream/base_mesh_codec.h"
+#include "stream/stream_format.h"
+
+namespace meshwave {
+namespace {
+
+// Quantised coefficients of one (subband, component).
+struct QuantizedComponent {
+  std::vector<double> value;
+  std::vector<uint32_t> q0;
+  std::vector<uint8_t> negative;
+  double step = 0;
+  double xi0 = 0;
+  int top = -1;
+};
+
+double SquaredError(double x, uint32_t mag, int n, bool negative,
+                    const QuantizedComponent& q) {
+  const double r =
+      (mag >> n) == 0 ? 0.0 : Dequantize(mag >> n, n, negative, q.step, q.xi0);
+  return (x - r) * (x - r);
+}
+
+}  // namespace
+
+Result<CoderKind> ParseCoderKind(const std::string& name) {
+  if (name == "3xc" || name == "3xC") return CoderKind::k3xC;
+  if (name == "sim") return CoderKind::kSim;
+  return InvalidArgument("unknown coder \"" + name + "\" (expected 3xc or sim)");
+}
+
+const char* CoderKindName(CoderKind coder) {
+  return coder == CoderKind::k3xC ? "3xc" : "sim";
+}
+
+Result<EncodedStream> EncodeMesh(const SemiRegularMesh& mesh,
+                                 const EncodeOptions& options) {
+  if (options.precision < 4 || options.precision > 30) {
+    return InvalidArgument("precision must be in [4, 30]");
+  }
+  if (options.deadzone < 0 || options.deadzone > 3) {
+    return InvalidArgument("deadzone code must be in [0, 3]");
+  }
+  const SemiRegularHierarchy& h = *mesh.hierarchy;
+  const int levels = h.levels();
+  const Aabb box = BoundingBox(mesh.positions);
+  const double diag = box.Diagonal();
+  if (!(diag > 0) || !std::isfinite(diag)) {
+    return InvalidArgument("mesh has no extent (bounding-box diagonal is 0)");
+  }
+  const double step0 = std::ldexp(diag, -options.precision);
+  const SubbandGains gains = ComputeSubbandGains(options.transform, levels);
+
+  MW_ASSIGN_OR_RETURN(WaveletTransform transform,
+                      WaveletTransform::Create(mesh.hierarchy, options.transform));
+  const Pyramid pyramid = transform.Forward(mesh.positions);
+
+  EncodedStream out;
+  proto::StreamHeader& header = out.header;
+  header.set_format_version(kFormatVersion);
+  header.set_name(options.name);
+  header.set_vertices(h.vertex_count(levels));
+  header.set_faces(h.faces(levels).size());
+  for (int a = 0; a < 3; ++a) {
+    header.add_bbox_min(box.min[a]);
+    header.add_bbox_max(box.max[a]);
+  }
+  ToProto(options.transform, levels, *header.mutable_transform());
+  header.set_coder(options.coder == CoderKind::k3xC ? proto::CODER_3XC
+                                                    : proto::CODER_SIM);
+  header.set_octree_leaf_size(options.octree_leaf_size);
+
+  MW_ASSIGN_OR_RETURN(*header.mutable_base(),
+                      EncodeBaseMesh(pyramid.base, h.faces(0),
+                                     step0 / std::sqrt(gains.base)));
+  MW_ASSIGN_OR_RETURN(DecodedBase base,
+                      DecodeBaseMesh(header.base(), header.base().vertex_count()));
+  double initial = 0;
+  for (size_t v = 0; v < base.positions.size(); ++v) {
+    initial += gains.base * (pyramid.base[v] - base.positions[v]).squaredNorm();
+  }
+  const auto layouts =
+      BuildSubbandLayouts(h, base.grid, options.octree_leaf_size);
+
+  // Quantise every (subband, component).
+  std::vector<std::array<QuantizedComponent, 3>> quantized(levels);
+  for (int j = 0; j < levels; ++j) {
+    const auto& band = pyramid.subbands[j];
+    for (int c = 0; c < 3; ++c) {
+      QuantizedComponent& q = quantized[j][c];
+      q.step = step0 / std::sqrt(gains.subband[j]);
+      q.xi0 = DeadzoneXi(options.deadzone);
+      q.value.resize(band.size());
+      q.q0.resize(band.size());
+      q.negative.resize(band.size());
+      uint32_t max_q = 0;
+      for (size_t k = 0; k < band.size(); ++k) {
+        q.value[k] = band[k][c];
+        q.q0[k] = QuantizeMagnitude(q.value[k], q.step, q.xi0);
+        q.negative[k] = q.value[k] < 0;
+        max_q = std::max(max_q, q.q0[k]);
+        initial += gains.subband[j] * q.value[k] * q.value[k];
+      }
+      q.top = TopBitplane(max_q);
+      proto::Quantizer* pq = header.add_quantizers();
+      pq->set_step(q.step);
+      pq->set_deadzone(static_cast<uint32_t>(options.deadzone));
+      pq->set_top_bitplane(q.top);
+    }
+  }
+  header.set_initial_distortion(initial);
+
+  // Code the packets, subband by subband, bitplanes from the top down.
+  proto::PacketIndex& index = *header.mutable_packets();
+  std::vector<uint32_t> touched;
+  for (int j = 0; j < levels; ++j) {
+    const SubbandLayout& layout = layouts[j];
+    std::array<ComponentState, 3> state;
+    int top = -1;
+    for (int c = 0; c < 3; ++c) {
+      state[c].Init(layout.tree, quantized[j][c].top);
+      top = std::max(top, quantized[j][c].top);
+    }
+    for (int b = top; b >= 0; --b) {
+      ArithmeticEncoder enc;
+      double reduction = 0;
+      for (int c = 0; c < 3; ++c) {
+        const QuantizedComponent& q = quantized[j][c];
+        if (b > q.top) continue;
+        ParentView parent;
+        if (options.coder == CoderKind::k3xC && j > 0) {
+          parent = {layout.parent_of, quantized[j - 1][c].q0,
+                    quantized[j - 1][c].negative};
+        }
+        ComponentContexts contexts;
+        EncoderIo io(enc, layout.tree, q.q0, q.negative);
+        touched.clear();
+        CodeBitplane(layout.tree, state[c], b, parent, contexts, io, &touched);
+        for (uint32_t k : touched) {
+          const uint32_t mag = state[c].mag[k];
+          const uint32_t before = mag & ~(1u << b);
+          reduction += gains.subband[j] *
+                       (SquaredError(q.value[k], before, b + 1, q.negative[k], q) -
+                        SquaredError(q.value[k], mag, b, q.negative[k], q));
+        }
+      }
+      std::string payload = enc.Finish();
+      index.add_subband(static_cast<uint32_t>(j));
+      index.add_bitplane(static_cast<uint32_t>(b));
+      index.add_length(static_cast<uint32_t>(payload.size()));
+      index.add_crc32c(Crc32c(payload));
+      index.add_distortion_reduction(static_cast<float>(reduction));
+      out.packets.push_back(std::move(payload));
+    }
+  }
+  return out;
+}
+
+}  // namespace meshwave

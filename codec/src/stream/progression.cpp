@@ -1,0 +1,203 @@
+#include "meshwave/progression.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "meshwave/container.h"
+#include "quant/deadzone_quantizer.h"
+#include "stream/stream_format.h"
+
+namespace meshwave {
+namespace {
+
+int TopOfSubband(const proto::StreamHeader& h, int j) {
+  int top = -1;
+  for (int c = 0; c < 3; ++c) top = std::max(top, h.quantizers(3 * j + c).top_bitplane());
+  return top;
+}
+
+// Id of packet (j, b) or -1: ids run subband by subband, bitplanes down.
+struct PacketMap {
+  std::vector<int> first;  // id of (j, top_j)
+  std::vector<int> top;
+  explicit PacketMap(const proto::StreamHeader& h) {
+    int id = 0;
+    for (int j = 0; j < static_cast<int>(h.transform().levels()); ++j) {
+      first.push_back(id);
+      top.push_back(TopOfSubband(h, j));
+      id += top.back() + 1;
+    }
+  }
+  int Id(int j, int b) const {
+    if (j < 0 || j >= static_cast<int>(top.size()) || b < 0 || b > top[j]) return -1;
+    return first[j] + (top[j] - b);
+  }
+};
+
+}  // namespace
+
+Result<Progression> ParseProgression(const std::string& name) {
+  if (name == "quality") return Progression::kQuality;
+  if (name == "resolution") return Progression::kResolution;
+  if (name == "rd") return Progression::kRd;
+  return InvalidArgument("unknown order \"" + name +
+                         "\" (expected quality, resolution or rd)");
+}
+
+const char* ProgressionName(Progression p) {
+  switch (p) {
+    case Progression::kQuality: return "quality";
+    case Progression::kResolution: return "resolution";
+    case Progression::kRd: return "rd";
+  }
+  return "?";
+}
+
+Status ValidateStreamHeader(const proto::StreamHeader& h) {
+  if (h.format_version() != kFormatVersion) {
+    return Status(StatusCode::kUnsupported,
+                  "stream format version " + std::to_string(h.format_version()) +
+                      " (this build reads version " + std::to_string(kFormatVersion) + ")");
+  }
+  const uint32_t levels = h.transform().levels();
+  if (levels > 12) return ParseError("header: " + std::to_string(levels) + " levels (at most 12)");
+  MW_RETURN_IF_ERROR(FromProto(h.transform()).status());
+  if (h.coder() != proto::CODER_3XC && h.coder() != proto::CODER_SIM) {
+    return ParseError("header: unknown coder " + std::to_string(h.coder()));
+  }
+  if (h.octree_leaf_size() == 0 || h.octree_leaf_size() > (1u << 20)) {
+    return ParseError("header: octree leaf size out of range");
+  }
+  if (h.quantizers_size() != static_cast<int>(3 * levels)) {
+    return ParseError("header: " + std::to_string(h.quantizers_size()) +
+                      " quantizers for " + std::to_string(levels) + " subbands");
+  }
+  for (const auto& q : h.quantizers()) {
+    if (!(q.step() > 0) || !std::isfinite(q.step()) || q.deadzone() > 3 ||
+        q.top_bitplane() < -1 || q.top_bitplane() > kMaxBitplane) {
+      return ParseError("header: a quantizer is out of range");
+    }
+  }
+  const auto& index = h.packets();
+  const int count = index.subband_size();
+  if (index.bitplane_size() != count || index.length_size() != count ||
+      index.crc32c_size() != count || index.distortion_reduction_size() != count) {
+    return ParseError("header: packet index arrays differ in length");
+  }
+  const PacketMap map(h);
+  int expected = 0;
+  for (uint32_t j = 0; j < levels; ++j) expected += map.top[j] + 1;
+  if (count != expected) {
+    return ParseError("header: " + std::to_string(count) + " packets indexed, " +
+                      std::to_string(expected) + " expected from the quantizers");
+  }
+  for (uint32_t j = 0; j < levels; ++j) {
+    for (int b = map.top[j]; b >= 0; --b) {
+      const int id = map.Id(static_cast<int>(j), b);
+      if (index.subband(id) != j || index.bitplane(id) != static_cast<uint32_t>(b)) {
+        return ParseError("header: packet " + std::to_string(id) +
+                          " is not (subband " + std::to_string(j) + ", bitplane " +
+                          std::to_string(b) + ")");
+      }
+      if (index.length(id) > (1u << 30)) {
+        return ParseError("header: packet " + std::to_string(id) + " is too long");
+      }
+    }
+  }
+  return Status::Ok();
+}
+
+std::vector<uint32_t> PacketDependencies(const proto::StreamHeader& h,
+                                         uint32_t id) {
+  const PacketMap map(h);
+  const int j = static_cast<int>(h.packets().subband(static_cast<int>(id)));
+  const int b = static_cast<int>(h.packets().bitplane(static_cast<int>(id)));
+  std::vector<uint32_t> deps;
+  if (int up = map.Id(j, b + 1); up >= 0) deps.push_back(static_cast<uint32_t>(up));
+  if (h.coder() == proto::CODER_3XC) {
+    if (int parent = map.Id(j - 1, b); parent >= 0) {
+      deps.push_back(static_cast<uint32_t>(parent));
+    }
+  }
+  return deps;
+}
+
+std::vector<uint32_t> PacketOrder(const proto::StreamHeader& h,
+                                  Progression progression, int max_level) {
+  const PacketMap map(h);
+  const int levels = static_cast<int>(map.top.size());
+  const int used = (max_level < 0 || max_level > levels) ? levels : max_level;
+  int top = -1;
+  for (int j = 0; j < used; ++j) top = std::max(top, map.top[j]);
+  std::vector<uint32_t> order;
+  switch (progression) {
+    case Progression::kQuality:
+      for (int b = top; b >= 0; --b) {
+        for (int j = 0; j < used; ++j) {
+          if (int id = map.Id(j, b); id >= 0) order.push_back(static_cast<uint32_t>(id));
+        }
+      }
+      break;
+    case Progression::kResolution:
+      for (int j = 0; j < used; ++j) {
+        for (int b = map.top[j]; b >= 0; --b) order.push_back(static_cast<uint32_t>(map.Id(j, b)));
+      }
+      break;
+    case Progression::kRd: {
+      // Greedy: among the packets whose dependencies are sent, the one with
+      // the largest distortion reduction per byte (ties: lower id).
+      std::vector<uint32_t> candidates;
+      for (int j = 0; j < used; ++j) {
+        for (int b = map.top[j]; b >= 0; --b) candidates.push_back(static_cast<uint32_t>(map.Id(j, b)));
+      }
+      std::vector<char> sent(h.packets().length_size(), 0);
+      while (order.size() < candidates.size()) {
+        int best = -1;
+        double best_value = -1;
+        for (uint32_t id : candidates) {
+          if (sent[id]) continue;
+          bool ready = true;
+          for (uint32_t d : PacketDependencies(h, id)) ready = ready && sent[d];
+          if (!ready) continue;
+          const double value = h.packets().distortion_reduction(static_cast<int>(id)) /
+                               (h.packets().length(static_cast<int>(id)) + 4.0);
+          if (value > best_value || (value == best_value && static_cast<int>(id) < best)) {
+            best = static_cast<int>(id);
+            best_value = value;
+          }
+        }
+        sent[best] = 1;
+        order.push_back(static_cast<uint32_t>(best));
+      }
+      break;
+    }
+  }
+  return order;
+}
+
+Selection SelectPackets(const proto::StreamHeader& h,
+                        const std::vector<uint32_t>& order, uint64_t budget,
+                        size_t cursor) {
+  Selection s;
+  s.next_cursor = std::min(cursor, order.size());
+  std::vector<uint32_t> ids;
+  uint64_t bytes = cursor == 0 ? ContainerSize(h, ids) : 0;
+  if (bytes > budget) return s;  // not even the header fits
+  while (s.next_cursor < order.size()) {
+    const uint32_t id = order[s.next_cursor];
+    ids.push_back(id);
+    const uint64_t next = cursor == 0 ? ContainerSize(h, ids)
+                                      : bytes + h.packets().length(static_cast<int>(id));
+    if (next > budget) {
+      ids.pop_back();
+      break;
+    }
+    bytes = next;
+    ++s.next_cursor;
+  }
+  s.ids = std::move(ids);
+  s.bytes = bytes;
+  return s;
+}
+
+}  // namespace meshwave

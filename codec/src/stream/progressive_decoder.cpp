@@ -1,0 +1,209 @@
+#include "meshwave/progressive_decoder.h"
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "bitplane/bitplane_io.h"
+#include "bitplane/bitplane_passes.h"
+#include "bitplane/subband_layout.h"
+#include "meshwave/progression.h"
+#include "meshwave/semiregular.h"
+#include "meshwave/wavelet.h"
+#include "quant/deadzone_quantizer.h"
+#include "stream/base_mesh_codec.h"
+#include "stream/stream_format.h"
+
+namespace meshwave {
+
+struct ProgressiveDecoder::Impl {
+  proto::StreamHeader header;
+  DecoderOptions options;
+  std::shared_ptr<const SemiRegularHierarchy> hierarchy;
+  std::unique_ptr<WaveletTransform> transform;
+  DecodedBase base;
+  std::vector<SubbandLayout> layouts;
+  std::vector<std::array<ComponentState, 3>> states;
+  std::vector<char> have;
+  size_t decoded = 0;
+  uint64_t bytes = 0;
+  double distortion = 0;
+  bool broken = false;
+  double diagonal = 0;
+};
+
+ProgressiveDecoder::ProgressiveDecoder(std::unique_ptr<Impl> impl)
+    : impl_(std::move(impl)) {}
+ProgressiveDecoder::~ProgressiveDecoder() = default;
+
+Result<std::unique_ptr<ProgressiveDecoder>> ProgressiveDecoder::Create(
+    const proto::StreamHeader& header, const DecoderOptions& options) {
+  MW_RETURN_IF_ERROR(ValidateStreamHeader(header));
+  auto impl = std::make_unique<Impl>();
+  impl->header = header;
+  impl->header.clear_present();
+  impl->options = options;
+  MW_ASSIGN_OR_RETURN(TransformSettings settings, FromProto(header.transform()));
+  MW_ASSIGN_OR_RETURN(impl->base,
+                      DecodeBaseMesh(header.base(), options.max_base_vertices));
+  const int levels = static_cast<int>(header.transform().levels());
+  auto hierarchy = SemiRegularHierarchy::Build(
+      static_cast<uint32_t>(impl->base.positions.size()), impl->base.faces, levels);
+  if (!hierarchy.ok()) return hierarchy.status().WithContext("stream base mesh");
+  impl->hierarchy = *hierarchy;
+  const auto& h = *impl->hierarchy;
+  if (header.vertices() != h.vertex_count(levels) ||
+      header.faces() != h.faces(levels).size()) {
+    return ParseError("header: vertex or face count does not match the hierarchy");
+  }
+  if (header.bbox_min_size() != 3 || header.bbox_max_size() != 3) {
+    return ParseError("header: bounding box needs 3 coordinates");
+  }
+  for (int a = 0; a < 3; ++a) {
+    const double d = header.bbox_max(a) - header.bbox_min(a);
+    impl->diagonal += d * d;
+  }
+  impl->diagonal = std::sqrt(impl->diagonal);
+  MW_ASSIGN_OR_RETURN(WaveletTransform t, WaveletTransform::Create(impl->hierarchy, settings));
+  impl->transform = std::make_unique<WaveletTransform>(std::move(t));
+  impl->layouts = BuildSubbandLayouts(h, impl->base.grid, header.octree_leaf_size());
+  impl->states.resize(levels);
+  for (int j = 0; j < levels; ++j) {
+    for (int c = 0; c < 3; ++c) {
+      impl->states[j][c].Init(impl->layouts[j].tree,
+                              header.quantizers(3 * j + c).top_bitplane());
+    }
+  }
+  impl->have.assign(header.packets().length_size(), 0);
+  impl->distortion = header.initial_distortion();
+  return std::unique_ptr<ProgressiveDecoder>(new ProgressiveDecoder(std::move(impl)));
+}
+
+const proto::StreamHeader& ProgressiveDecoder::header() const { return impl_->header; }
+size_t ProgressiveDecoder::packet_count() const { return impl_->have.size(); }
+bool ProgressiveDecoder::HasPacket(uint32_t id) const {
+  return id < impl_->have.size() && impl_->have[id];
+}
+size_t ProgressiveDecoder::packets_decoded() const { return impl_->decoded; }
+uint64_t ProgressiveDecoder::payload_bytes_decoded() const { return impl_->bytes; }
+
+bool ProgressiveDecoder::DependenciesMet(uint32_t id) const {
+  if (id >= impl_->have.size()) return false;
+  for (uint32_t d : PacketDependencies(impl_->header, id)) {
+    if (!impl_->have[d]) return false;
+  }
+  return true;
+}
+
+Status ProgressiveDecoder::AddPacket(uint32_t id, std::string_view payload) {
+  Impl& m = *impl_;
+  if (m.broken) {
+    return Status(StatusCode::kInvalidArgument,
+                  "decoder is unusable after an earlier corrupt packet");
+  }
+  if (id >= m.have.size()) {
+    return InvalidArgument("packet " + std::to_string(id) + " is not in the index of " +
+                           std::to_string(m.have.size()) + " packets");
+  }
+  const auto& index = m.header.packets();
+  const int i = static_cast<int>(id);
+  const int j = static_cast<int>(index.subband(i));
+  const int b = static_cast<int>(index.bitplane(i));
+  const std::string what = "packet " + std::to_string(id) + " (subband " +
+                           std::to_string(j) + ", bitplane " + std::to_string(b) + ")";
+  if (m.have[id]) return InvalidArgument(what + " was already added");
+  for (uint32_t d : PacketDependencies(m.header, id)) {
+    if (!m.have[d]) {
+      return InvalidArgument(what + " needs packet " + std::to_string(d) + " (subband " +
+                             std::to_string(index.subband(static_cast<int>(d))) +
+                             ", bitplane " +
+                             std::to_string(index.bitplane(static_cast<int>(d))) +
+                             ") first");
+    }
+  }
+  if (payload.size() != index.length(i)) {
+    return ParseError(what + ": " + std::to_string(payload.size()) + " bytes, index says " +
+                      std::to_string(index.length(i)));
+  }
+  if (Crc32c(payload) != index.crc32c(i)) {
+    return ParseError(what + ": CRC32C mismatch (corrupt payload)");
+  }
+  ArithmeticDecoder dec(payload);
+  DecoderIo io(dec);
+  const SubbandLayout& layout = m.layouts[j];
+  for (int c = 0; c < 3; ++c) {
+    ComponentState& s = m.states[j][c];
+    if (b > s.top) continue;
+    ParentView parent;
+    if (m.header.coder() == proto::CODER_3XC && j > 0) {
+      parent = {layout.parent_of, m.states[j - 1][c].mag, m.states[j - 1][c].negative};
+    }
+    ComponentContexts contexts;
+    CodeBitplane(layout.tree, s, b, parent, contexts, io, nullptr);
+  }
+  if (dec.overrun()) {
+    m.broken = true;
+    return ParseError(what + ": payload ends before its symbols (corrupt stream)");
+  }
+  m.have[id] = 1;
+  ++m.decoded;
+  m.bytes += payload.size();
+  m.distortion -= index.distortion_reduction(i);
+  return Status::Ok();
+}
+
+int ProgressiveDecoder::CompleteLevels() const {
+  const Impl& m = *impl_;
+  int level = 0;
+  for (size_t j = 0; j < m.states.size(); ++j) {
+    bool all = true;
+    for (const auto& s : m.states[j]) all = all && (s.top < 0 || s.known_from() <= s.top);
+    if (!all) break;
+    level = static_cast<int>(j) + 1;
+  }
+  return level;
+}
+
+double ProgressiveDecoder::EstimatedPsnr() const {
+  const Impl& m = *impl_;
+  const double mse = std::max(m.distortion, 0.0) / static_cast<double>(m.header.vertices());
+  if (mse <= 0) return std::numeric_limits<double>::infinity();
+  return 20 * std::log10(m.diagonal / std::sqrt(mse));
+}
+
+std::vector<Vec3> ProgressiveDecoder::Positions(int max_level) const {
+  const Impl& m = *impl_;
+  const auto& h = *m.hierarchy;
+  Pyramid p;
+  p.hierarchy = m.hierarchy;
+  p.base = m.base.positions;
+  p.subbands.resize(h.levels());
+  for (int j = 0; j < h.levels(); ++j) {
+    if (max_level >= 0 && j >= max_level) break;
+    auto& band = p.subbands[j];
+    band.assign(h.subband_size(j), Vec3::Zero());
+    for (int c = 0; c < 3; ++c) {
+      const ComponentState& s = m.states[j][c];
+      const proto::Quantizer& q = m.header.quantizers(3 * j + c);
+      const int n = s.known_from();
+      if (n > s.top) continue;
+      const double xi0 = DeadzoneXi(static_cast<int>(q.deadzone()));
+      for (uint32_t k : s.lsc) {
+        band[k][c] = Dequantize(s.mag[k] >> n, n, s.negative[k], q.step(), xi0,
+                                m.options.gamma);
+      }
+    }
+  }
+  return m.transform->Inverse(p, max_level);
+}
+
+TriMesh ProgressiveDecoder::Mesh(int max_level) const {
+  const auto& h = *impl_->hierarchy;
+  const int level = (max_level < 0 || max_level > h.levels()) ? h.levels() : max_level;
+  TriMesh mesh;
+  mesh.positions = Positions(level);
+  mesh.faces = h.faces(level);
+  return mesh;
+}
+
+}  // namespace meshwave

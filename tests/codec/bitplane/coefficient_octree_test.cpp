@@ -1,0 +1,81 @@
+#include "bitplane/coefficient_octree.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+#include <set>
+
+#include "codec/test_meshes.h"
+
+namespace meshwave {
+namespace {
+
+void ExpectPartition(const CoefficientOctree& tree, const OctreeNode& node,
+                     std::vector<int>& seen) {
+  if (tree.IsLeaf(node)) {
+    for (uint32_t i = node.begin; i < node.end; ++i) ++seen[tree.At(i)];
+    return;
+  }
+  std::array<OctreeNode, 8> children;
+  const int n = tree.Children(node, children);
+  ASSERT_GE(n, 1);
+  ASSERT_LE(n, 8);
+  uint32_t at = node.begin;
+  for (int c = 0; c < n; ++c) {
+    EXPECT_EQ(children[c].begin, at);
+    EXPECT_GT(children[c].end, children[c].begin);
+    EXPECT_EQ(children[c].depth, node.depth + 1);
+    at = children[c].end;
+    ExpectPartition(tree, children[c], seen);
+  }
+  EXPECT_EQ(at, node.end);
+}
+
+TEST(CoefficientOctreeTest, CellsPartitionTheCoefficients) {
+  std::mt19937 rng(3);
+  std::uniform_int_distribution<int64_t> u(-1000, 100000);
+  std::vector<IntVec3> points(5000);
+  for (auto& p : points) p = {u(rng), u(rng), u(rng)};
+  points[17] = points[18] = points[19];  // coincident: an unsplittable leaf
+  for (uint32_t leaf : {1u, 2u, 4u}) {
+    CoefficientOctree tree(points, leaf);
+    std::vector<int> seen(points.size(), 0);
+    ExpectPartition(tree, tree.Root(), seen);
+    for (int s : seen) EXPECT_EQ(s, 1);
+  }
+}
+
+TEST(CoefficientOctreeTest, ChildrenAreSpatiallySeparated) {
+  // Two clusters far apart end up in different children of the root.
+  std::vector<IntVec3> points;
+  for (int i = 0; i < 10; ++i) points.push_back({i, 0, 0});
+  for (int i = 0; i < 10; ++i) points.push_back({1000 + i, 1000, 1000});
+  CoefficientOctree tree(points, 1);
+  std::array<OctreeNode, 8> children;
+  ASSERT_EQ(tree.Children(tree.Root(), children), 2);
+  std::set<uint32_t> first;
+  for (uint32_t i = children[0].begin; i < children[0].end; ++i) first.insert(tree.At(i));
+  EXPECT_EQ(first, (std::set<uint32_t>{0, 1, 2, 3, 4, 5, 6, 7, 8, 9}));
+}
+
+TEST(ReferencePositionsTest, AreExactIntegerMidpoints) {
+  const TriMesh ico = testing::Icosahedron();
+  auto h = SemiRegularHierarchy::Build(12, ico.faces, 3);
+  ASSERT_TRUE(h.ok());
+  std::vector<IntVec3> base;
+  for (const Vec3& p : ico.positions) {
+    base.push_back({std::llround(p.x() * 1000), std::llround(p.y() * 1000),
+                    std::llround(p.z() * 1000)});
+  }
+  const auto ref = ReferencePositions(**h, base);
+  ASSERT_EQ(ref.size(), 3u);
+  // Level 0 coefficient k sits at the sum of its edge's endpoints (scale 2).
+  for (size_t k = 0; k < ref[0].size(); ++k) {
+    const Edge& e = (*h)->edges(0)[k];
+    for (int a = 0; a < 3; ++a) EXPECT_EQ(ref[0][k][a], base[e[0]][a] + base[e[1]][a]);
+  }
+  EXPECT_EQ(ref[2].size(), (*h)->subband_size(2));
+}
+
+}  // namespace
+}  // namespace meshwave

@@ -1,0 +1,123 @@
+#include "meshwave/container.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <memory>
+#include <random>
+
+#include "codec/stream/stream_test_util.h"
+#include "meshwave/progression.h"
+#include "meshwave/progressive_decoder.h"
+
+namespace meshwave {
+namespace {
+
+const EncodedStream& Stream() {
+  static const EncodedStream s = [] {
+    auto r = EncodeMesh(testing::BumpySphere(3), EncodeOptions{});
+    EXPECT_TRUE(r.ok());
+    return *std::move(r);
+  }();
+  return s;
+}
+
+// Parses and decodes whatever a container holds; never crashes.
+Status DecodeAll(std::string_view bytes, bool allow_truncated) {
+  MW_ASSIGN_OR_RETURN(ParsedContainer c, ParseContainer(bytes, allow_truncated));
+  MW_ASSIGN_OR_RETURN(auto d, ProgressiveDecoder::Create(c.header));
+  for (size_t i = 0; i < c.ids.size(); ++i) {
+    MW_RETURN_IF_ERROR(d->AddPacket(c.ids[i], c.payloads[i]));
+  }
+  (void)d->Positions();
+  return Status::Ok();
+}
+
+TEST(ContainerTest, FullContainerRoundTrips) {
+  const std::string bytes = SerializeFullContainer(Stream());
+  auto c = ParseContainer(bytes);
+  ASSERT_TRUE(c.ok()) << c.status().ToString();
+  ASSERT_EQ(c->ids.size(), Stream().packets.size());
+  for (size_t i = 0; i < c->ids.size(); ++i) {
+    EXPECT_EQ(c->payloads[i], Stream().packets[c->ids[i]]);
+  }
+  EXPECT_TRUE(DecodeAll(bytes, false).ok());
+}
+
+TEST(ContainerTest, SizeMatchesSerialization) {
+  const auto order = PacketOrder(Stream().header, Progression::kQuality);
+  for (size_t n = 0; n <= order.size(); n += 3) {
+    std::vector<uint32_t> ids(order.begin(), order.begin() + static_cast<long>(n));
+    EXPECT_EQ(ContainerSize(Stream().header, ids), SerializeContainer(Stream(), ids).size());
+  }
+}
+
+TEST(ContainerTest, BudgetSelectsLongestFittingPrefix) {
+  const auto& h = Stream().header;
+  const auto order = PacketOrder(h, Progression::kQuality);
+  for (uint64_t budget : {100u, 500u, 2000u, 8000u, 1u << 30}) {
+    const Selection s = SelectPackets(h, order, budget);
+    if (s.ids.empty() && ContainerSize(h, {}) > budget) continue;
+    EXPECT_LE(SerializeContainer(Stream(), s.ids).size(), budget);
+    EXPECT_EQ(s.bytes, SerializeContainer(Stream(), s.ids).size());
+    if (s.next_cursor < order.size()) {
+      auto more = s.ids;
+      more.push_back(order[s.next_cursor]);
+      EXPECT_GT(ContainerSize(h, more), budget);
+    }
+    EXPECT_TRUE(DecodeAll(SerializeContainer(Stream(), s.ids), false).ok());
+    // Continuing from the cursor with a payload budget.
+    const Selection more = SelectPackets(h, order, 1000, s.next_cursor);
+    EXPECT_LE(more.bytes, 1000u);
+  }
+}
+
+TEST(ContainerTest, RejectsBadMagicVersionTrailingBytes) {
+  std::string bytes = SerializeFullContainer(Stream());
+  std::string bad = bytes;
+  bad[0] = 'X';
+  EXPECT_NE(ParseContainer(bad).status().message().find("magic"), std::string::npos);
+  EXPECT_NE(ParseContainer(bytes + "zz").status().message().find("after the last packet"),
+            std::string::npos);
+  EncodedStream v2 = Stream();
+  v2.header.set_format_version(2);
+  EXPECT_EQ(ParseContainer(SerializeFullContainer(v2)).status().code(),
+            StatusCode::kUnsupported);
+  EXPECT_FALSE(ParseContainer("MWV1").ok());
+}
+
+TEST(ContainerTest, EveryTruncationIsRefusedOrDecodesAPrefix) {
+  const std::string bytes = SerializeFullContainer(Stream());
+  for (size_t n = 0; n < bytes.size(); n += 7) {
+    // Each prefix in its own allocation so that ASan sees any overrun.
+    auto copy = std::make_unique<char[]>(n + 1);
+    std::memcpy(copy.get(), bytes.data(), n);
+    const std::string_view prefix(copy.get(), n);
+    EXPECT_FALSE(ParseContainer(prefix, false).ok()) << n;
+    auto c = ParseContainer(prefix, true);
+    if (c.ok()) {
+      EXPECT_TRUE(DecodeAll(prefix, true).ok()) << n;
+    }
+  }
+}
+
+TEST(ContainerTest, FlippedAndShuffledBytesNeverCrash) {
+  const std::string bytes = SerializeFullContainer(Stream());
+  std::mt19937 rng(11);
+  int decoded = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    std::string bad = bytes;
+    const int flips = 1 + static_cast<int>(rng() % 4);
+    for (int i = 0; i < flips; ++i) bad[rng() % bad.size()] ^= static_cast<char>(1 + rng() % 255);
+    if (trial % 3 == 0) {
+      const size_t a = rng() % bad.size(), b = rng() % bad.size();
+      std::swap(bad[a], bad[b]);
+    }
+    decoded += DecodeAll(bad, true).ok();
+  }
+  // Most damage lands in payloads and is caught by the CRC.
+  EXPECT_LT(decoded, 300);
+}
+
+}  // namespace
+}  // namespace meshwave

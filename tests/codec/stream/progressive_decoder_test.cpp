@@ -1,0 +1,194 @@
+#include "meshwave/progressive_decoder.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+#include <numeric>
+#include <random>
+
+#include "codec/stream/stream_test_util.h"
+#include "meshwave/container.h"
+#include "meshwave/progression.h"
+
+namespace meshwave {
+namespace {
+
+using testing::BumpySphere;
+using testing::Psnr;
+
+struct Fixture {
+  SemiRegularMesh mesh;
+  EncodedStream stream;
+  double diag = 0;
+};
+
+const Fixture& Encoded(CoderKind coder) {
+  static std::map<CoderKind, Fixture> cache;
+  auto it = cache.find(coder);
+  if (it != cache.end()) return it->second;
+  Fixture f;
+  f.mesh = BumpySphere(4);
+  EncodeOptions options;
+  options.coder = coder;
+  auto s = EncodeMesh(f.mesh, options);
+  EXPECT_TRUE(s.ok()) << s.status().ToString();
+  f.stream = *std::move(s);
+  f.diag = BoundingBox(f.mesh.positions).Diagonal();
+  return cache.emplace(coder, std::move(f)).first->second;
+}
+
+std::unique_ptr<ProgressiveDecoder> NewDecoder(const EncodedStream& s) {
+  auto d = ProgressiveDecoder::Create(s.header);
+  EXPECT_TRUE(d.ok()) << d.status().ToString();
+  return std::move(d).value();
+}
+
+class CoderTest : public ::testing::TestWithParam<CoderKind> {};
+
+TEST_P(CoderTest, AllPacketsReproduceTheMeshNearLosslessly) {
+  const Fixture& f = Encoded(GetParam());
+  auto d = NewDecoder(f.stream);
+  for (uint32_t id = 0; id < f.stream.packets.size(); ++id) {
+    ASSERT_TRUE(d->AddPacket(id, f.stream.packets[id]).ok()) << id;
+  }
+  const auto decoded = d->Positions();
+  const double psnr = Psnr(f.mesh.positions, decoded, f.diag);
+  EXPECT_GE(psnr, 90.0);
+  // Within a few finest steps of every vertex (step = diag * 2^-16).
+  const double step = std::ldexp(f.diag, -16);
+  for (size_t v = 0; v < decoded.size(); ++v) {
+    EXPECT_LT((decoded[v] - f.mesh.positions[v]).norm(), 4 * step) << v;
+  }
+}
+
+TEST_P(CoderTest, FinalMeshIsIdenticalInEveryOrder) {
+  const Fixture& f = Encoded(GetParam());
+  std::vector<std::vector<Vec3>> results;
+  for (Progression p : {Progression::kQuality, Progression::kResolution, Progression::kRd}) {
+    auto d = NewDecoder(f.stream);
+    const auto order = PacketOrder(f.stream.header, p);
+    ASSERT_EQ(order.size(), f.stream.packets.size());
+    for (uint32_t id : order) {
+      ASSERT_TRUE(d->AddPacket(id, f.stream.packets[id]).ok())
+          << ProgressionName(p) << " packet " << id;
+    }
+    results.push_back(d->Positions());
+  }
+  EXPECT_EQ(results[0], results[1]);
+  EXPECT_EQ(results[0], results[2]);
+}
+
+TEST_P(CoderTest, PsnrNeverDecreasesInQualityAndRdOrder) {
+  const Fixture& f = Encoded(GetParam());
+  for (Progression p : {Progression::kQuality, Progression::kRd}) {
+    auto d = NewDecoder(f.stream);
+    double last = Psnr(f.mesh.positions, d->Positions(), f.diag);
+    for (uint32_t id : PacketOrder(f.stream.header, p)) {
+      ASSERT_TRUE(d->AddPacket(id, f.stream.packets[id]).ok());
+      const double now = Psnr(f.mesh.positions, d->Positions(), f.diag);
+      EXPECT_GE(now, last - 1e-9) << ProgressionName(p) << " packet " << id;
+      last = now;
+    }
+  }
+}
+
+TEST_P(CoderTest, ResolutionOrderWithMaxLevelGivesThatLevelsMesh) {
+  const Fixture& f = Encoded(GetParam());
+  for (int level = 0; level <= 4; ++level) {
+    auto d = NewDecoder(f.stream);
+    for (uint32_t id : PacketOrder(f.stream.header, Progression::kResolution, level)) {
+      ASSERT_LT(f.stream.header.packets().subband(static_cast<int>(id)),
+                static_cast<uint32_t>(level));
+      ASSERT_TRUE(d->AddPacket(id, f.stream.packets[id]).ok());
+    }
+    const TriMesh m = d->Mesh(level);
+    EXPECT_EQ(m.positions.size(), f.mesh.hierarchy->vertex_count(level));
+    EXPECT_EQ(m.faces.size(), f.mesh.hierarchy->faces(level).size());
+    EXPECT_EQ(d->CompleteLevels(), level);
+  }
+}
+
+TEST_P(CoderTest, RandomDependencyRespectingOrdersGiveTheSameMesh) {
+  const Fixture& f = Encoded(GetParam());
+  auto reference = NewDecoder(f.stream);
+  for (uint32_t id = 0; id < f.stream.packets.size(); ++id) {
+    ASSERT_TRUE(reference->AddPacket(id, f.stream.packets[id]).ok());
+  }
+  std::mt19937 rng(5);
+  for (int trial = 0; trial < 5; ++trial) {
+    auto d = NewDecoder(f.stream);
+    std::vector<uint32_t> pending(f.stream.packets.size());
+    std::iota(pending.begin(), pending.end(), 0u);
+    while (!pending.empty()) {
+      std::vector<size_t> ready;
+      for (size_t i = 0; i < pending.size(); ++i) {
+        if (d->DependenciesMet(pending[i])) ready.push_back(i);
+      }
+      ASSERT_FALSE(ready.empty());
+      const size_t pick = ready[rng() % ready.size()];
+      ASSERT_TRUE(d->AddPacket(pending[pick], f.stream.packets[pending[pick]]).ok());
+      pending.erase(pending.begin() + static_cast<long>(pick));
+    }
+    EXPECT_EQ(d->Positions(), reference->Positions());
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Coders, CoderTest,
+                         ::testing::Values(CoderKind::k3xC, CoderKind::kSim),
+                         [](const auto& i) { return std::string(CoderKindName(i.param)); });
+
+TEST(ProgressiveDecoderTest, RefusesPacketBeforeItsDependencies) {
+  const Fixture& f = Encoded(CoderKind::k3xC);
+  auto d = NewDecoder(f.stream);
+  // The second packet of subband 0 needs the first.
+  Status s = d->AddPacket(1, f.stream.packets[1]);
+  EXPECT_EQ(s.code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(s.message().find("needs packet 0"), std::string::npos) << s.message();
+  // The decoder stays usable.
+  EXPECT_TRUE(d->AddPacket(0, f.stream.packets[0]).ok());
+  EXPECT_TRUE(d->AddPacket(1, f.stream.packets[1]).ok());
+  EXPECT_EQ(d->AddPacket(1, f.stream.packets[1]).code(), StatusCode::kInvalidArgument);
+  EXPECT_EQ(d->AddPacket(99999, "").code(), StatusCode::kInvalidArgument);
+}
+
+TEST(ProgressiveDecoderTest, ThreeXcNeedsTheParentSubbandsBitplane) {
+  const Fixture& f = Encoded(CoderKind::k3xC);
+  auto d = NewDecoder(f.stream);
+  const auto& index = f.stream.header.packets();
+  // First packet of subband 1 (its top bitplane) needs subband 0 at that
+  // bitplane when subband 0 has one.
+  uint32_t first1 = 0;
+  while (index.subband(static_cast<int>(first1)) != 1) ++first1;
+  EXPECT_FALSE(d->DependenciesMet(first1));
+  EXPECT_EQ(d->AddPacket(first1, f.stream.packets[first1]).code(),
+            StatusCode::kInvalidArgument);
+}
+
+TEST(ProgressiveDecoderTest, RefusesCorruptPayload) {
+  const Fixture& f = Encoded(CoderKind::k3xC);
+  auto d = NewDecoder(f.stream);
+  std::string bad = f.stream.packets[0];
+  ASSERT_FALSE(bad.empty());
+  bad[bad.size() / 2] ^= 0x10;
+  Status s = d->AddPacket(0, bad);
+  EXPECT_EQ(s.code(), StatusCode::kParseError);
+  EXPECT_NE(s.message().find("CRC32C"), std::string::npos);
+  EXPECT_EQ(d->AddPacket(0, f.stream.packets[0].substr(1)).code(), StatusCode::kParseError);
+  EXPECT_TRUE(d->AddPacket(0, f.stream.packets[0]).ok());
+}
+
+TEST(ProgressiveDecoderTest, EstimatedPsnrTracksTheTruth) {
+  const Fixture& f = Encoded(CoderKind::k3xC);
+  auto d = NewDecoder(f.stream);
+  for (uint32_t id : PacketOrder(f.stream.header, Progression::kQuality)) {
+    ASSERT_TRUE(d->AddPacket(id, f.stream.packets[id]).ok());
+    const double truth = Psnr(f.mesh.positions, d->Positions(), f.diag);
+    if (truth < 80) {
+      EXPECT_NEAR(d->EstimatedPsnr(), truth, 3.0) << id;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace meshwave

@@ -1,0 +1,115 @@
+// meshwave encode IN OUT.mwv: a mesh file into an embedded 3xC stream.
+// Semi-regular input is used as it is; irregular input is remeshed first.
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+
+#include "cli_util.h"
+#include "commands.h"
+#include "meshwave/container.h"
+#include "meshwave/encoder.h"
+#include "meshwave/mesh.h"
+#include "meshwave/remesh.h"
+#include "meshwave/semiregular.h"
+
+namespace meshwave::cli {
+namespace {
+
+struct EncodeArgs {
+  std::string in, out, predictor = "butterfly", update = "constant",
+                        coder = "3xc";
+  int levels = -1;
+  int precision = 16;
+  bool force_remesh = false;
+};
+
+Result<SemiRegularMesh> LoadSemiRegular(const EncodeArgs& args) {
+  MW_ASSIGN_OR_RETURN(TriMesh mesh, ReadMesh(args.in));
+  CleanMesh(mesh);
+  if (!args.force_remesh) {
+    auto detected = DetectSemiRegular(mesh);
+    if (detected.ok()) {
+      std::cerr << args.in << ": semi-regular, "
+                << detected->mesh.levels() << " levels over "
+                << detected->mesh.hierarchy->faces(0).size()
+                << " base faces\n";
+      return std::move(detected->mesh);
+    }
+    std::cerr << args.in << ": not semi-regular ("
+              << detected.status().message() << "); remeshing first\n";
+  }
+  RemeshOptions options;
+  options.levels = args.levels;
+  MW_ASSIGN_OR_RETURN(RemeshResult remeshed, Remesh(mesh, options));
+  for (const auto& w : remeshed.warnings) std::cerr << "warning: " << w << "\n";
+  std::cerr << "remeshed: " << remeshed.levels << " levels over "
+            << remeshed.base_faces << " base faces, "
+            << remeshed.finest_vertices << " vertices\n";
+  return std::move(remeshed.mesh);
+}
+
+Status Run(const EncodeArgs& args) {
+  EncodeOptions options;
+  MW_ASSIGN_OR_RETURN(options.transform.predictor, ParsePredictor(args.predictor));
+  MW_ASSIGN_OR_RETURN(options.transform.update, ParseUpdateWeights(args.update));
+  MW_ASSIGN_OR_RETURN(options.coder, ParseCoderKind(args.coder));
+  options.precision = args.precision;
+  options.name = std::filesystem::path(args.in).stem().string();
+  MW_ASSIGN_OR_RETURN(SemiRegularMesh mesh, LoadSemiRegular(args));
+  MW_ASSIGN_OR_RETURN(EncodedStream stream, EncodeMesh(mesh, options));
+  const std::string bytes = SerializeFullContainer(stream);
+  MW_RETURN_IF_ERROR(WriteFileBytes(args.out, bytes));
+  uint64_t payload = 0;
+  for (const auto& p : stream.packets) payload += p.size();
+  const double v = static_cast<double>(stream.header.vertices());
+  std::printf("wrote %s: %zu bytes (header %zu incl. base mesh %zu, %zu packets %llu)\n",
+              args.out.c_str(), bytes.size(), bytes.size() - payload,
+              stream.header.base().coded().size(), stream.packets.size(),
+              static_cast<unsigned long long>(payload));
+  std::printf("%llu vertices, %u levels, %s/%s %s: %.3f bits per vertex in all\n",
+              static_cast<unsigned long long>(stream.header.vertices()),
+              stream.header.transform().levels(),
+              PredictorName(options.transform.predictor),
+              UpdateWeightsName(options.transform.update),
+              CoderKindName(options.coder), 8.0 * static_cast<double>(bytes.size()) / v);
+  return Status::Ok();
+}
+
+}  // namespace
+
+void AddEncodeCommand(CLI::App& app, int& exit_code) {
+  auto args = std::make_shared<EncodeArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "encode", "Encode a mesh into an embedded .mwv stream (irregular meshes "
+                "are remeshed first)");
+  cmd->add_option("in", args->in, "Mesh file (.ply, .obj, .off)")->required();
+  cmd->add_option("out", args->out, "Output stream (.mwv)")->required();
+  cmd->add_option("--predictor,--transform", args->predictor,
+                  "Wavelet prediction: butterfly, linear or loop")
+      ->check(CLI::IsMember({"butterfly", "linear", "loop"}))
+      ->capture_default_str();
+  cmd->add_option("--update", args->update,
+                  "Lifting update: constant (lifted), none (unlifted) or valence")
+      ->check(CLI::IsMember({"constant", "none", "valence", "lifted", "unlifted"}))
+      ->capture_default_str();
+  cmd->add_option("--coder", args->coder, "Bitplane coder: 3xc or sim")
+      ->check(CLI::IsMember({"3xc", "sim"}))
+      ->capture_default_str();
+  cmd->add_option("--levels", args->levels,
+                  "Subdivision levels when remeshing (default: chosen from the input)")
+      ->check(CLI::Range(1, 8));
+  cmd->add_option("--precision", args->precision,
+                  "Finest step = bounding-box diagonal x 2^-precision")
+      ->check(CLI::Range(4, 30))
+      ->capture_default_str();
+  cmd->add_flag("--remesh", args->force_remesh,
+                "Remesh even when the input is already semi-regular");
+  cmd->callback([args, &exit_code] {
+    const Status s = Run(*args);
+    if (!s.ok()) exit_code = Fail("encode", s);
+  });
+}
+
+}  // namespace meshwave::cli
