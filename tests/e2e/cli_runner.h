@@ -51,6 +51,14 @@ inline CliResult RunCli(const std::vector<std::string>& args) {
   return r;
 }
 
+// The bytes of a file (empty if it cannot be read).
+inline std::string ReadBytes(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
 // A fresh temporary directory removed when the object goes away.
 class TempDir {
  public:

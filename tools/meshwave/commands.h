@@ -14,6 +14,7 @@ void AddSubdivideCommand(CLI::App& app, int& exit_code);
 void AddRemeshCommand(CLI::App& app, int& exit_code);
 void AddEncodeCommand(CLI::App& app, int& exit_code);
 void AddDecodeCommand(CLI::App& app, int& exit_code);
+void AddRdCommand(CLI::App& app, int& exit_code);
 
 }  // namespace meshwave::cli
 

@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   meshwave::cli::AddRemeshCommand(app, exit_code);
   meshwave::cli::AddEncodeCommand(app, exit_code);
   meshwave::cli::AddDecodeCommand(app, exit_code);
+  meshwave::cli::AddRdCommand(app, exit_code);
 
   CLI11_PARSE(app, argc, argv);
   return exit_code;

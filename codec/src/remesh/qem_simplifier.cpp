@@ -46,6 +46,9 @@ constexpr double kGoodQuality = 0.3;
 // off 0.4 %; refusing them outright stalls ogre.obj at twice the planned
 // base (claws and teeth keep 100+ faces each).
 constexpr double kMinCornerNormalCos = 0.0;
+// A face made by a collapse must face within acos(0.2) ≈ 78° of the mean
+// input normal of its corners.
+constexpr double kMinFacingCos = 0.2;
 // Inner vertices of valence 3 make cones: after subdivision and projection
 // their corner faces fold easily, so making one is put off.
 constexpr size_t kMinInnerValence = 4;
@@ -318,6 +321,9 @@ class Simplifier {
                                  .cross(moved_corner[2] - moved_corner[0]);
         const double nb = before.norm(), na = after_n.norm();
         if (!(na > 0)) return Verdict::kRefused;
+        if (!FacesItsCorners(after_n, t, removed, kept)) {
+          return Verdict::kRefused;
+        }
         if (nb > 0 && before.dot(after_n) < kMinNormalCos * nb * na) {
           return Verdict::kRefused;
         }
@@ -337,6 +343,23 @@ class Simplifier {
       late = true;
     }
     return late ? Verdict::kLate : Verdict::kOk;
+  }
+
+  // Whether `normal` (of face t after the collapse) is within about 78° of
+  // the mean input normal carried by the face's corners: the per-collapse
+  // fold test alone lets a face turn over in small steps.
+  bool FacesItsCorners(const Vec3& normal, const Face& t, uint32_t removed,
+                       uint32_t kept) const {
+    Vec3 mean = Vec3::Zero();
+    for (uint32_t x : t) {
+      const uint32_t v = x == removed ? kept : x;
+      Vec3 n = normal_sums_[v];
+      if (v == kept) n += normal_sums_[removed];
+      const double length = n.norm();
+      if (length > 0) mean += n / length;
+    }
+    const double scale = mean.norm() * normal.norm();
+    return !(scale > 0) || normal.dot(mean) >= kMinFacingCos * scale;
   }
 
   // The smallest cosine between the input normals carried by two corners

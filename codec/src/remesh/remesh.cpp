@@ -28,7 +28,14 @@ using Clock = std::chrono::steady_clock;
 // Every component keeps at least this many base faces (all of its faces
 // when it has fewer): an octahedron-like base is the coarsest that still
 // lets butterfly subdivision and projection find a closed part's shape.
-constexpr uint32_t kMinComponentBaseFaces = 8;
+constexpr uint32_t kMinComponentBaseFaces = 24;
+
+// Put-off collapses (qem_simplifier.h) may shrink a component only down to
+// this multiple of its share of the base faces by input faces: small parts
+// that cannot shrink cleanly (ogre's claws) still shrink, while a part that
+// needs many base faces for its shape (ogre's belt) is not forced into
+// folds; the base may then exceed its target.
+constexpr double kLateFloorShare = 2.0;
 
 // Share of the progress bar per stage, from timings on igea.ply.
 constexpr double kRepairShare = 0.05;
@@ -141,20 +148,15 @@ class Pipeline {
     simplify.target_faces = plan.base_faces;
     simplify.min_faces.resize(components.count);
     simplify.late_floor.resize(components.count);
-    const std::vector<double> areas = ComponentAreas(mesh, components);
-    double total_area = 0;
-    for (double a : areas) total_area += a;
+    const double faces_total = static_cast<double>(mesh.faces.size());
     for (uint32_t c = 0; c < components.count; ++c) {
       simplify.min_faces[c] =
           std::min(faces_per_component[c], kMinComponentBaseFaces);
       simplify.late_floor[c] = static_cast<uint32_t>(std::max<double>(
           simplify.min_faces[c],
-          std::round(static_cast<double>(plan.base_faces) * areas[c] /
-                     total_area)));
+          std::round(kLateFloorShare * static_cast<double>(plan.base_faces) *
+                     faces_per_component[c] / faces_total)));
     }
-    simplify.progress = [this](double f) {
-      Report("simplify", kRepairShare + kSimplifyShare * f);
-    };
     const auto surface = std::make_unique<remesh::InputSurface>(
         std::move(mesh), std::move(components));
     Report("simplify", kRepairShare);

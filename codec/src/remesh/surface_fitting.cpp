@@ -196,7 +196,8 @@ class Fitter {
     const uint32_t first = untangle ? 0 : h_.vertex_count(level - 1);
     const uint32_t count = h_.vertex_count(level);
     const std::vector<Vec3> normals =
-        VertexNormals(h_.faces(level), positions_, count);
+        untangle ? ConsensusNormals(level)
+                 : VertexNormals(h_.faces(level), positions_, count);
     std::vector<Vec3> next(count - first);
     std::vector<uint32_t> next_face(count - first);
     const double step = untangle ? 1.0 : options_.relax_step;
@@ -213,18 +214,23 @@ class Fitter {
         const auto ring = rings.Ring(v);
         for (uint32_t u : ring) centroid += positions_[u];
         centroid /= static_cast<double>(ring.size());
-        // Facing is judged against the input face the vertex is on, which
-        // is on the right sheet even where the remesh is tangled.
+        // Facing: when relaxing, the input face the vertex is on (it is on
+        // the right sheet); when untangling, the orientation of the
+        // vertex's faces that are not bad, which brings back a vertex that
+        // went to the far side of a part thinner than an edge.
         const uint32_t face = anchors_[v].face;
-        const Vec3 facing = face != InputSurface::kNoFace
-                                ? surface_.FaceNormal(face)
-                                : Vec3(normals[v]);
-        const Vec3& n = untangle && facing.norm() > 0 ? facing : normals[v];
+        Vec3 facing = untangle || face == InputSurface::kNoFace
+                          ? normals[v]
+                          : surface_.FaceNormal(face);
+        if (!(facing.norm() > 0) && face != InputSurface::kNoFace) {
+          facing = surface_.FaceNormal(face);
+        }
+        const Vec3& n = untangle ? facing : normals[v];
         Vec3 d = centroid - positions_[v];
         d -= d.dot(n) * n;
         const Vec3 q = positions_[v] + step * d;
-        const InputSurface::Projection p = surface_.Closest(
-            q, facing.norm() > 0 ? facing : n, anchors_[v].component, face);
+        const InputSurface::Projection p =
+            surface_.Closest(q, facing, anchors_[v].component, face);
         if (!p.found()) continue;
         next[i] = p.point;
         next_face[i] = p.face;
@@ -243,13 +249,30 @@ class Fitter {
     if (untangle) stats_.repair_moves += moves;
   }
 
+  // Unit normals of the vertices of `level` from their faces that the last
+  // MarkBadFaces found good; zero for a vertex with none.
+  std::vector<Vec3> ConsensusNormals(int level) const {
+    const auto& faces = h_.faces(level);
+    std::vector<Vec3> n(h_.vertex_count(level), Vec3::Zero());
+    for (size_t i = 0; i < faces.size(); ++i) {
+      if (bad_face_[i]) continue;
+      const Face& f = faces[i];
+      const Vec3 c = (positions_[f[1]] - positions_[f[0]])
+                         .cross(positions_[f[2]] - positions_[f[0]]);
+      for (uint32_t v : f) n[v] += c;
+    }
+    for (Vec3& x : n) {
+      const double length = x.norm();
+      if (length > 0) x /= length;
+    }
+    return n;
+  }
+
   // Marks the vertices of folded or degenerate faces of `level`;
   // returns the number of such faces. Folded: the face normal opposes the
-  // input normal at the point of its component closest to its centroid.
-  // That query runs only for faces whose normal already opposes the sum of
-  // the input normals at their corners (a cheap test that is reliable for
-  // small faces, but not for coarse ones spanning a sharp bend).
-  // With `new_only`, vertices of coarser levels are not marked.
+  // input normal at the point of its component closest to its centroid
+  // (the test MeasureQuality applies to the result). With `new_only`,
+  // vertices of coarser levels are not marked.
   size_t MarkBadFaces(int level, bool new_only) {
     const uint32_t first = new_only ? h_.vertex_count(level - 1) : 0;
     marked_.assign(h_.vertex_count(level), 0);
@@ -266,13 +289,6 @@ class Fitter {
           continue;
         }
         const Vec3 n = (b - a).cross(c - a);
-        Vec3 input_normal = Vec3::Zero();
-        for (uint32_t v : f) {
-          if (anchors_[v].face != InputSurface::kNoFace) {
-            input_normal += surface_.FaceNormal(anchors_[v].face);
-          }
-        }
-        if (n.dot(input_normal) > 0) continue;
         const InputSurface::Projection p =
             surface_.Closest((a + b + c) / 3, Vec3::Zero(),
                              anchors_[f[0]].component, anchors_[f[0]].face);
@@ -281,6 +297,7 @@ class Fitter {
       }
     });
     size_t bad = 0;
+    bad_face_ = bad_face;
     for (size_t i = 0; i < faces.size(); ++i) {
       if (!bad_face[i]) continue;
       ++bad;
@@ -299,6 +316,7 @@ class Fitter {
   std::vector<SurfaceAnchor>& anchors_;
   FitStats& stats_;
   std::vector<uint8_t> marked_;
+  std::vector<uint8_t> bad_face_;  // of the level last checked
 };
 
 }  // namespace

@@ -1,0 +1,119 @@
+// End-to-end: `meshwave encode` and `meshwave decode` as a user runs them.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "e2e/cli_runner.h"
+#include "meshwave/metrics.h"
+#include "meshwave/mesh.h"
+#include "meshwave/semiregular.h"
+
+namespace meshwave {
+namespace {
+
+using testing::RunCli;
+using testing::TempDir;
+
+// PSNR of `decoded` against `reference` (vertices matched by nearest
+// neighbour: the decoder returns canonical order).
+double PsnrAgainst(const std::filesystem::path& reference,
+                   const std::filesystem::path& decoded) {
+  auto a = ReadMesh(reference);
+  auto b = ReadMesh(decoded);
+  EXPECT_TRUE(a.ok() && b.ok());
+  auto e = VertexErrorByNearest(a->positions, b->positions,
+                                BoundingBox(a->positions).Diagonal());
+  EXPECT_TRUE(e.ok()) << e.status().ToString();
+  return e->psnr_db;
+}
+
+TEST(EncodeDecodeCliTest, FullStreamIsNearLossless) {
+  TempDir dir;
+  const auto in = testing::SampleMesh("holes.off");
+  auto r = RunCli({"encode", in.string(), (dir / "holes.mwv").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("semi-regular, 2 levels"), std::string::npos) << r.err;
+  r = RunCli({"decode", (dir / "holes.mwv").string(), (dir / "full.ply").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_GE(PsnrAgainst(in, dir / "full.ply"), 90.0);
+}
+
+TEST(EncodeDecodeCliTest, BudgetAndMaxLevelGiveCoarserMeshes) {
+  TempDir dir;
+  const auto in = testing::SampleMesh("holes.off");
+  ASSERT_EQ(RunCli({"encode", in.string(), (dir / "h.mwv").string()}).exit_code, 0);
+  // A budget of the header plus a quarter of the payload.
+  const std::string bytes = testing::ReadBytes(dir / "h.mwv");
+  ASSERT_GT(bytes.size(), 8u);
+  uint32_t header = 0;
+  for (int i = 7; i >= 4; --i) header = header << 8 | static_cast<uint8_t>(bytes[i]);
+  const size_t payload = bytes.size() - 8 - header;
+  auto r = RunCli({"decode", (dir / "h.mwv").string(), (dir / "part.ply").string(),
+                   "--budget", std::to_string(8 + header + payload / 4)});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const double part = PsnrAgainst(in, dir / "part.ply");
+  EXPECT_LT(part, 90.0);
+  EXPECT_GT(part, 40.0);
+
+  r = RunCli({"decode", (dir / "h.mwv").string(), (dir / "l1.obj").string(),
+              "--order", "resolution", "--max-level", "1"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto l1 = ReadMesh(dir / "l1.obj");
+  ASSERT_TRUE(l1.ok());
+  EXPECT_EQ(l1->faces.size(), 518u * 4);  // base 518 faces, one level
+
+  r = RunCli({"decode", (dir / "h.mwv").string(), (dir / "x.ply").string(),
+              "--budget", "10"});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("smaller than the stream header"), std::string::npos) << r.err;
+}
+
+TEST(EncodeDecodeCliTest, DamagedStreamsAreRefusedOrDecodedPartly) {
+  TempDir dir;
+  ASSERT_EQ(RunCli({"encode", testing::SampleMesh("holes.off").string(),
+                    (dir / "h.mwv").string()})
+                .exit_code,
+            0);
+  std::string bytes = testing::ReadBytes(dir / "h.mwv");
+  {
+    std::ofstream f(dir / "cut.mwv", std::ios::binary);
+    f.write(bytes.data(), static_cast<std::streamsize>(bytes.size() - 100));
+  }
+  auto r = RunCli({"decode", (dir / "cut.mwv").string(), (dir / "cut.ply").string()});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("cut short"), std::string::npos) << r.err;
+
+  bytes[bytes.size() - 50] ^= 0x5a;
+  {
+    std::ofstream f(dir / "bad.mwv", std::ios::binary);
+    f.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  }
+  r = RunCli({"decode", (dir / "bad.mwv").string(), (dir / "bad.ply").string()});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("CRC32C"), std::string::npos) << r.err;
+
+  {
+    std::ofstream f(dir / "junk.mwv", std::ios::binary);
+    f << "not a stream at all";
+  }
+  r = RunCli({"decode", (dir / "junk.mwv").string(), (dir / "junk.ply").string()});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("magic"), std::string::npos) << r.err;
+}
+
+TEST(EncodeDecodeCliTest, SimAndLinearOptionsWork) {
+  TempDir dir;
+  const auto in = testing::SampleMesh("holes.off");
+  auto r = RunCli({"encode", in.string(), (dir / "s.mwv").string(), "--coder", "sim",
+                   "--predictor", "linear", "--update", "none"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("linear/none sim"), std::string::npos) << r.out;
+  ASSERT_EQ(RunCli({"decode", (dir / "s.mwv").string(), (dir / "s.ply").string()}).exit_code, 0);
+  EXPECT_GE(PsnrAgainst(in, dir / "s.ply"), 90.0);
+  r = RunCli({"encode", in.string(), (dir / "t.mwv").string(), "--coder", "zip"});
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find("zip"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace meshwave
