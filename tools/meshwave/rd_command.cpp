@@ -1,6 +1,7 @@
 // meshwave rd IN --coders 3xc,sim,pgc [--csv OUT] [--json]: rate-distortion
 // curves of the bitplane coders on one mesh, and PSNR at the rates of the
 // seed's comparisons (base mesh excluded, as in its figures).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -26,6 +27,7 @@ struct RdArgs {
                        update = "constant";
   int levels = -1;
   int precision = 16;
+  uint32_t leaf_size = EncodeOptions{}.octree_leaf_size;
   bool json = false;
 };
 
@@ -114,6 +116,25 @@ void PrintTable(const RdArgs& args, const SemiRegularMesh& mesh,
   }
 }
 
+// Rates where every coder has completed the same bitplane: there they all
+// reconstruct the same mesh, so the rates compare exactly.
+void PrintEqualQuality(const std::vector<RdCurve>& curves) {
+  int top = -1;
+  for (const RdPoint& p : curves.front().points) top = std::max(top, p.bitplane_complete);
+  std::printf("\nRate at equal quality: bpv (base excluded) when bitplane b is complete\n");
+  std::printf("%8s %8s", "bitplane", "PSNR");
+  for (const RdCurve& c : curves) std::printf(" %9s", RdCoderName(c.coder));
+  std::printf("\n");
+  for (int b = top; b >= 0; --b) {
+    std::vector<const RdPoint*> at;
+    for (const RdCurve& c : curves) at.push_back(PointAtBitplane(c, b));
+    if (std::count(at.begin(), at.end(), nullptr) > 0) continue;
+    std::printf("%8d %8.2f", b, at.front()->psnr_db);
+    for (const RdPoint* p : at) std::printf(" %9.4f", p->bpv_excl_base);
+    std::printf("\n");
+  }
+}
+
 proto::RdReport Report(const RdArgs& args, const LoadedMesh& loaded,
                        const std::vector<RdCurve>& curves) {
   proto::RdReport r;
@@ -136,6 +157,7 @@ proto::RdReport Report(const RdArgs& args, const LoadedMesh& loaded,
       q.set_bpv_total(p.bpv_total);
       q.set_bpv_excl_base(p.bpv_excl_base);
       q.set_psnr_db(p.psnr_db);
+      q.set_bitplane_complete(p.bitplane_complete);
     }
     for (double bpv : kRdTableBpv) {
       proto::RdTableEntry& e = *out.add_table();
@@ -151,6 +173,7 @@ Status Run(const RdArgs& args) {
   MW_ASSIGN_OR_RETURN(options.transform.predictor, ParsePredictor(args.predictor));
   MW_ASSIGN_OR_RETURN(options.transform.update, ParseUpdateWeights(args.update));
   options.precision = args.precision;
+  options.octree_leaf_size = args.leaf_size;
   options.name = std::filesystem::path(args.in).stem().string();
   MW_ASSIGN_OR_RETURN(std::vector<RdCoder> coders, ParseCoders(args.coders));
   MW_ASSIGN_OR_RETURN(LoadedMesh loaded, Load(args));
@@ -165,6 +188,7 @@ Status Run(const RdArgs& args) {
     PrintJson(Report(args, loaded, curves));
   } else {
     PrintTable(args, loaded.mesh, curves);
+    PrintEqualQuality(curves);
   }
   return Status::Ok();
 }
@@ -196,6 +220,11 @@ void AddRdCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--precision", args->precision,
                   "Finest step = bounding-box diagonal x 2^-precision")
       ->check(CLI::Range(4, 30))
+      ->capture_default_str();
+  cmd->add_option("--leaf-size", args->leaf_size,
+                  "Octree leaf size of SIM and 3xC (coefficients coded one by one "
+                  "below it)")
+      ->check(CLI::Range(1, 1 << 20))
       ->capture_default_str();
   cmd->add_flag("--json", args->json, "Print the curves as JSON instead of a table");
   cmd->callback([args, &exit_code] {

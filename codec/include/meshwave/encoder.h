@@ -33,6 +33,10 @@ struct EncodeOptions {
 struct EncodedStream {
   proto::StreamHeader header;
   std::vector<std::string> packets;
+  // The encoded mesh as the stream numbers it: the encoder reorders the base
+  // mesh so that it codes compactly, and a decoder returns vertices in this
+  // order. Compare decoded meshes with these positions.
+  SemiRegularMesh mesh;
 };
 
 Result<EncodedStream> EncodeMesh(const SemiRegularMesh& mesh,

@@ -31,6 +31,10 @@ struct RdPoint {
   double bpv_total = 0;        // 8 bytes_total / V_J
   double bpv_excl_base = 0;    // 8 payload_bytes / V_J, as the seed's figures
   double psnr_db = 0;          // 20 log10(diagonal / RMS), same-index vertices
+  // b when this prefix holds every packet of bitplanes >= b and none below,
+  // else -1. All coders quantise alike, so at the same b they reconstruct
+  // the same mesh (same PSNR): comparing their rates there is exact.
+  int bitplane_complete = -1;
 };
 
 struct RdCurve {
@@ -46,10 +50,14 @@ struct RdCurve {
 
 // Encodes `mesh` with `coder` (transform, precision and deadzone from
 // `options`; its `coder` field is ignored), decodes the packets one by one in
-// quality order and measures each prefix against mesh.positions (PSNR peak:
-// their bounding-box diagonal). Errors: those of the encoder.
+// quality order and measures each prefix against the positions of `mesh`
+// (vertex by vertex, matched through the encoder's base renumbering; PSNR
+// peak: their bounding-box diagonal). Errors: those of the encoder.
 Result<RdCurve> MeasureRdCurve(const SemiRegularMesh& mesh, RdCoder coder,
                                const EncodeOptions& options);
+
+// The point of `curve` where bitplane b is complete, or null.
+const RdPoint* PointAtBitplane(const RdCurve& curve, int b);
 
 // PSNR at `bpv_excl_base` by linear interpolation between the two points of
 // the curve around it; NaN when it lies outside the curve.

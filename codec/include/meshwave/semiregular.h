@@ -104,6 +104,14 @@ const char* SubdivisionSchemeName(SubdivisionScheme scheme);
 Result<SemiRegularMesh> Subdivide(const TriMesh& base, int levels,
                                   SubdivisionScheme scheme);
 
+// The same mesh over a reordered base: base vertex v becomes new_of_old[v]
+// and the base faces (in new indices, any order and rotation, same
+// orientation) are new_base_faces. Finer vertices are renumbered by the
+// canonical rules. Fails if the faces are not the base mesh's.
+Result<SemiRegularMesh> RenumberBase(const SemiRegularMesh& mesh,
+                                     const std::vector<uint32_t>& new_of_old,
+                                     std::vector<Face> new_base_faces);
+
 struct DetectOptions {
   int max_levels = 12;  // stop after this many levels even if more exist
 };

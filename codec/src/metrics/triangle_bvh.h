@@ -54,10 +54,13 @@ class TriangleBvh {
   // called only for faces whose box is still in reach.
   using FaceFilter = std::function<bool(uint32_t face)>;
 
-  // ClosestPoint over the accepted faces only (the hint too). No accepted
-  // face: infinite distance and kNoFace.
+  // ClosestPoint over the accepted faces only (the hint too) that are
+  // nearer than sqrt(max_distance_squared). None: infinite distance and
+  // kNoFace. A finite bound also prunes the search.
   Hit ClosestPointIf(const Vec3& p, uint32_t hint_face,
-                     const FaceFilter& accept) const;
+                     const FaceFilter& accept,
+                     double max_distance_squared =
+                         std::numeric_limits<double>::infinity()) const;
 
   struct LineHit {
     double t = std::numeric_limits<double>::infinity();  // signed

@@ -72,13 +72,17 @@ void TriangleBvh::TestLeafIf(const Node& node, const Vec3& p,
   }
 }
 
-TriangleBvh::Hit TriangleBvh::ClosestPointIf(const Vec3& p, uint32_t hint_face,
-                                             const FaceFilter& accept) const {
+TriangleBvh::Hit TriangleBvh::ClosestPointIf(
+    const Vec3& p, uint32_t hint_face, const FaceFilter& accept,
+    double max_distance_squared) const {
   Hit best;
+  best.distance_squared = max_distance_squared;
   if (hint_face < slot_of_face_.size() && accept(hint_face)) {
     const Triangle& t = triangles_[slot_of_face_[hint_face]];
     const PointOnTriangle q = ClosestPointOnTriangle(p, t.a, t.b, t.c);
-    best = {q.distance_squared, t.face, q.point};
+    if (q.distance_squared < best.distance_squared) {
+      best = {q.distance_squared, t.face, q.point};
+    }
   }
   if (nodes_.empty()) return best;
   struct Entry {
@@ -105,6 +109,7 @@ TriangleBvh::Hit TriangleBvh::ClosestPointIf(const Vec3& p, uint32_t hint_face,
     if (far.distance_squared < best.distance_squared) stack[top++] = far;
     if (near.distance_squared < best.distance_squared) stack[top++] = near;
   }
+  if (best.face == kNoFace) best.distance_squared = std::numeric_limits<double>::infinity();
   return best;
 }
 

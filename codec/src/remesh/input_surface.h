@@ -4,6 +4,7 @@
 #define MESHWAVE_REMESH_INPUT_SURFACE_H_
 
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "meshwave/mesh.h"
@@ -44,10 +45,18 @@ class InputSurface {
                          uint32_t component) const;
 
   // The closest point of `component` among its faces whose normal is within
-  // about 85° of n (any face when n is zero). Facing the right way keeps a
-  // vertex on its own sheet where two sheets are close (thin parts).
+  // about 85° of n (any face when n is zero) and that are nearer than
+  // max_distance. Facing the right way keeps a vertex on its own sheet
+  // where two sheets are close (thin parts); the bound keeps it from
+  // jumping to a far part of the surface when no face nearby faces n.
   Projection Closest(const Vec3& q, const Vec3& n, uint32_t component,
-                     uint32_t hint) const;
+                     uint32_t hint,
+                     double max_distance =
+                         std::numeric_limits<double>::infinity()) const;
+
+  // Whether `point` (on face `face`) lies on a boundary edge of the input,
+  // to within 1e-9 of the edge's length.
+  bool OnBoundary(const Vec3& point, uint32_t face) const;
 
   // The closest point over all faces, as a measurement would find it.
   Projection ClosestAnywhere(const Vec3& q, uint32_t hint) const;
@@ -56,6 +65,7 @@ class InputSurface {
   TriMesh mesh_;
   Components components_;
   std::vector<Vec3> normals_;
+  std::vector<uint8_t> boundary_edges_;  // per face, bit i: edge i -> i+1
   metrics::TriangleBvh bvh_;
   BoundaryLoops loops_;
   double diagonal_ = 0;

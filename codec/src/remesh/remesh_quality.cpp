@@ -20,6 +20,22 @@ double Angle(const Vec3& at, const Vec3& b, const Vec3& c) {
 
 }  // namespace
 
+bool IsFlipped(const InputSurface& input, const Vec3& a, const Vec3& b,
+               const Vec3& c, uint32_t component, uint32_t hint) {
+  const Vec3 n = (b - a).cross(c - a);
+  const Vec3 centroid = (a + b + c) / 3;
+  const InputSurface::Projection p =
+      input.Closest(centroid, Vec3::Zero(), component, hint);
+  if (!p.found() || n.dot(input.FaceNormal(p.face)) >= 0) return false;
+  Vec3 mean = input.FaceNormal(p.face);
+  for (const Vec3* corner : {&a, &b, &c}) {
+    const InputSurface::Projection q = input.Closest(
+        (centroid + *corner) / 2, Vec3::Zero(), component, p.face);
+    if (q.found()) mean += input.FaceNormal(q.face);
+  }
+  return n.dot(mean) < 0;
+}
+
 QualityFigures MeasureQuality(const TriMesh& mesh,
                               const std::vector<uint32_t>& face_component,
                               const InputSurface& input, int threads) {
@@ -29,7 +45,7 @@ QualityFigures MeasureQuality(const TriMesh& mesh,
   ParallelFor(mesh.faces.size(), threads, [&](size_t begin, size_t end) {
     size_t my_flipped = 0, my_degenerate = 0;
     double my_min = std::numbers::pi;
-    uint32_t hint = InputSurface::kNoFace;
+    const uint32_t hint = InputSurface::kNoFace;
     for (size_t f = begin; f < end; ++f) {
       const Vec3& a = mesh.positions[mesh.faces[f][0]];
       const Vec3& b = mesh.positions[mesh.faces[f][1]];
@@ -40,11 +56,7 @@ QualityFigures MeasureQuality(const TriMesh& mesh,
       const double compactness = sum > 0 ? 2 * std::sqrt(3.0) * n.norm() / sum : 0;
       if (compactness < kDegenerateCompactness) ++my_degenerate;
       my_min = std::min({my_min, Angle(a, b, c), Angle(b, c, a), Angle(c, a, b)});
-      const InputSurface::Projection p = input.Closest(
-          (a + b + c) / 3, Vec3::Zero(), face_component[f], hint);
-      if (!p.found()) continue;
-      hint = p.face;
-      if (n.dot(input.FaceNormal(p.face)) < 0) ++my_flipped;
+      if (IsFlipped(input, a, b, c, face_component[f], hint)) ++my_flipped;
     }
     flipped += my_flipped;
     degenerate += my_degenerate;

@@ -22,11 +22,21 @@ struct QualityFigures {
 // counts as degenerate: a smallest angle of about 0.005°.
 inline constexpr double kDegenerateCompactness = 1e-4;
 
-// A face is flipped when its normal has a negative dot product with the
-// normal of the input face closest to its centroid, among the faces of the
-// input component it approximates (face_component[f]; where components
-// touch, the nearest face of another one says nothing about orientation).
-// Faces must index `mesh`.
+// Whether triangle (a, b, c) is turned against the input surface of
+// `component` under it: its normal has a negative dot product with the
+// input normal at the point closest to its centroid, and also with the mean
+// of the input normals at the points closest to the centroid and to the
+// three points halfway from it to the corners (a small face across a sharp
+// ridge can be past perpendicular to the nearest face at its centroid
+// without being turned over). Only faces of `component` count: where
+// components touch, another one's nearest face says nothing. `hint` as in
+// TriangleBvh::ClosestPoint.
+bool IsFlipped(const InputSurface& input, const Vec3& a, const Vec3& b,
+               const Vec3& c, uint32_t component, uint32_t hint);
+
+// Flipped faces (IsFlipped, face f approximating input component
+// face_component[f]), degenerate faces and the smallest angle. Faces must
+// index `mesh`.
 QualityFigures MeasureQuality(const TriMesh& mesh,
                               const std::vector<uint32_t>& face_component,
                               const InputSurface& input, int threads);

@@ -4,6 +4,7 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <span>
@@ -20,6 +21,22 @@ namespace meshwave::remesh {
 namespace {
 
 constexpr uint32_t kNone = 0xffffffffu;
+// Untangling looks for a kernel point of rings of up to this many vertices
+// (valences above it occur only in odd bases and use the first kMaxRing).
+constexpr size_t kMaxRing = 64;
+constexpr int kKernelIterations = 32;
+// Height a face keeps over its ring edge after untangling, as a fraction
+// of that edge: about a 6° corner at worst.
+constexpr double kKernelMargin = 0.1;
+// A vertex moved in the tangent plane by a distance d goes back onto the
+// surface only if the surface (facing its way) is within this many d:
+// otherwise the nearest such face is on another part and the vertex stays.
+constexpr double kMaxProjectionRatio = 2.0;
+// A new vertex moves along its normal at most kRayToNearestRatio times the
+// distance to the nearest surface point facing its way, plus kRaySlack
+// times the length of the edge it splits.
+constexpr double kRayToNearestRatio = 3.0;
+constexpr double kRaySlack = 0.05;
 double Compactness(const Vec3& a, const Vec3& b, const Vec3& c) {
   const double sum = (b - a).squaredNorm() + (c - b).squaredNorm() +
                      (a - c).squaredNorm();
@@ -71,15 +88,6 @@ class Fitter {
     // Work grows 4x per level; the fractions reported follow the faces.
     double total = 0, done = 0;
     for (int j = 1; j <= levels; ++j) total += static_cast<double>(h_.faces(j).size());
-    if (getenv("MW_DEBUG")) {
-      size_t b0 = 0;
-      for (const Face& f : h_.faces(0)) {
-        Vec3 in = Vec3::Zero();
-        for (uint32_t v : f) if (anchors_[v].face != InputSurface::kNoFace) in += surface_.FaceNormal(anchors_[v].face);
-        if ((positions_[f[1]]-positions_[f[0]]).cross(positions_[f[2]]-positions_[f[0]]).dot(in) <= 0) ++b0;
-      }
-      fprintf(stderr, "level 0: bad %zu\n", b0);
-    }
     for (int j = 0; j < levels; ++j) {
       transform.PredictLevel(
           j, std::span<Vec3>(positions_.data(), h_.vertex_count(j + 1)));
@@ -87,18 +95,9 @@ class Fitter {
       MW_ASSIGN_OR_RETURN(
           VertexRings rings,
           VertexRings::Build(h_.vertex_count(j + 1), h_.faces(j + 1)));
-      for (int r = 0; r < options_.relax_rounds; ++r) Relax(j + 1, rings, false);
-      // Untangling: first the new vertices alone, then (second half of the
-      // rounds) every vertex of a bad face, coarser levels included.
-      size_t bad = 0;
+      for (int r = 0; r < options_.relax_rounds; ++r) Relax(j + 1, rings);
       if (getenv("MW_DEBUG")) fprintf(stderr, "level %d: bad after relax %zu\n", j+1, MarkBadFaces(j+1, false));
-      const int repair_rounds = getenv("MW_REPAIR") ? atoi(getenv("MW_REPAIR")) : options_.repair_rounds;
-      for (int r = 0; r < repair_rounds; ++r) {
-        bad = MarkBadFaces(j + 1, 2 * r < options_.repair_rounds);
-        if (bad == 0) break;
-        Relax(j + 1, rings, true);
-      }
-      bad = MarkBadFaces(j + 1, false);
+      const size_t bad = UntangleLevel(j + 1, rings);
       if (getenv("MW_DEBUG")) fprintf(stderr, "level %d: bad after repair %zu\n", j+1, bad);
       if (j + 1 == levels) stats_.unrepaired_faces = bad;
       done += static_cast<double>(h_.faces(j + 1).size());
@@ -158,13 +157,25 @@ class Fitter {
         const Vec3 q = positions_[m];
         const double reach =
             options_.normal_reach * (positions_[a] - positions_[b]).norm();
+        // The closest point facing n bounds how far along the normal the
+        // surface may be: a crossing much farther than that is another
+        // part of the surface seen across a gap (an arm across an armpit).
+        const InputSurface::Projection nearest =
+            surface_.Closest(q, n, out.component, anchors_[a].face, reach);
+        const double nearest_distance =
+            nearest.found() ? (nearest.point - q).norm() : reach;
+        const double ray_reach = std::min(
+            reach, kRayToNearestRatio * nearest_distance +
+                       kRaySlack * (positions_[a] - positions_[b]).norm());
         InputSurface::Projection p;
-        if (length > 0) p = surface_.AlongNormal(q, n, reach, out.component);
+        if (length > 0) {
+          p = surface_.AlongNormal(q, n, ray_reach, out.component);
+        }
         if (p.found()) {
           ++my_hits;
         } else {
           ++my_fallbacks;
-          p = surface_.Closest(q, n, out.component, anchors_[a].face);
+          p = nearest;
           if (!p.found()) {
             p = surface_.Closest(q, Vec3::Zero(), out.component,
                                  anchors_[a].face);
@@ -186,67 +197,173 @@ class Fitter {
     stats_.boundary_vertices += boundary;
   }
 
-  // One Jacobi round of relaxation at `level`: a step toward the one-ring
-  // centroid in the tangent plane, then back onto the surface, on the sheet
-  // the vertex is on. Normally the new inner vertices take a step of
-  // relax_step; when untangling, every marked inner vertex (of any level)
-  // takes the full step, in the tangent plane of the input face it is on
-  // (the remesh's own normal is unreliable inside a fold).
-  void Relax(int level, const VertexRings& rings, bool untangle) {
-    const uint32_t first = untangle ? 0 : h_.vertex_count(level - 1);
+  // One Jacobi round of relaxation of the new inner vertices of `level`:
+  // a step of relax_step toward the one-ring centroid in the tangent
+  // plane, then back onto the surface, on the sheet the vertex is on (the
+  // input face it is on decides which faces count as facing the right way).
+  void Relax(int level, const VertexRings& rings) {
+    const uint32_t first = h_.vertex_count(level - 1);
     const uint32_t count = h_.vertex_count(level);
     const std::vector<Vec3> normals =
-        untangle ? ConsensusNormals(level)
-                 : VertexNormals(h_.faces(level), positions_, count);
+        VertexNormals(h_.faces(level), positions_, count);
     std::vector<Vec3> next(count - first);
     std::vector<uint32_t> next_face(count - first);
-    const double step = untangle ? 1.0 : options_.relax_step;
-    std::atomic<size_t> moves{0};
     ParallelFor(count - first, options_.threads, [&](size_t begin, size_t end) {
-      size_t my_moves = 0;
       for (size_t i = begin; i < end; ++i) {
         const uint32_t v = first + static_cast<uint32_t>(i);
         next[i] = positions_[v];
         next_face[i] = anchors_[v].face;
         if (rings.IsBoundary(v) || anchors_[v].loop != kNone) continue;
-        if (untangle && !marked_[v]) continue;
-        Vec3 centroid = Vec3::Zero();
         const auto ring = rings.Ring(v);
+        Vec3 centroid = Vec3::Zero();
         for (uint32_t u : ring) centroid += positions_[u];
         centroid /= static_cast<double>(ring.size());
-        // Facing: when relaxing, the input face the vertex is on (it is on
-        // the right sheet); when untangling, the orientation of the
-        // vertex's faces that are not bad, which brings back a vertex that
-        // went to the far side of a part thinner than an edge.
-        const uint32_t face = anchors_[v].face;
-        Vec3 facing = untangle || face == InputSurface::kNoFace
-                          ? normals[v]
-                          : surface_.FaceNormal(face);
-        if (!(facing.norm() > 0) && face != InputSurface::kNoFace) {
-          facing = surface_.FaceNormal(face);
-        }
-        const Vec3& n = untangle ? facing : normals[v];
+        const Vec3& n = normals[v];
         Vec3 d = centroid - positions_[v];
         d -= d.dot(n) * n;
-        const Vec3 q = positions_[v] + step * d;
+        const Vec3 q = positions_[v] + options_.relax_step * d;
+        const uint32_t face = anchors_[v].face;
+        const Vec3 facing =
+            face != InputSurface::kNoFace ? surface_.FaceNormal(face) : n;
         const InputSurface::Projection p =
-            surface_.Closest(q, facing, anchors_[v].component, face);
-        if (!p.found()) continue;
+            surface_.Closest(q, facing, anchors_[v].component, face,
+                             kMaxProjectionRatio * (q - positions_[v]).norm());
+        // An inner vertex pushed onto the input's boundary would squeeze
+        // the faces between it and the remesh boundary flat: stay.
+        if (!p.found() || surface_.OnBoundary(p.point, p.face)) continue;
         next[i] = p.point;
         next_face[i] = p.face;
-        ++my_moves;
       }
-      moves += my_moves;
     });
     for (uint32_t i = 0; i < count - first; ++i) {
-      if (untangle && getenv("MW_DEBUG") && (positions_[first+i]-next[i]).norm() > 0.003*surface_.diagonal()) {
-        int lv = 0; while (first+i >= h_.vertex_count(lv)) ++lv;
-        fprintf(stderr, "  untangle L%d: v%u (level %d) moved %.4f diag to (%.4f %.4f %.4f)\n", level, first+i, lv, (positions_[first+i]-next[i]).norm()/surface_.diagonal(), next[i].x(), next[i].y(), next[i].z());
-      }
       positions_[first + i] = next[i];
       anchors_[first + i].face = next_face[i];
     }
-    if (untangle) stats_.repair_moves += moves;
+  }
+
+  // Untangling rounds at `level`: first the new vertices alone, then
+  // (second half of the rounds) every vertex of a bad face, coarser levels
+  // included. Returns the number of bad faces left.
+  size_t UntangleLevel(int level, const VertexRings& rings) {
+    for (int r = 0; r < options_.repair_rounds; ++r) {
+      const bool new_only = 2 * r < options_.repair_rounds;
+      if (MarkBadFaces(level, new_only) == 0) return 0;
+      Untangle(level, rings);
+    }
+    return MarkBadFaces(level, false);
+  }
+
+  // How bad the faces around inner vertex v would be with v at p, seen
+  // along `facing`: folded faces first, then the worst compactness.
+  std::pair<int, double> LocalBadness(const Vec3& p, const Vec3& facing,
+                                      std::span<const uint32_t> ring) const {
+    int folded = 0;
+    double worst = 1;
+    for (size_t i = 0; i < ring.size(); ++i) {
+      const Vec3& b = positions_[ring[i]];
+      const Vec3& c = positions_[ring[(i + 1) % ring.size()]];
+      if ((b - p).cross(c - p).dot(facing) <= 0) ++folded;
+      worst = std::min(worst, Compactness(p, b, c));
+    }
+    return {folded, -worst};
+  }
+
+  // One Jacobi round of untangling: every marked inner vertex (of any
+  // level) tries the ring centroid and a kernel point of its ring, both in
+  // the tangent plane of its good faces (ConsensusNormals: the remesh's own
+  // normal is unreliable inside a fold, and the input face it is on may be
+  // on the far side of a part thinner than an edge), projected onto the
+  // surface facing that way; it takes whichever leaves its faces least bad,
+  // or stays.
+  void Untangle(int level, const VertexRings& rings) {
+    const uint32_t count = h_.vertex_count(level);
+    const std::vector<Vec3> normals = ConsensusNormals(level);
+    std::vector<Vec3> next(positions_.begin(), positions_.begin() + count);
+    std::vector<uint32_t> next_face(count);
+    for (uint32_t v = 0; v < count; ++v) next_face[v] = anchors_[v].face;
+    std::atomic<size_t> moves{0};
+    ParallelFor(count, options_.threads, [&](size_t begin, size_t end) {
+      size_t my_moves = 0;
+      for (size_t i = begin; i < end; ++i) {
+        const auto v = static_cast<uint32_t>(i);
+        if (!marked_[v] || rings.IsBoundary(v) || anchors_[v].loop != kNone) {
+          continue;
+        }
+        const uint32_t face = anchors_[v].face;
+        Vec3 facing = normals[v];
+        if (!(facing.norm() > 0) && face != InputSurface::kNoFace) {
+          facing = surface_.FaceNormal(face);
+        }
+        if (!(facing.norm() > 0)) continue;
+        const auto ring = rings.Ring(v);
+        Vec3 centroid = Vec3::Zero();
+        for (uint32_t u : ring) centroid += positions_[u];
+        centroid /= static_cast<double>(ring.size());
+        Vec3 d = centroid - positions_[v];
+        d -= d.dot(facing) * facing;
+        auto best = LocalBadness(positions_[v], facing, ring);
+        for (const Vec3& q : {Vec3(positions_[v] + d),
+                              KernelPoint(centroid, facing, ring)}) {
+          const InputSurface::Projection p = surface_.Closest(
+              q, facing, anchors_[v].component, face,
+              kMaxProjectionRatio * (q - positions_[v]).norm());
+          if (!p.found() || surface_.OnBoundary(p.point, p.face)) continue;
+          const auto badness = LocalBadness(p.point, facing, ring);
+          if (badness < best) {
+            best = badness;
+            next[v] = p.point;
+            next_face[v] = p.face;
+          }
+        }
+        if (next[v] != positions_[v]) ++my_moves;
+      }
+      moves += my_moves;
+    });
+    for (uint32_t v = 0; v < count; ++v) {
+      positions_[v] = next[v];
+      anchors_[v].face = next_face[v];
+    }
+    stats_.repair_moves += moves;
+  }
+
+  // A point of the tangent plane (normal n, through `start`) from which
+  // every face to two consecutive ring vertices is positively oriented with
+  // some height to spare: the kernel of the star-shaped ring polygon,
+  // found by cyclic projection onto the half-planes of its edges (POCS).
+  // The ring centroid, the relaxation target, stays in a fold when the
+  // ring polygon is not convex (a reflex corner of the boundary); the
+  // kernel does not. When the kernel is empty the iteration ends near it.
+  Vec3 KernelPoint(const Vec3& start, const Vec3& n,
+                   std::span<const uint32_t> ring) const {
+    const Vec3 t1 = n.unitOrthogonal();
+    const Vec3 t2 = n.cross(t1);
+    std::array<Eigen::Vector2d, kMaxRing> r;
+    const size_t k = std::min(ring.size(), kMaxRing);
+    for (size_t i = 0; i < k; ++i) {
+      const Vec3 d = positions_[ring[i]] - start;
+      r[i] = {d.dot(t1), d.dot(t2)};
+    }
+    Eigen::Vector2d x = Eigen::Vector2d::Zero();
+    for (int iteration = 0; iteration < kKernelIterations; ++iteration) {
+      bool inside = true;
+      for (size_t i = 0; i < k; ++i) {
+        const Eigen::Vector2d& a = r[i];
+        const Eigen::Vector2d& b = r[(i + 1) % k];
+        const Eigen::Vector2d e = b - a;
+        const double length = e.norm();
+        if (!(length > 0)) continue;
+        // Left of a -> b by at least kKernelMargin · |ab|.
+        const Eigen::Vector2d inward(-e.y() / length, e.x() / length);
+        const double height = inward.dot(x - a);
+        const double want = kKernelMargin * length;
+        if (height < want) {
+          x += (want - height) * inward;
+          inside = false;
+        }
+      }
+      if (inside) break;
+    }
+    return start + x.x() * t1 + x.y() * t2;
   }
 
   // Unit normals of the vertices of `level` from their faces that the last
@@ -288,12 +405,18 @@ class Fitter {
           bad_face[i] = 1;
           continue;
         }
+        // Shortcut: a face within 60° of the input normal at each of its
+        // corners is not turned over; the full test queries the surface.
         const Vec3 n = (b - a).cross(c - a);
-        const InputSurface::Projection p =
-            surface_.Closest((a + b + c) / 3, Vec3::Zero(),
-                             anchors_[f[0]].component, anchors_[f[0]].face);
-        if (p.found() && n.dot(surface_.FaceNormal(p.face)) > 0) continue;
-        bad_face[i] = 1;
+        const double length = n.norm();
+        bool agrees = length > 0;
+        for (uint32_t v : f) {
+          agrees = agrees && anchors_[v].face != InputSurface::kNoFace &&
+                   n.dot(surface_.FaceNormal(anchors_[v].face)) > 0.5 * length;
+        }
+        if (agrees) continue;
+        bad_face[i] = IsFlipped(surface_, a, b, c, anchors_[f[0]].component,
+                                anchors_[f[0]].face);
       }
     });
     size_t bad = 0;

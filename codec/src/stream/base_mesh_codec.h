@@ -1,4 +1,5 @@
-// The base mesh M^0 on an integer grid, coded with fixed-width bits.
+// The base mesh M^0: connectivity and integer-grid positions, coded with the
+// arithmetic coder (docs/FORMAT.md section 3).
 #ifndef MESHWAVE_STREAM_BASE_MESH_CODEC_H_
 #define MESHWAVE_STREAM_BASE_MESH_CODEC_H_
 
@@ -11,19 +12,29 @@
 
 namespace meshwave {
 
+// The order the base mesh travels in: faces in breadth-first order over
+// shared edges (neighbours stay close), vertices numbered by their first
+// appearance in that face list. Both make the indices cheap to code.
+struct BaseMeshOrder {
+  std::vector<uint32_t> new_of_old;  // vertex renumbering
+  std::vector<Face> faces;           // in new vertex indices
+};
+BaseMeshOrder ChooseTransmissionOrder(uint32_t vertex_count,
+                                      const std::vector<Face>& faces);
+
 struct DecodedBase {
   std::vector<Vec3> positions;  // origin + step * grid
   std::vector<IntVec3> grid;
   std::vector<Face> faces;
 };
 
-// Quantises `positions` with `step` and codes them and the faces.
+// Quantises `positions` with `step` and codes them and the faces, which must
+// be in transmission order (vertices numbered by first appearance).
 Result<proto::BaseMesh> EncodeBaseMesh(const std::vector<Vec3>& positions,
                                        const std::vector<Face>& faces,
                                        double step);
 
-// Safe on untrusted input: counts are checked against the coded bytes and
-// `max_vertices` before anything is allocated.
+// Safe on untrusted input: counts are capped and checked as decoding goes.
 Result<DecodedBase> DecodeBaseMesh(const proto::BaseMesh& base,
                                    uint32_t max_vertices);
 

@@ -44,7 +44,7 @@ const char* CoderKindName(CoderKind coder) {
   return coder == CoderKind::k3xC ? "3xc" : "sim";
 }
 
-Result<EncodedStream> EncodeMesh(const SemiRegularMesh& mesh,
+Result<EncodedStream> EncodeMesh(const SemiRegularMesh& input,
                                  const EncodeOptions& options) {
   if (options.precision < 4 || options.precision > 30) {
     return InvalidArgument("precision must be in [4, 30]");
@@ -52,6 +52,14 @@ Result<EncodedStream> EncodeMesh(const SemiRegularMesh& mesh,
   if (options.deadzone < 0 || options.deadzone > 3) {
     return InvalidArgument("deadzone code must be in [0, 3]");
   }
+  // The base mesh travels in an order that codes cheaply; the hierarchy
+  // (and so every coefficient's index) follows from that order.
+  const BaseMeshOrder order = ChooseTransmissionOrder(
+      input.hierarchy->vertex_count(0), input.hierarchy->faces(0));
+  EncodedStream out;
+  MW_ASSIGN_OR_RETURN(out.mesh,
+                      RenumberBase(input, order.new_of_old, order.faces));
+  const SemiRegularMesh& mesh = out.mesh;
   const SemiRegularHierarchy& h = *mesh.hierarchy;
   const int levels = h.levels();
   const Aabb box = BoundingBox(mesh.positions);
@@ -66,7 +74,6 @@ Result<EncodedStream> EncodeMesh(const SemiRegularMesh& mesh,
                       WaveletTransform::Create(mesh.hierarchy, options.transform));
   const Pyramid pyramid = transform.Forward(mesh.positions);
 
-  EncodedStream out;
   proto::StreamHeader& header = out.header;
   header.set_format_version(kFormatVersion);
   header.set_name(options.name);

@@ -28,7 +28,13 @@ double SquaredError(double x, uint32_t mag, int n, bool negative, double step,
 
 }  // namespace
 
-Result<PgcStream> EncodePgc(const SemiRegularMesh& mesh,
+Result<SemiRegularMesh> InTransmissionOrder(const SemiRegularMesh& mesh) {
+  const BaseMeshOrder order = ChooseTransmissionOrder(
+      mesh.hierarchy->vertex_count(0), mesh.hierarchy->faces(0));
+  return RenumberBase(mesh, order.new_of_old, order.faces);
+}
+
+Result<PgcStream> EncodePgc(const SemiRegularMesh& input,
                             const EncodeOptions& options) {
   // The checks, steps and header fields below follow EncodeMesh exactly, so
   // that PGC, SIM and 3xC code the same quantised coefficients
@@ -39,6 +45,7 @@ Result<PgcStream> EncodePgc(const SemiRegularMesh& mesh,
   if (options.deadzone < 0 || options.deadzone > 3) {
     return InvalidArgument("deadzone code must be in [0, 3]");
   }
+  MW_ASSIGN_OR_RETURN(const SemiRegularMesh mesh, InTransmissionOrder(input));
   const SemiRegularHierarchy& h = *mesh.hierarchy;
   const int levels = h.levels();
   const Aabb box = BoundingBox(mesh.positions);

@@ -43,8 +43,14 @@ struct PgcStream {
   std::vector<std::string> packets;  // packets[i] codes bitplane top - i
 };
 
+// `mesh` over its base in transmission order (ChooseTransmissionOrder), the
+// renumbering EncodeMesh applies first: decoders of both return positions in
+// this order, so it is what decoded positions are compared with.
+Result<SemiRegularMesh> InTransmissionOrder(const SemiRegularMesh& mesh);
+
 // Encodes with the transform, precision and deadzone of `options` (its
-// coder and octree_leaf_size are ignored). Same errors as EncodeMesh.
+// coder and octree_leaf_size are ignored), after the same renumbering as
+// EncodeMesh (InTransmissionOrder). Same errors as EncodeMesh.
 Result<PgcStream> EncodePgc(const SemiRegularMesh& mesh,
                             const EncodeOptions& options);
 

@@ -16,9 +16,10 @@ namespace meshwave {
 namespace {
 
 // Adds the point of a prefix: `ids` decoded, `positions` reconstructed.
+// `complete`: the bitplane this prefix completes, or -1.
 Status AddPoint(const SemiRegularMesh& mesh, double diagonal,
                 const proto::StreamHeader& header, std::span<const uint32_t> ids,
-                const std::vector<Vec3>& positions, RdCurve& curve) {
+                int complete, const std::vector<Vec3>& positions, RdCurve& curve) {
   MW_ASSIGN_OR_RETURN(VertexErrorStats error,
                       VertexError(mesh.positions, positions, diagonal));
   RdPoint p;
@@ -29,6 +30,7 @@ Status AddPoint(const SemiRegularMesh& mesh, double diagonal,
   p.bpv_total = 8.0 * static_cast<double>(p.bytes_total) / v;
   p.bpv_excl_base = 8.0 * static_cast<double>(p.payload_bytes) / v;
   p.psnr_db = error.psnr_db;
+  p.bitplane_complete = complete;
   curve.points.push_back(p);
   return Status::Ok();
 }
@@ -43,11 +45,20 @@ Status MeasureEmbedded(const SemiRegularMesh& mesh, double diagonal,
                       ProgressiveDecoder::Create(stream.header));
   curve.vertices = stream.header.vertices();
   const std::vector<uint32_t> order = PacketOrder(stream.header, Progression::kQuality);
-  MW_RETURN_IF_ERROR(AddPoint(mesh, diagonal, stream.header, {}, decoder->Positions(), curve));
+  MW_RETURN_IF_ERROR(
+      AddPoint(mesh, diagonal, stream.header, {}, -1, decoder->Positions(), curve));
+  const auto& index = stream.header.packets();
+  auto bitplane = [&](size_t i) {
+    return static_cast<int>(index.bitplane(static_cast<int>(order[i])));
+  };
   for (size_t i = 0; i < order.size(); ++i) {
     MW_RETURN_IF_ERROR(decoder->AddPacket(order[i], stream.packets[order[i]]));
+    // The quality order is bitplane-major: a bitplane is complete where the
+    // next packet belongs to a lower one.
+    const bool complete = i + 1 == order.size() || bitplane(i + 1) != bitplane(i);
     MW_RETURN_IF_ERROR(AddPoint(mesh, diagonal, stream.header,
-                                std::span(order).first(i + 1), decoder->Positions(),
+                                std::span(order).first(i + 1),
+                                complete ? bitplane(i) : -1, decoder->Positions(),
                                 curve));
   }
   return Status::Ok();
@@ -61,12 +72,14 @@ Status MeasurePgc(const SemiRegularMesh& mesh, double diagonal,
   curve.vertices = stream.header.vertices();
   std::vector<uint32_t> ids(stream.packets.size());
   for (uint32_t i = 0; i < ids.size(); ++i) ids[i] = i;
-  MW_RETURN_IF_ERROR(AddPoint(mesh, diagonal, stream.header, {}, decoder->Positions(), curve));
+  MW_RETURN_IF_ERROR(
+      AddPoint(mesh, diagonal, stream.header, {}, -1, decoder->Positions(), curve));
   for (size_t i = 0; i < ids.size(); ++i) {
     MW_RETURN_IF_ERROR(decoder->AddPacket(stream.packets[i]));
-    MW_RETURN_IF_ERROR(AddPoint(mesh, diagonal, stream.header,
-                                std::span(ids).first(i + 1), decoder->Positions(),
-                                curve));
+    MW_RETURN_IF_ERROR(AddPoint(
+        mesh, diagonal, stream.header, std::span(ids).first(i + 1),
+        static_cast<int>(stream.header.packets().bitplane(static_cast<int>(i))),
+        decoder->Positions(), curve));
   }
   return Status::Ok();
 }
@@ -89,10 +102,14 @@ const char* RdCoderName(RdCoder coder) {
   return "?";
 }
 
-Result<RdCurve> MeasureRdCurve(const SemiRegularMesh& mesh, RdCoder coder,
+Result<RdCurve> MeasureRdCurve(const SemiRegularMesh& input, RdCoder coder,
                                const EncodeOptions& options) {
   RdCurve curve;
   curve.coder = coder;
+  // The decoders return the vertices in transmission order; renumbering
+  // again (inside the encoders) leaves that order as it is.
+  MW_ASSIGN_OR_RETURN(const SemiRegularMesh reference, InTransmissionOrder(input));
+  const SemiRegularMesh& mesh = reference;
   // The encoders use the same diagonal for their steps and refuse a zero one.
   const double diagonal = BoundingBox(mesh.positions).Diagonal();
   switch (coder) {
@@ -107,6 +124,13 @@ Result<RdCurve> MeasureRdCurve(const SemiRegularMesh& mesh, RdCoder coder,
       break;
   }
   return curve;
+}
+
+const RdPoint* PointAtBitplane(const RdCurve& curve, int b) {
+  for (const RdPoint& p : curve.points) {
+    if (p.bitplane_complete == b) return &p;
+  }
+  return nullptr;
 }
 
 double PsnrAtBpv(const RdCurve& curve, double bpv_excl_base) {

@@ -34,6 +34,7 @@ const Fixture& Encoded(CoderKind coder) {
   auto s = EncodeMesh(f.mesh, options);
   EXPECT_TRUE(s.ok()) << s.status().ToString();
   f.stream = *std::move(s);
+  f.mesh = f.stream.mesh;  // the stream's vertex order
   f.diag = BoundingBox(f.mesh.positions).Diagonal();
   return cache.emplace(coder, std::move(f)).first->second;
 }

@@ -28,9 +28,9 @@ const RdCurve& Curve(RdCoder coder) {
   return cache.emplace(coder, *std::move(curve)).first->second;
 }
 
-class RateDistortionTest : public ::testing::TestWithParam<RdCoder> {};
+class RateDistortionCurveTest : public ::testing::TestWithParam<RdCoder> {};
 
-TEST_P(RateDistortionTest, CurveStartsAtTheBaseMeshAndIsMonotonic) {
+TEST_P(RateDistortionCurveTest, CurveStartsAtTheBaseMeshAndIsMonotonic) {
   const RdCurve& c = Curve(GetParam());
   ASSERT_GE(c.points.size(), 2u);
   EXPECT_EQ(c.vertices, Sphere().positions.size());
@@ -46,7 +46,9 @@ TEST_P(RateDistortionTest, CurveStartsAtTheBaseMeshAndIsMonotonic) {
     EXPECT_GE(b.bytes_total, a.bytes_total);
     EXPECT_GE(b.bpv_excl_base, a.bpv_excl_base);
     EXPECT_GT(b.bpv_total, b.bpv_excl_base);
-    EXPECT_GE(b.psnr_db, a.psnr_db) << RdCoderName(c.coder) << " packet " << i;
+    // Not strictly: one packet's refinements can cost a little PSNR (seen:
+    // 0.0005 dB for a 3xC packet on a remeshed bunny).
+    EXPECT_GE(b.psnr_db, a.psnr_db - 0.01) << RdCoderName(c.coder) << " packet " << i;
     EXPECT_DOUBLE_EQ(b.bpv_excl_base,
                      8.0 * static_cast<double>(b.payload_bytes) /
                          static_cast<double>(c.vertices));
@@ -54,9 +56,13 @@ TEST_P(RateDistortionTest, CurveStartsAtTheBaseMeshAndIsMonotonic) {
   EXPECT_GE(c.points.back().psnr_db, 90.0);
 }
 
-INSTANTIATE_TEST_SUITE_P(Coders, RateDistortionTest,
+std::string CoderName(const ::testing::TestParamInfo<RdCoder>& param) {
+  return RdCoderName(param.param);
+}
+
+INSTANTIATE_TEST_SUITE_P(Coders, RateDistortionCurveTest,
                          ::testing::Values(RdCoder::k3xC, RdCoder::kSim, RdCoder::kPgc),
-                         [](const auto& info) { return std::string(RdCoderName(info.param)); });
+                         CoderName);
 
 TEST(RateDistortionTest, FullPrefixCountsTheWholeContainer) {
   EncodeOptions options;
@@ -91,6 +97,27 @@ TEST(RateDistortionTest, ParsesCoderNames) {
   EXPECT_EQ(ParseRdCoder("spiht").status().code(), StatusCode::kInvalidArgument);
 }
 
+TEST(RateDistortionTest, CodersReconstructTheSameMeshAtEachCompletedBitplane) {
+  // All three quantise alike, so once bitplane b is complete they hold the
+  // same coefficients: equal PSNR, and only the rates differ.
+  const RdCurve& pgc = Curve(RdCoder::kPgc);
+  std::printf("bitplane   PSNR   bpv: 3xc      sim      pgc\n");
+  int compared = 0;
+  for (const RdPoint& p : pgc.points) {
+    if (p.bitplane_complete < 0) continue;
+    const RdPoint* x = PointAtBitplane(Curve(RdCoder::k3xC), p.bitplane_complete);
+    const RdPoint* s = PointAtBitplane(Curve(RdCoder::kSim), p.bitplane_complete);
+    ASSERT_NE(x, nullptr) << p.bitplane_complete;
+    ASSERT_NE(s, nullptr) << p.bitplane_complete;
+    EXPECT_NEAR(x->psnr_db, p.psnr_db, 1e-9) << p.bitplane_complete;
+    EXPECT_NEAR(s->psnr_db, p.psnr_db, 1e-9) << p.bitplane_complete;
+    std::printf("%8d %7.2f %9.4f %8.4f %8.4f\n", p.bitplane_complete, p.psnr_db,
+                x->bpv_excl_base, s->bpv_excl_base, p.bpv_excl_base);
+    ++compared;
+  }
+  EXPECT_EQ(compared, static_cast<int>(pgc.points.size()) - 1);
+}
+
 TEST(RateDistortionTest, ThreeXcIsAtLeastSimOnASmoothMesh) {
   std::printf("BumpySphere(4), %zu vertices: PSNR [dB] at bpv (base excluded)\n",
               Sphere().positions.size());
@@ -103,10 +130,15 @@ TEST(RateDistortionTest, ThreeXcIsAtLeastSimOnASmoothMesh) {
     std::printf("\n");
   }
   for (double bpv : kRdTableBpv) {
+    // At the lowest rates both hold only d^0 packets, coded alike (no
+    // parent): ties, hence the slack.
     EXPECT_GE(PsnrAtBpv(Curve(RdCoder::k3xC), bpv) + 0.1,
               PsnrAtBpv(Curve(RdCoder::kSim), bpv))
         << bpv << " bpv";
   }
+  // The parent contexts pay off over the whole stream (measured: 1.4 %).
+  EXPECT_LT(Curve(RdCoder::k3xC).points.back().payload_bytes,
+            Curve(RdCoder::kSim).points.back().payload_bytes);
 }
 
 }  // namespace
