@@ -6,7 +6,7 @@
 #
 # Usage: bench/rd_table.sh [BUILD_DIR]      (default: build; needs jq)
 #   MESHWAVE_SHARED_MESHES overrides the mesh directory.
-# Takes about 30 s on two cores (remeshing included).
+# Takes about 30 s on two idle cores (remeshing included).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-$root/build}

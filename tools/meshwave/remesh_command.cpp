@@ -100,6 +100,7 @@ void FillReport(const RemeshResult& r, proto::RemeshReport& p) {
   p.set_normal_hits(r.normal_hits);
   p.set_closest_fallbacks(r.closest_fallbacks);
   p.set_boundary_vertices(r.boundary_vertices);
+  p.set_locked_features(r.locked_features);
   p.set_seconds(r.seconds);
   for (const auto& [stage, seconds] : r.stage_seconds) {
     (*p.mutable_stage_seconds())[stage] = seconds;

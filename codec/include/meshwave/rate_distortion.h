@@ -51,8 +51,9 @@ struct RdCurve {
 // Encodes `mesh` with `coder` (transform, precision and deadzone from
 // `options`; its `coder` field is ignored), decodes the packets one by one in
 // quality order and measures each prefix against the positions of `mesh`
-// (vertex by vertex, matched through the encoder's base renumbering; PSNR
-// peak: their bounding-box diagonal). Errors: those of the encoder.
+// (vertex by vertex, in the order of the stream's own copy of the mesh, as
+// the encoders renumber the base; PSNR peak: their bounding-box diagonal).
+// Errors: those of the encoder.
 Result<RdCurve> MeasureRdCurve(const SemiRegularMesh& mesh, RdCoder coder,
                                const EncodeOptions& options);
 

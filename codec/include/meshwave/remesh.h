@@ -41,7 +41,8 @@ struct RemeshOptions {
   // faces are dropped too. Either way a warning says how many.
   bool drop_tiny_components = false;
   int tiny_component_faces = 8;
-  // Progress: stage name ("repair", "simplify", "fit", "check") and the
+  // Progress: stage name ("repair", "simplify", "fit", "refine", "check")
+  // and the
   // fraction of the whole run done, from 0 to 1. Called on the calling
   // thread; may be empty.
   std::function<void(std::string_view stage, double fraction)> progress;
@@ -82,6 +83,9 @@ struct RemeshResult {
   size_t normal_hits = 0;
   size_t closest_fallbacks = 0;
   size_t boundary_vertices = 0;
+  // Input vertices kept in the base by a second attempt because the first
+  // result missed them (tips, corners); 0 when one attempt was enough.
+  size_t locked_features = 0;
 
   double seconds = 0;  // wall time of Remesh
   std::vector<std::pair<std::string, double>> stage_seconds;

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cassert>
 #include <cstdint>
+
+#include <Eigen/Geometry>
 #include <utility>
 #include <vector>
 
@@ -25,10 +27,22 @@ uint32_t CornerOf(const Face& f, uint32_t v) {
   return f[0] == v ? 0u : (f[1] == v ? 1u : 2u);
 }
 
+Vec3 UnitNormal(const TriMesh& mesh, uint32_t f) {
+  const Face& t = mesh.faces[f];
+  const Vec3 n = (mesh.positions[t[1]] - mesh.positions[t[0]])
+                     .cross(mesh.positions[t[2]] - mesh.positions[t[0]]);
+  const double length = n.norm();
+  return length > 0 ? Vec3(n / length) : Vec3(Vec3::Zero());
+}
+
 // glue[3f + i] is the half-edge (edge i of face f, corner i -> i+1) glued to
-// it, or kNone: only edges with exactly two faces are glued.
-std::vector<uint32_t> PairHalfEdges(const std::vector<Face>& faces,
+// it, or kNone. An edge of two faces is glued; of an edge with more, the
+// two faces that run it in opposite directions and continue each other
+// most smoothly (largest dot product of normals) are glued and the others
+// cut off: a fin hanging off a surface leaves the surface whole.
+std::vector<uint32_t> PairHalfEdges(const TriMesh& mesh,
                                     size_t* non_manifold_edges) {
+  const std::vector<Face>& faces = mesh.faces;
   const size_t n = faces.size() * 3;
   std::vector<std::pair<uint64_t, uint32_t>> keyed(n);
   for (size_t f = 0; f < faces.size(); ++f) {
@@ -47,6 +61,25 @@ std::vector<uint32_t> PairHalfEdges(const std::vector<Face>& faces,
       glue[keyed[i + 1].second] = keyed[i].second;
     } else if (j - i > 2) {
       ++*non_manifold_edges;
+      double best = -2;
+      size_t pick_a = 0, pick_b = 0;
+      for (size_t a = i; a < j; ++a) {
+        for (size_t b = a + 1; b < j; ++b) {
+          const uint32_t ha = keyed[a].second, hb = keyed[b].second;
+          if (faces[ha / 3][ha % 3] == faces[hb / 3][hb % 3]) continue;
+          const double agreement =
+              UnitNormal(mesh, ha / 3).dot(UnitNormal(mesh, hb / 3));
+          if (agreement > best) {
+            best = agreement;
+            pick_a = a;
+            pick_b = b;
+          }
+        }
+      }
+      if (best > -2) {
+        glue[keyed[pick_a].second] = keyed[pick_b].second;
+        glue[keyed[pick_b].second] = keyed[pick_a].second;
+      }
     }
     i = j;
   }
@@ -140,7 +173,7 @@ RepairReport RepairManifold(TriMesh& mesh) {
     (void)f;
   }
   std::vector<uint32_t> glue =
-      PairHalfEdges(mesh.faces, &report.non_manifold_edges);
+      PairHalfEdges(mesh, &report.non_manifold_edges);
   const std::vector<uint8_t> flip = Orient(mesh.faces, glue, report);
   // Glue refers to corners of the unflipped faces; keep those for lookups.
   const std::vector<Face> original = mesh.faces;

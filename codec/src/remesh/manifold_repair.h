@@ -11,7 +11,7 @@ namespace meshwave::remesh {
 
 // What RepairManifold changed.
 struct RepairReport {
-  size_t non_manifold_edges = 0;     // edges of more than two faces, cut open
+  size_t non_manifold_edges = 0;     // edges of more than two faces
   size_t misoriented_edges = 0;      // two faces ran the edge the same way
   size_t reoriented_faces = 0;       // faces turned over to agree
   size_t non_orientable_cuts = 0;    // edges cut to make a component orientable
@@ -21,8 +21,10 @@ struct RepairReport {
 };
 
 // Makes `mesh` an oriented manifold in place, keeping every face:
-// - an edge shared by exactly two faces is glued; an edge of three or more
-//   faces is cut open (each of its faces gets a boundary there);
+// - an edge shared by exactly two faces is glued; of an edge with more,
+//   the two faces that run it in opposite directions and continue each
+//   other most smoothly are glued, the others cut off (a fin hanging off a
+//   surface leaves the surface whole);
 // - faces are turned over so that glued neighbours agree, each component
 //   keeping the orientation of most of its faces; where a component cannot
 //   be oriented (a Möbius band) the conflicting edge is cut;

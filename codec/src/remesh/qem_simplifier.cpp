@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "remesh/quadric.h"
+#include "remesh/remesh_quality.h"
 
 namespace meshwave::remesh {
 namespace {
@@ -25,7 +26,7 @@ constexpr double kBoundaryWeight = 10.0;
 // short edges, so the base has even triangles there; in curved regions the
 // quadric dominates (the term equals the quadric when a face spans about 5°
 // of curvature).
-constexpr double kLengthWeight = 1e-2;
+constexpr double kLengthWeight = 1e-3;
 // A face may turn by at most acos(0.25) ≈ 75° in one collapse.
 constexpr double kMinNormalCos = 0.25;
 // Compactness 4√3·area / Σ edge² (1 for an equilateral triangle). A
@@ -53,13 +54,6 @@ constexpr double kMinFacingCos = 0.2;
 // their corner faces fold easily, so making one is put off.
 constexpr size_t kMinInnerValence = 4;
 
-double Compactness(const Vec3& a, const Vec3& b, const Vec3& c) {
-  const double sum = (b - a).squaredNorm() + (c - b).squaredNorm() +
-                     (a - c).squaredNorm();
-  if (!(sum > 0)) return 0;
-  return 2 * std::sqrt(3.0) * (b - a).cross(c - a).norm() / sum;
-}
-
 bool Contains(const Face& f, uint32_t v) {
   return f[0] == v || f[1] == v || f[2] == v;
 }
@@ -86,7 +80,8 @@ class Simplifier {
         stamp_(mesh.positions.size(), 0),
         source_(mesh.positions.size()),
         component_(components.of_vertex),
-        component_faces_(components.count, 0) {
+        component_faces_(components.count, 0),
+        max_edge_squared_(options.max_edge_length * options.max_edge_length) {
     for (uint32_t v = 0; v < source_.size(); ++v) source_[v] = v;
     for (uint32_t f = 0; f < faces_.size(); ++f) {
       for (uint32_t v : faces_[f]) vertex_faces_[v].push_back(f);
@@ -120,6 +115,7 @@ class Simplifier {
       const uint32_t c = component_[e.u];
       if (component_faces_[c] <= MinFaces(c)) continue;
       const Candidate cand = Evaluate(e.u, e.v);
+      if (std::isinf(cand.cost)) continue;
       // keep == 0: u's position, so u survives; otherwise v survives.
       const uint32_t kept = cand.keep == 0 ? e.u : e.v;
       const uint32_t removed = kept == e.u ? e.v : e.u;
@@ -236,12 +232,15 @@ class Simplifier {
     };
     const Vec3& pu = positions_[u];
     const Vec3& pv = positions_[v];
-    if (boundary_[u] || boundary_[v]) {
-      if (boundary_[u]) consider(pu, 0);
-      if (boundary_[v]) consider(pv, 1);
-    } else {
-      consider(pu, 0);
-      consider(pv, 1);
+    // A boundary or locked end must stay where it is: the collapse goes to
+    // its position.
+    const bool pin_u = boundary_[u] || Locked(u);
+    const bool pin_v = boundary_[v] || Locked(v);
+    const bool u_allowed = !Locked(v) && (boundary_[u] || !boundary_[v]);
+    const bool v_allowed = !Locked(u) && (boundary_[v] || !boundary_[u]);
+    if (u_allowed) consider(pu, 0);
+    if (v_allowed) consider(pv, 1);
+    if (!pin_u && !pin_v) {
       const Vec3 mid = (pu + pv) / 2;
       consider(mid, 2);
       Vec3 optimum;
@@ -250,6 +249,7 @@ class Simplifier {
         consider(optimum, 2);
       }
     }
+    if (std::isinf(best.cost)) return best;  // both ends pinned apart
     const double length2 = (pu - pv).squaredNorm();
     best.cost = std::max(best.cost, 0.0) + kLengthWeight * length2 * length2;
     return best;
@@ -340,6 +340,17 @@ class Simplifier {
         if (nb > 0 && before.dot(after_n) < kMinNormalCos * nb * na) {
           return Verdict::kRefused;
         }
+        if (options_.max_edge_length > 0) {
+          for (int i = 0; i < 3; ++i) {
+            if (t[i] == moved &&
+                ((moved_corner[(i + 1) % 3] - p).squaredNorm() >
+                     max_edge_squared_ ||
+                 (moved_corner[(i + 2) % 3] - p).squaredNorm() >
+                     max_edge_squared_)) {
+              late = true;
+            }
+          }
+        }
         worst_before =
             std::min(worst_before, Compactness(corner[0], corner[1], corner[2]));
         worst_after = std::min(worst_after, Compactness(moved_corner[0],
@@ -394,6 +405,11 @@ class Simplifier {
       if (scale > 0) worst = std::min(worst, a.dot(b) / scale);
     }
     return worst;
+  }
+
+  bool Locked(uint32_t v) const {
+    return source_[v] != kNone && source_[v] < options_.locked.size() &&
+           options_.locked[source_[v]] != 0;
   }
 
   uint32_t MinFaces(uint32_t component) const {
@@ -473,6 +489,7 @@ class Simplifier {
   std::vector<uint32_t> source_;
   std::vector<uint32_t> component_;
   std::vector<uint32_t> component_faces_;
+  double max_edge_squared_;
   std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue_;
   std::vector<uint32_t> ring_a_, ring_b_;
 };

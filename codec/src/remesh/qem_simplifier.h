@@ -22,13 +22,22 @@ struct SimplifyOptions {
   // (one on a boundary), so a component may end one face below its floor.
   std::vector<uint32_t> min_faces;
   // Collapses that the simplifier puts off (they make a sliver, a valence-3
-  // vertex, or a face spanning a bend of more than 90°) are made only once
+  // vertex, a face spanning a bend of more than 90°, or an edge longer than
+  // max_edge_length) are made only once
   // nothing else is left, and only in components above this many faces
   // (indexed like Components; empty: everywhere). The remesher passes each
   // component's share of the target by area, so parts that cannot shrink
   // cleanly (claws, teeth) still shrink to their share, while no part is
   // forced below its share at the cost of folds.
   std::vector<uint32_t> late_floor;
+  // A collapse that makes an edge longer than this is put off too (0: no
+  // limit): very large base faces over curved or concave regions (ogre's
+  // shoulders) are where projecting new vertices goes wrong.
+  double max_edge_length = 0;
+  // Input vertices (indexed like the mesh; empty: none) that must survive
+  // in the base at their own position: features the remesher found it
+  // missed on a first try (the tip of an ear the quadric error let go).
+  std::vector<uint8_t> locked;
   // Called now and then with the fraction of the planned collapses done.
   std::function<void(double fraction)> progress;
 };

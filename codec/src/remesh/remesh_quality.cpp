@@ -50,11 +50,7 @@ QualityFigures MeasureQuality(const TriMesh& mesh,
       const Vec3& a = mesh.positions[mesh.faces[f][0]];
       const Vec3& b = mesh.positions[mesh.faces[f][1]];
       const Vec3& c = mesh.positions[mesh.faces[f][2]];
-      const Vec3 n = (b - a).cross(c - a);
-      const double sum = (b - a).squaredNorm() + (c - b).squaredNorm() +
-                         (a - c).squaredNorm();
-      const double compactness = sum > 0 ? 2 * std::sqrt(3.0) * n.norm() / sum : 0;
-      if (compactness < kDegenerateCompactness) ++my_degenerate;
+      if (Compactness(a, b, c) < kDegenerateCompactness) ++my_degenerate;
       my_min = std::min({my_min, Angle(a, b, c), Angle(b, c, a), Angle(c, a, b)});
       if (IsFlipped(input, a, b, c, face_component[f], hint)) ++my_flipped;
     }

@@ -3,6 +3,9 @@
 #ifndef MESHWAVE_REMESH_REMESH_QUALITY_H_
 #define MESHWAVE_REMESH_REMESH_QUALITY_H_
 
+#include <Eigen/Geometry>
+
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -18,8 +21,17 @@ struct QualityFigures {
   double min_angle_degrees = 0;  // smallest angle of any face
 };
 
-// Compactness (4√3·area / Σ edge², 1 for equilateral) below which a face
-// counts as degenerate: a smallest angle of about 0.005°.
+// Compactness of a triangle: 4√3·area / Σ edge², 1 for an equilateral
+// triangle, 0 without area.
+inline double Compactness(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const double sum = (b - a).squaredNorm() + (c - b).squaredNorm() +
+                     (a - c).squaredNorm();
+  if (!(sum > 0)) return 0;
+  return 2 * std::sqrt(3.0) * (b - a).cross(c - a).norm() / sum;
+}
+
+// Compactness below which a face counts as degenerate: a smallest angle of
+// about 0.005°.
 inline constexpr double kDegenerateCompactness = 1e-4;
 
 // Whether triangle (a, b, c) is turned against the input surface of

@@ -9,8 +9,6 @@
 #include <cmath>
 #include <span>
 #include <utility>
-#include <cstdio>
-#include <cstdlib>
 
 #include "meshwave/wavelet.h"
 #include "remesh/parallel_for.h"
@@ -37,12 +35,6 @@ constexpr double kMaxProjectionRatio = 2.0;
 // times the length of the edge it splits.
 constexpr double kRayToNearestRatio = 3.0;
 constexpr double kRaySlack = 0.05;
-double Compactness(const Vec3& a, const Vec3& b, const Vec3& c) {
-  const double sum = (b - a).squaredNorm() + (c - b).squaredNorm() +
-                     (a - c).squaredNorm();
-  if (!(sum > 0)) return 0;
-  return 2 * std::sqrt(3.0) * (b - a).cross(c - a).norm() / sum;
-}
 
 // Area-weighted unit normals of the first `count` vertices.
 std::vector<Vec3> VertexNormals(const std::vector<Face>& faces,
@@ -96,9 +88,7 @@ class Fitter {
           VertexRings rings,
           VertexRings::Build(h_.vertex_count(j + 1), h_.faces(j + 1)));
       for (int r = 0; r < options_.relax_rounds; ++r) Relax(j + 1, rings);
-      if (getenv("MW_DEBUG")) fprintf(stderr, "level %d: bad after relax %zu\n", j+1, MarkBadFaces(j+1, false));
       const size_t bad = UntangleLevel(j + 1, rings);
-      if (getenv("MW_DEBUG")) fprintf(stderr, "level %d: bad after repair %zu\n", j+1, bad);
       if (j + 1 == levels) stats_.unrepaired_faces = bad;
       done += static_cast<double>(h_.faces(j + 1).size());
       if (options_.progress) options_.progress(j + 1, done / total);
@@ -248,9 +238,24 @@ class Fitter {
     for (int r = 0; r < options_.repair_rounds; ++r) {
       const bool new_only = 2 * r < options_.repair_rounds;
       if (MarkBadFaces(level, new_only) == 0) return 0;
-      Untangle(level, rings);
+      // In the last quarter of rounds, when the vertices of bad faces alone
+      // did not untangle them, their neighbours may make room too, and
+      // pinned feature vertices may move.
+      const bool last_quarter = 4 * r >= 3 * options_.repair_rounds;
+      if (last_quarter) GrowMarks(rings);
+      Untangle(level, rings, last_quarter);
     }
     return MarkBadFaces(level, false);
+  }
+
+  // Marks the one-ring of every marked vertex too.
+  void GrowMarks(const VertexRings& rings) {
+    std::vector<uint8_t> grown = marked_;
+    for (uint32_t v = 0; v < marked_.size(); ++v) {
+      if (!marked_[v]) continue;
+      for (uint32_t u : rings.Ring(v)) grown[u] = 1;
+    }
+    marked_ = std::move(grown);
   }
 
   // How bad the faces around inner vertex v would be with v at p, seen
@@ -269,13 +274,13 @@ class Fitter {
   }
 
   // One Jacobi round of untangling: every marked inner vertex (of any
-  // level) tries the ring centroid and a kernel point of its ring, both in
+  // level; pinned ones only with move_pinned) tries the ring centroid and a kernel point of its ring, both in
   // the tangent plane of its good faces (ConsensusNormals: the remesh's own
   // normal is unreliable inside a fold, and the input face it is on may be
   // on the far side of a part thinner than an edge), projected onto the
   // surface facing that way; it takes whichever leaves its faces least bad,
   // or stays.
-  void Untangle(int level, const VertexRings& rings) {
+  void Untangle(int level, const VertexRings& rings, bool move_pinned) {
     const uint32_t count = h_.vertex_count(level);
     const std::vector<Vec3> normals = ConsensusNormals(level);
     std::vector<Vec3> next(positions_.begin(), positions_.begin() + count);
@@ -286,7 +291,8 @@ class Fitter {
       size_t my_moves = 0;
       for (size_t i = begin; i < end; ++i) {
         const auto v = static_cast<uint32_t>(i);
-        if (!marked_[v] || rings.IsBoundary(v) || anchors_[v].loop != kNone) {
+        if (!marked_[v] || rings.IsBoundary(v) || anchors_[v].loop != kNone ||
+            (anchors_[v].pinned && !move_pinned)) {
           continue;
         }
         const uint32_t face = anchors_[v].face;
@@ -445,6 +451,7 @@ class Fitter {
 }  // namespace
 
 void PlaceBaseVertices(const SimplifiedMesh& base, const InputSurface& surface,
+                       const std::vector<uint8_t>& pinned,
                        std::vector<Vec3>& positions,
                        std::vector<SurfaceAnchor>& anchors) {
   const size_t n = base.mesh.positions.size();
@@ -460,6 +467,7 @@ void PlaceBaseVertices(const SimplifiedMesh& base, const InputSurface& surface,
       const BoundaryLoops::Location where = surface.loops().Locate(source);
       a.loop = where.loop;
       a.s = where.s;
+      a.pinned = source < pinned.size() && pinned[source] != 0;
       positions[v] = surface.mesh().positions[source];
       // The input vertex is on the surface; find a face of it.
       a.face = surface.Closest(positions[v], Vec3::Zero(), a.component,

@@ -28,24 +28,22 @@ double SquaredError(double x, uint32_t mag, int n, bool negative, double step,
 
 }  // namespace
 
-Result<SemiRegularMesh> InTransmissionOrder(const SemiRegularMesh& mesh) {
-  const BaseMeshOrder order = ChooseTransmissionOrder(
-      mesh.hierarchy->vertex_count(0), mesh.hierarchy->faces(0));
-  return RenumberBase(mesh, order.new_of_old, order.faces);
-}
-
 Result<PgcStream> EncodePgc(const SemiRegularMesh& input,
                             const EncodeOptions& options) {
   // The checks, steps and header fields below follow EncodeMesh exactly, so
   // that PGC, SIM and 3xC code the same quantised coefficients
-  // (ZerotreeCoderTest.UsesTheQuantizersOfEncodeMesh pins it).
+  // (ZerotreeCoderTest.UsesTheQuantizersAndVertexOrderOfEncodeMesh pins it).
   if (options.precision < 4 || options.precision > 30) {
     return InvalidArgument("precision must be in [4, 30]");
   }
   if (options.deadzone < 0 || options.deadzone > 3) {
     return InvalidArgument("deadzone code must be in [0, 3]");
   }
-  MW_ASSIGN_OR_RETURN(const SemiRegularMesh mesh, InTransmissionOrder(input));
+  PgcStream out;
+  const BaseMeshOrder order = ChooseTransmissionOrder(
+      input.hierarchy->vertex_count(0), input.hierarchy->faces(0));
+  MW_ASSIGN_OR_RETURN(out.mesh, RenumberBase(input, order.new_of_old, order.faces));
+  const SemiRegularMesh& mesh = out.mesh;
   const SemiRegularHierarchy& h = *mesh.hierarchy;
   const int levels = h.levels();
   const Aabb box = BoundingBox(mesh.positions);
@@ -59,7 +57,6 @@ Result<PgcStream> EncodePgc(const SemiRegularMesh& input,
                       WaveletTransform::Create(mesh.hierarchy, options.transform));
   const Pyramid pyramid = transform.Forward(mesh.positions);
 
-  PgcStream out;
   proto::StreamHeader& header = out.header;
   header.set_format_version(kFormatVersion);
   header.set_name(options.name);

@@ -41,16 +41,14 @@ inline constexpr int kPgcCoderValue = 2;
 struct PgcStream {
   proto::StreamHeader header;
   std::vector<std::string> packets;  // packets[i] codes bitplane top - i
+  // The encoded mesh as the stream numbers it (base in transmission order,
+  // as EncodedStream::mesh): PgcDecoder returns vertices in this order.
+  SemiRegularMesh mesh;
 };
 
-// `mesh` over its base in transmission order (ChooseTransmissionOrder), the
-// renumbering EncodeMesh applies first: decoders of both return positions in
-// this order, so it is what decoded positions are compared with.
-Result<SemiRegularMesh> InTransmissionOrder(const SemiRegularMesh& mesh);
-
 // Encodes with the transform, precision and deadzone of `options` (its
-// coder and octree_leaf_size are ignored), after the same renumbering as
-// EncodeMesh (InTransmissionOrder). Same errors as EncodeMesh.
+// coder and octree_leaf_size are ignored), after the same base renumbering
+// as EncodeMesh. Same errors as EncodeMesh.
 Result<PgcStream> EncodePgc(const SemiRegularMesh& mesh,
                             const EncodeOptions& options);
 

@@ -35,12 +35,15 @@ Status AddPoint(const SemiRegularMesh& mesh, double diagonal,
   return Status::Ok();
 }
 
-Status MeasureEmbedded(const SemiRegularMesh& mesh, double diagonal,
+// Each stream carries the mesh in its own vertex order (the encoders
+// renumber the base); decoded positions are compared with that.
+Status MeasureEmbedded(const SemiRegularMesh& input, double diagonal,
                        CoderKind kind, const EncodeOptions& options,
                        RdCurve& curve) {
   EncodeOptions o = options;
   o.coder = kind;
-  MW_ASSIGN_OR_RETURN(EncodedStream stream, EncodeMesh(mesh, o));
+  MW_ASSIGN_OR_RETURN(EncodedStream stream, EncodeMesh(input, o));
+  const SemiRegularMesh& mesh = stream.mesh;
   MW_ASSIGN_OR_RETURN(std::unique_ptr<ProgressiveDecoder> decoder,
                       ProgressiveDecoder::Create(stream.header));
   curve.vertices = stream.header.vertices();
@@ -64,9 +67,10 @@ Status MeasureEmbedded(const SemiRegularMesh& mesh, double diagonal,
   return Status::Ok();
 }
 
-Status MeasurePgc(const SemiRegularMesh& mesh, double diagonal,
+Status MeasurePgc(const SemiRegularMesh& input, double diagonal,
                   const EncodeOptions& options, RdCurve& curve) {
-  MW_ASSIGN_OR_RETURN(PgcStream stream, EncodePgc(mesh, options));
+  MW_ASSIGN_OR_RETURN(PgcStream stream, EncodePgc(input, options));
+  const SemiRegularMesh& mesh = stream.mesh;
   MW_ASSIGN_OR_RETURN(std::unique_ptr<PgcDecoder> decoder,
                       PgcDecoder::Create(stream.header));
   curve.vertices = stream.header.vertices();
@@ -102,14 +106,10 @@ const char* RdCoderName(RdCoder coder) {
   return "?";
 }
 
-Result<RdCurve> MeasureRdCurve(const SemiRegularMesh& input, RdCoder coder,
+Result<RdCurve> MeasureRdCurve(const SemiRegularMesh& mesh, RdCoder coder,
                                const EncodeOptions& options) {
   RdCurve curve;
   curve.coder = coder;
-  // The decoders return the vertices in transmission order; renumbering
-  // again (inside the encoders) leaves that order as it is.
-  MW_ASSIGN_OR_RETURN(const SemiRegularMesh reference, InTransmissionOrder(input));
-  const SemiRegularMesh& mesh = reference;
   // The encoders use the same diagonal for their steps and refuse a zero one.
   const double diagonal = BoundingBox(mesh.positions).Diagonal();
   switch (coder) {

@@ -1,7 +1,8 @@
 #include "wavelet/prediction_stencils.h"
 
 #include <cmath>
-#include <map>
+#include <bit>
+#include <unordered_map>
 #include <numbers>
 
 namespace meshwave {
@@ -23,22 +24,35 @@ class StencilBuilder {
     terms_.push_back({v, w});
   }
   void Flush(StencilTable& table) {
-    std::vector<double> w;
+    uint64_t hash = terms_.size();
     for (const auto& [v, x] : terms_) {
       table.indices.push_back(v);
-      w.push_back(x);
+      hash = (hash ^ std::bit_cast<uint64_t>(x)) * 0x9E3779B97F4A7C15ull;
     }
     table.offsets.push_back(static_cast<uint32_t>(table.indices.size()));
-    auto [it, inserted] =
-        runs_.emplace(w, static_cast<uint32_t>(table.weights.size()));
-    if (inserted) table.weights.insert(table.weights.end(), w.begin(), w.end());
-    table.weight_start.push_back(it->second);
+    table.weight_start.push_back(FindOrAddRun(table, hash));
     terms_.clear();
   }
 
  private:
+  // Start of an identical weight run already in the table, or of a new one.
+  uint32_t FindOrAddRun(StencilTable& table, uint64_t hash) {
+    auto& starts = runs_[hash];
+    for (uint32_t start : starts) {
+      bool same = start + terms_.size() <= table.weights.size();
+      for (size_t i = 0; same && i < terms_.size(); ++i) {
+        same = table.weights[start + i] == terms_[i].second;
+      }
+      if (same) return start;
+    }
+    const uint32_t start = static_cast<uint32_t>(table.weights.size());
+    for (const auto& term : terms_) table.weights.push_back(term.second);
+    starts.push_back(start);
+    return start;
+  }
+
   std::vector<std::pair<uint32_t, double>> terms_;
-  std::map<std::vector<double>, uint32_t> runs_;  // weight run -> start
+  std::unordered_map<uint64_t, std::vector<uint32_t>> runs_;  // hash -> starts
 };
 
 // Level-j topology queries the stencils need.
