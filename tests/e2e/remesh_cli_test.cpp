@@ -72,8 +72,8 @@ TEST(RemeshCliTest, PrintsAReadableSummary) {
   {
     const TriMesh sheet = testing::WavySheet(24, 6);
     std::ofstream off(in);
-    off << "OFF\n" << sheet.positions.size() << " " << sheet.faces.size()
-        << " 0\n";
+    off << "OFF\n"
+        << sheet.positions.size() << " " << sheet.faces.size() << " 0\n";
     for (const Vec3& p : sheet.positions) {
       off << p.x() << " " << p.y() << " " << p.z() << "\n";
     }
@@ -81,8 +81,7 @@ TEST(RemeshCliTest, PrintsAReadableSummary) {
       off << "3 " << f[0] << " " << f[1] << " " << f[2] << "\n";
     }
   }
-  const auto r =
-      RunCli({"remesh", in.string(), (dir / "sheet.obj").string()});
+  const auto r = RunCli({"remesh", in.string(), (dir / "sheet.obj").string()});
   EXPECT_EQ(r.exit_code, 0) << r.err;
   for (const char* key : {"levels:", "base:", "finest:", "flipped faces:",
                           "surface rms:", "hausdorff:"}) {
@@ -121,11 +120,9 @@ TEST(RemeshCliTest, RemeshesTheOgre) {
 
   const auto info = RunCli({"info", out.string(), "--json"});
   ASSERT_EQ(info.exit_code, 0) << info.err;
-  EXPECT_EQ(Parse<proto::MeshInfo>(info).semiregular_levels(),
-            report.levels());
+  EXPECT_EQ(Parse<proto::MeshInfo>(info).semiregular_levels(), report.levels());
 
-  const auto compare =
-      RunCli({"compare", in.string(), out.string(), "--json"});
+  const auto compare = RunCli({"compare", in.string(), out.string(), "--json"});
   ASSERT_EQ(compare.exit_code, 0) << compare.err;
   const auto distance = Parse<proto::CompareReport>(compare).surface();
   EXPECT_LT(distance.rms().percent_of_diagonal(), 0.1);

@@ -45,8 +45,7 @@ class ProgressLine {
     if (percent == last_percent_ && stage == last_stage_) return;
     last_percent_ = percent;
     last_stage_ = std::string(stage);
-    std::fprintf(stderr, "\rremesh: %-9s %3d %%", last_stage_.c_str(),
-                 percent);
+    std::fprintf(stderr, "\rremesh: %-9s %3d %%", last_stage_.c_str(), percent);
     std::fflush(stderr);
     drawn_ = true;
   }
@@ -130,9 +129,9 @@ Status Measure(const RemeshArgs& args, const TriMesh& input,
   s.set_samples_b(d->samples_b);
   s.set_samples_per_face(options.samples_per_face);
   s.set_seed(options.seed);
-  report.set_measure_seconds(std::chrono::duration<double>(
-                                 std::chrono::steady_clock::now() - start)
-                                 .count());
+  report.set_measure_seconds(
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+          .count());
   return Status::Ok();
 }
 
@@ -143,8 +142,8 @@ void PrintHuman(const proto::RemeshReport& r) {
   const auto num = [](uint64_t v) { return std::to_string(v); };
   char buffer[128];
   line("input:", r.input() + " (" + num(r.input_vertices()) + " vertices, " +
-                     num(r.input_faces()) + " faces, " +
-                     num(r.components()) + " components after repair)");
+                     num(r.input_faces()) + " faces, " + num(r.components()) +
+                     " components after repair)");
   line("output:", r.output());
   line("levels:", num(r.levels()));
   line("base:", num(r.base_vertices()) + " vertices, " + num(r.base_faces()) +

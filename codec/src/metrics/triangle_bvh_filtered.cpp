@@ -109,7 +109,8 @@ TriangleBvh::Hit TriangleBvh::ClosestPointIf(
     if (far.distance_squared < best.distance_squared) stack[top++] = far;
     if (near.distance_squared < best.distance_squared) stack[top++] = near;
   }
-  if (best.face == kNoFace) best.distance_squared = std::numeric_limits<double>::infinity();
+  if (best.face == kNoFace)
+    best.distance_squared = std::numeric_limits<double>::infinity();
   return best;
 }
 
@@ -127,8 +128,8 @@ TriangleBvh::LineHit TriangleBvh::NearestLineHit(
   };
   Entry stack[kMaxStack];
   int top = 0;
-  const double root = LineBoxReach(nodes_[0].lo, nodes_[0].hi, origin,
-                                    direction);
+  const double root =
+      LineBoxReach(nodes_[0].lo, nodes_[0].hi, origin, direction);
   if (!(root <= limit)) return best;
   stack[top++] = {0, root};
   while (top > 0) {

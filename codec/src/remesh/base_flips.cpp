@@ -6,8 +6,8 @@
 #include <cmath>
 #include <cstdint>
 #include <numbers>
-#include <unordered_set>
 #include <unordered_map>
+#include <unordered_set>
 #include <utility>
 #include <vector>
 

@@ -28,9 +28,9 @@ BoundaryLoops::BoundaryLoops(const TriMesh& mesh)
     const uint32_t a = static_cast<uint32_t>(key >> 32);
     const uint32_t b = static_cast<uint32_t>(key);
     const uint64_t twin = (uint64_t{b} << 32) | a;
-    auto it = std::lower_bound(
-        directed.begin(), directed.end(), twin,
-        [](const auto& e, uint64_t k) { return e.first < k; });
+    auto it =
+        std::lower_bound(directed.begin(), directed.end(), twin,
+                         [](const auto& e, uint64_t k) { return e.first < k; });
     if (it != directed.end() && it->first == twin) continue;
     next[a] = b;
     next_face[a] = f;
@@ -59,8 +59,8 @@ BoundaryLoops::Location BoundaryLoops::Locate(uint32_t vertex) const {
   const uint32_t e = entry_of_vertex_[vertex];
   if (e == kNone) return {};
   const auto loop = static_cast<uint32_t>(
-      std::upper_bound(offsets_.begin(), offsets_.end(), e) -
-      offsets_.begin() - 1);
+      std::upper_bound(offsets_.begin(), offsets_.end(), e) - offsets_.begin() -
+      1);
   return {loop, arc_[e]};
 }
 

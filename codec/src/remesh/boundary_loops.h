@@ -40,7 +40,8 @@ class BoundaryLoops {
   double Midway(uint32_t loop, double a, double b) const;
 
  private:
-  std::vector<uint32_t> offsets_;   // loop l: entries [offsets_[l], offsets_[l+1])
+  std::vector<uint32_t>
+      offsets_;  // loop l: entries [offsets_[l], offsets_[l+1])
   std::vector<uint32_t> vertices_;  // in loop order
   std::vector<uint32_t> faces_;     // face of the edge vertices_[i] -> next
   std::vector<double> arc_;         // arc length at vertices_[i]

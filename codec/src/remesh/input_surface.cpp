@@ -41,9 +41,9 @@ std::vector<uint8_t> BoundaryEdgeBits(const TriMesh& mesh) {
   std::vector<uint8_t> bits(mesh.faces.size(), 0);
   for (const auto& [key, corner] : directed) {
     const uint64_t twin = (key << 32) | (key >> 32);
-    auto it = std::lower_bound(
-        directed.begin(), directed.end(), twin,
-        [](const auto& e, uint64_t k) { return e.first < k; });
+    auto it =
+        std::lower_bound(directed.begin(), directed.end(), twin,
+                         [](const auto& e, uint64_t k) { return e.first < k; });
     if (it != directed.end() && it->first == twin) continue;
     bits[corner / 3] |= static_cast<uint8_t>(1u << (corner % 3));
   }
@@ -61,8 +61,8 @@ InputSurface::InputSurface(TriMesh mesh, Components components)
       loops_(mesh_),
       diagonal_(BoundingBox(mesh_.positions).Diagonal()) {}
 
-InputSurface::Projection InputSurface::AlongNormal(const Vec3& q,
-                                                   const Vec3& n, double reach,
+InputSurface::Projection InputSurface::AlongNormal(const Vec3& q, const Vec3& n,
+                                                   double reach,
                                                    uint32_t component) const {
   const auto hit = bvh_.NearestLineHit(q, n, reach, [&](uint32_t f) {
     return components_.of_face[f] == component && normals_[f].dot(n) > 0;

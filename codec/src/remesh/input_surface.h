@@ -49,10 +49,9 @@ class InputSurface {
   // max_distance. Facing the right way keeps a vertex on its own sheet
   // where two sheets are close (thin parts); the bound keeps it from
   // jumping to a far part of the surface when no face nearby faces n.
-  Projection Closest(const Vec3& q, const Vec3& n, uint32_t component,
-                     uint32_t hint,
-                     double max_distance =
-                         std::numeric_limits<double>::infinity()) const;
+  Projection Closest(
+      const Vec3& q, const Vec3& n, uint32_t component, uint32_t hint,
+      double max_distance = std::numeric_limits<double>::infinity()) const;
 
   // Whether `point` (on face `face`) lies on a boundary edge of the input,
   // to within 1e-9 of the edge's length.

@@ -24,8 +24,9 @@ double FacesFor(double vertices, int levels) {
 Result<LevelPlan> PlanLevels(size_t input_vertices, int levels,
                              int base_faces) {
   if (levels != -1 && (levels < 1 || levels > 8)) {
-    return InvalidArgument("levels must be in [1, 8] (or -1 for automatic), got " +
-                           std::to_string(levels));
+    return InvalidArgument(
+        "levels must be in [1, 8] (or -1 for automatic), got " +
+        std::to_string(levels));
   }
   if (base_faces != -1 && base_faces < 1) {
     return InvalidArgument(
@@ -49,11 +50,10 @@ Result<LevelPlan> PlanLevels(size_t input_vertices, int levels,
       plan.levels = kMaxAutoLevels;
     }
   }
-  plan.base_faces =
-      base_faces != -1
-          ? static_cast<size_t>(base_faces)
-          : static_cast<size_t>(std::max(
-                4.0, std::round(FacesFor(v, plan.levels))));
+  plan.base_faces = base_faces != -1
+                        ? static_cast<size_t>(base_faces)
+                        : static_cast<size_t>(std::max(
+                              4.0, std::round(FacesFor(v, plan.levels))));
   return plan;
 }
 

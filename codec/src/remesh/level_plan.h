@@ -21,8 +21,7 @@ struct LevelPlan {
 // kMinAutoBaseFaces base faces (a coarser base loses thin parts before
 // subdivision can bring them back), or 5 when even that leaves 4x as many.
 // Errors: levels outside [1, 8] or base_faces < 1 when given.
-Result<LevelPlan> PlanLevels(size_t input_vertices, int levels,
-                             int base_faces);
+Result<LevelPlan> PlanLevels(size_t input_vertices, int levels, int base_faces);
 
 }  // namespace meshwave::remesh
 

@@ -172,8 +172,7 @@ RepairReport RepairManifold(TriMesh& mesh) {
     assert(f[0] != f[1] && f[1] != f[2] && f[2] != f[0]);
     (void)f;
   }
-  std::vector<uint32_t> glue =
-      PairHalfEdges(mesh, &report.non_manifold_edges);
+  std::vector<uint32_t> glue = PairHalfEdges(mesh, &report.non_manifold_edges);
   const std::vector<uint8_t> flip = Orient(mesh.faces, glue, report);
   // Glue refers to corners of the unflipped faces; keep those for lookups.
   const std::vector<Face> original = mesh.faces;
@@ -213,17 +212,17 @@ RepairReport RepairManifold(TriMesh& mesh) {
           id_of_root[root] = static_cast<uint32_t>(mesh.positions.size());
           mesh.positions.push_back(mesh.positions[v]);
         }
-        fans_of_vertex[v] = static_cast<uint8_t>(
-            std::min(fans_of_vertex[v] + 1, 255));
+        fans_of_vertex[v] =
+            static_cast<uint8_t>(std::min(fans_of_vertex[v] + 1, 255));
       }
       out[c / 3][c % 3] = id_of_root[root];
     }
     const std::vector<uint32_t> bad = FacesOnBadEdges(out);
     if (bad.empty()) {
       report.added_vertices = mesh.positions.size() - vertex_count;
-      report.non_manifold_vertices = static_cast<size_t>(std::count_if(
-          fans_of_vertex.begin(), fans_of_vertex.end(),
-          [](uint8_t n) { return n > 1; }));
+      report.non_manifold_vertices = static_cast<size_t>(
+          std::count_if(fans_of_vertex.begin(), fans_of_vertex.end(),
+                        [](uint8_t n) { return n > 1; }));
       break;
     }
     // Detach the offending faces from everything; every round removes at

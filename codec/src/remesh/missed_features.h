@@ -12,9 +12,9 @@
 namespace meshwave::remesh {
 
 struct MissedVertices {
-  double max_distance = 0;          // of any input vertex to the remesh
-  uint32_t farthest = 0;            // the vertex at that distance
-  std::vector<uint32_t> vertices;   // chosen, farthest first
+  double max_distance = 0;         // of any input vertex to the remesh
+  uint32_t farthest = 0;           // the vertex at that distance
+  std::vector<uint32_t> vertices;  // chosen, farthest first
 };
 
 // Measures every referenced vertex of `input` against the surface of

@@ -132,8 +132,8 @@ class Simplifier {
       }
       faces -= Collapse(removed, kept, cand);
       if (++done % report_every == 0 && options_.progress && planned > 0) {
-        options_.progress(std::min(1.0, static_cast<double>(done) /
-                                            static_cast<double>(planned)));
+        options_.progress(std::min(
+            1.0, static_cast<double>(done) / static_cast<double>(planned)));
       }
     }
     return Compact(done);
@@ -305,8 +305,8 @@ class Simplifier {
       if (boundary_[apex[i]] ? faces < 1 : faces < 3) return Verdict::kRefused;
       if (!boundary_[apex[i]] && faces < kMinInnerValence) late = true;
     }
-    const size_t after = vertex_faces_[removed].size() +
-                         vertex_faces_[kept].size() - 2 * shared;
+    const size_t after =
+        vertex_faces_[removed].size() + vertex_faces_[kept].size() - 2 * shared;
     if (boundary_[removed] || boundary_[kept] ? after < 1 : after < 3) {
       return Verdict::kRefused;
     }
@@ -329,7 +329,8 @@ class Simplifier {
             worst_normal_before, CornerNormalCos(t, removed, kept, false));
         worst_normal_after = std::min(worst_normal_after,
                                       CornerNormalCos(t, removed, kept, true));
-        const Vec3 before = (corner[1] - corner[0]).cross(corner[2] - corner[0]);
+        const Vec3 before =
+            (corner[1] - corner[0]).cross(corner[2] - corner[0]);
         const Vec3 after_n = (moved_corner[1] - moved_corner[0])
                                  .cross(moved_corner[2] - moved_corner[0]);
         const double nb = before.norm(), na = after_n.norm();
@@ -351,11 +352,11 @@ class Simplifier {
             }
           }
         }
-        worst_before =
-            std::min(worst_before, Compactness(corner[0], corner[1], corner[2]));
-        worst_after = std::min(worst_after, Compactness(moved_corner[0],
-                                                        moved_corner[1],
-                                                        moved_corner[2]));
+        worst_before = std::min(worst_before,
+                                Compactness(corner[0], corner[1], corner[2]));
+        worst_after = std::min(
+            worst_after,
+            Compactness(moved_corner[0], moved_corner[1], moved_corner[2]));
       }
     }
     if (worst_after < worst_before) {
@@ -413,9 +414,8 @@ class Simplifier {
   }
 
   uint32_t MinFaces(uint32_t component) const {
-    return component < options_.min_faces.size()
-               ? options_.min_faces[component]
-               : 0;
+    return component < options_.min_faces.size() ? options_.min_faces[component]
+                                                 : 0;
   }
 
   // Returns the number of faces removed.

@@ -32,8 +32,16 @@ struct Quadric {
   }
 
   Quadric& operator+=(const Quadric& o) {
-    xx += o.xx; xy += o.xy; xz += o.xz; yy += o.yy; yz += o.yz; zz += o.zz;
-    bx += o.bx; by += o.by; bz += o.bz; c += o.c;
+    xx += o.xx;
+    xy += o.xy;
+    xz += o.xz;
+    yy += o.yy;
+    yz += o.yz;
+    zz += o.zz;
+    bx += o.bx;
+    by += o.by;
+    bz += o.bz;
+    c += o.c;
     return *this;
   }
   friend Quadric operator+(Quadric a, const Quadric& b) { return a += b; }

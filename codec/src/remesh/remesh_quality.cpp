@@ -51,7 +51,8 @@ QualityFigures MeasureQuality(const TriMesh& mesh,
       const Vec3& b = mesh.positions[mesh.faces[f][1]];
       const Vec3& c = mesh.positions[mesh.faces[f][2]];
       if (Compactness(a, b, c) < kDegenerateCompactness) ++my_degenerate;
-      my_min = std::min({my_min, Angle(a, b, c), Angle(b, c, a), Angle(c, a, b)});
+      my_min =
+          std::min({my_min, Angle(a, b, c), Angle(b, c, a), Angle(c, a, b)});
       if (IsFlipped(input, a, b, c, face_component[f], hint)) ++my_flipped;
     }
     flipped += my_flipped;
@@ -62,7 +63,8 @@ QualityFigures MeasureQuality(const TriMesh& mesh,
   QualityFigures out;
   out.flipped_faces = flipped;
   out.degenerate_faces = degenerate;
-  out.min_angle_degrees = mesh.faces.empty() ? 0 : min_angle * 180 / std::numbers::pi;
+  out.min_angle_degrees =
+      mesh.faces.empty() ? 0 : min_angle * 180 / std::numbers::pi;
   return out;
 }
 

@@ -24,8 +24,8 @@ struct QualityFigures {
 // Compactness of a triangle: 4√3·area / Σ edge², 1 for an equilateral
 // triangle, 0 without area.
 inline double Compactness(const Vec3& a, const Vec3& b, const Vec3& c) {
-  const double sum = (b - a).squaredNorm() + (c - b).squaredNorm() +
-                     (a - c).squaredNorm();
+  const double sum =
+      (b - a).squaredNorm() + (c - b).squaredNorm() + (a - c).squaredNorm();
   if (!(sum > 0)) return 0;
   return 2 * std::sqrt(3.0) * (b - a).cross(c - a).norm() / sum;
 }

@@ -38,8 +38,7 @@ constexpr double kRaySlack = 0.05;
 
 // Area-weighted unit normals of the first `count` vertices.
 std::vector<Vec3> VertexNormals(const std::vector<Face>& faces,
-                                std::span<const Vec3> positions,
-                                size_t count) {
+                                std::span<const Vec3> positions, size_t count) {
   std::vector<Vec3> n(count, Vec3::Zero());
   for (const Face& f : faces) {
     const Vec3 c = (positions[f[1]] - positions[f[0]])
@@ -79,7 +78,8 @@ class Fitter {
     anchors_.resize(h_.vertex_count(levels));
     // Work grows 4x per level; the fractions reported follow the faces.
     double total = 0, done = 0;
-    for (int j = 1; j <= levels; ++j) total += static_cast<double>(h_.faces(j).size());
+    for (int j = 1; j <= levels; ++j)
+      total += static_cast<double>(h_.faces(j).size());
     for (int j = 0; j < levels; ++j) {
       transform.PredictLevel(
           j, std::span<Vec3>(positions_.data(), h_.vertex_count(j + 1)));
@@ -274,12 +274,12 @@ class Fitter {
   }
 
   // One Jacobi round of untangling: every marked inner vertex (of any
-  // level; pinned ones only with move_pinned) tries the ring centroid and a kernel point of its ring, both in
-  // the tangent plane of its good faces (ConsensusNormals: the remesh's own
-  // normal is unreliable inside a fold, and the input face it is on may be
-  // on the far side of a part thinner than an edge), projected onto the
-  // surface facing that way; it takes whichever leaves its faces least bad,
-  // or stays.
+  // level; pinned ones only with move_pinned) tries the ring centroid and a
+  // kernel point of its ring, both in the tangent plane of its good faces
+  // (ConsensusNormals: the remesh's own normal is unreliable inside a fold, and
+  // the input face it is on may be on the far side of a part thinner than an
+  // edge), projected onto the surface facing that way; it takes whichever
+  // leaves its faces least bad, or stays.
   void Untangle(int level, const VertexRings& rings, bool move_pinned) {
     const uint32_t count = h_.vertex_count(level);
     const std::vector<Vec3> normals = ConsensusNormals(level);
@@ -308,8 +308,8 @@ class Fitter {
         Vec3 d = centroid - positions_[v];
         d -= d.dot(facing) * facing;
         auto best = LocalBadness(positions_[v], facing, ring);
-        for (const Vec3& q : {Vec3(positions_[v] + d),
-                              KernelPoint(centroid, facing, ring)}) {
+        for (const Vec3& q :
+             {Vec3(positions_[v] + d), KernelPoint(centroid, facing, ring)}) {
           const InputSurface::Projection p = surface_.Closest(
               q, facing, anchors_[v].component, face,
               kMaxProjectionRatio * (q - positions_[v]).norm());
@@ -470,13 +470,14 @@ void PlaceBaseVertices(const SimplifiedMesh& base, const InputSurface& surface,
       a.pinned = source < pinned.size() && pinned[source] != 0;
       positions[v] = surface.mesh().positions[source];
       // The input vertex is on the surface; find a face of it.
-      a.face = surface.Closest(positions[v], Vec3::Zero(), a.component,
-                               InputSurface::kNoFace).face;
+      a.face = surface
+                   .Closest(positions[v], Vec3::Zero(), a.component,
+                            InputSurface::kNoFace)
+                   .face;
       continue;
     }
-    InputSurface::Projection p =
-        surface.Closest(positions[v], normals[v], a.component,
-                        InputSurface::kNoFace);
+    InputSurface::Projection p = surface.Closest(
+        positions[v], normals[v], a.component, InputSurface::kNoFace);
     if (!p.found()) {
       p = surface.Closest(positions[v], Vec3::Zero(), a.component,
                           InputSurface::kNoFace);

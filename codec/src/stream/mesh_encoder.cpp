@@ -10,6 +10,7 @@
 #include "quant/deadzone_quantizer.h"
 #include "quant/subband_gains.h"
 #include "stream/base_mesh_codec.h"
+#include "stream/stream_preparation.h"
 #include "stream/stream_format.h"
 
 namespace meshwave {
@@ -46,57 +47,22 @@ const char* CoderKindName(CoderKind coder) {
 
 Result<EncodedStream> EncodeMesh(const SemiRegularMesh& input,
                                  const EncodeOptions& options) {
-  if (options.precision < 4 || options.precision > 30) {
-    return InvalidArgument("precision must be in [4, 30]");
-  }
-  if (options.deadzone < 0 || options.deadzone > 3) {
-    return InvalidArgument("deadzone code must be in [0, 3]");
-  }
-  // The base mesh travels in an order that codes cheaply; the hierarchy
-  // (and so every coefficient's index) follows from that order.
-  const BaseMeshOrder order = ChooseTransmissionOrder(
-      input.hierarchy->vertex_count(0), input.hierarchy->faces(0));
+  MW_ASSIGN_OR_RETURN(PreparedStream prepared, PrepareStream(input, options));
   EncodedStream out;
-  MW_ASSIGN_OR_RETURN(out.mesh,
-                      RenumberBase(input, order.new_of_old, order.faces));
+  out.mesh = std::move(prepared.mesh);
+  out.header = std::move(prepared.header);
   const SemiRegularMesh& mesh = out.mesh;
   const SemiRegularHierarchy& h = *mesh.hierarchy;
   const int levels = h.levels();
-  const Aabb box = BoundingBox(mesh.positions);
-  const double diag = box.Diagonal();
-  if (!(diag > 0) || !std::isfinite(diag)) {
-    return InvalidArgument("mesh has no extent (bounding-box diagonal is 0)");
-  }
-  const double step0 = std::ldexp(diag, -options.precision);
-  const SubbandGains gains = ComputeSubbandGains(options.transform, levels);
-
-  MW_ASSIGN_OR_RETURN(WaveletTransform transform,
-                      WaveletTransform::Create(mesh.hierarchy, options.transform));
-  const Pyramid pyramid = transform.Forward(mesh.positions);
-
+  const double step0 = prepared.step0;
+  const SubbandGains& gains = prepared.gains;
+  const Pyramid& pyramid = prepared.pyramid;
+  const DecodedBase& base = prepared.base;
   proto::StreamHeader& header = out.header;
-  header.set_format_version(kFormatVersion);
-  header.set_name(options.name);
-  header.set_vertices(h.vertex_count(levels));
-  header.set_faces(h.faces(levels).size());
-  for (int a = 0; a < 3; ++a) {
-    header.add_bbox_min(box.min[a]);
-    header.add_bbox_max(box.max[a]);
-  }
-  ToProto(options.transform, levels, *header.mutable_transform());
   header.set_coder(options.coder == CoderKind::k3xC ? proto::CODER_3XC
                                                     : proto::CODER_SIM);
   header.set_octree_leaf_size(options.octree_leaf_size);
-
-  MW_ASSIGN_OR_RETURN(*header.mutable_base(),
-                      EncodeBaseMesh(pyramid.base, h.faces(0),
-                                     step0 / std::sqrt(gains.base)));
-  MW_ASSIGN_OR_RETURN(DecodedBase base,
-                      DecodeBaseMesh(header.base(), header.base().vertex_count()));
-  double initial = 0;
-  for (size_t v = 0; v < base.positions.size(); ++v) {
-    initial += gains.base * (pyramid.base[v] - base.positions[v]).squaredNorm();
-  }
+  double initial = prepared.base_distortion;
   const auto layouts =
       BuildSubbandLayouts(h, base.grid, options.octree_leaf_size);
 

@@ -20,8 +20,8 @@ TriMesh RandomSoup(size_t faces, uint64_t seed) {
   for (size_t f = 0; f < faces; ++f) {
     const Vec3 c(coord(rng), coord(rng), coord(rng));
     for (int k = 0; k < 3; ++k) {
-      soup.positions.push_back(c + 0.2 * Vec3(coord(rng), coord(rng),
-                                              coord(rng)));
+      soup.positions.push_back(c +
+                               0.2 * Vec3(coord(rng), coord(rng), coord(rng)));
     }
     const auto i = static_cast<uint32_t>(3 * f);
     soup.faces.push_back({i, i + 1, i + 2});
@@ -84,7 +84,7 @@ TEST(TriangleBvhFilteredTest, NearestLineHitMatchesBruteForce) {
 
 TEST(TriangleBvhFilteredTest, NearestLineHitLooksBothWays) {
   TriMesh two;
-  two.positions = {{-1, -1, 1}, {1, -1, 1}, {0, 1, 1},
+  two.positions = {{-1, -1, 1},    {1, -1, 1},    {0, 1, 1},
                    {-1, -1, -0.5}, {1, -1, -0.5}, {0, 1, -0.5}};
   two.faces = {{0, 1, 2}, {3, 4, 5}};
   const TriangleBvh bvh(two.positions, two.faces);
@@ -126,11 +126,11 @@ TEST(TriangleBvhFilteredTest, ClosestPointIfMatchesBruteForce) {
     for (uint32_t f = 0; f < soup.faces.size(); ++f) {
       if (!third(f)) continue;
       const Face& t = soup.faces[f];
-      expected = std::min(
-          expected, ClosestPointOnTriangle(p, soup.positions[t[0]],
-                                           soup.positions[t[1]],
-                                           soup.positions[t[2]])
-                        .distance_squared);
+      expected =
+          std::min(expected, ClosestPointOnTriangle(p, soup.positions[t[0]],
+                                                    soup.positions[t[1]],
+                                                    soup.positions[t[2]])
+                                 .distance_squared);
     }
     // A wrong hint (rejected by the filter, or far away) changes nothing.
     const auto hit = bvh.ClosestPointIf(p, hint, third);
@@ -141,9 +141,9 @@ TEST(TriangleBvhFilteredTest, ClosestPointIfMatchesBruteForce) {
     const auto bounded = bvh.ClosestPointIf(p, hint, third, 0.99 * expected);
     EXPECT_EQ(bounded.face, TriangleBvh::kNoFace);
     EXPECT_TRUE(std::isinf(bounded.distance_squared));
-    EXPECT_EQ(bvh.ClosestPointIf(p, hint, third, 1.01 * expected)
-                  .distance_squared,
-              expected);
+    EXPECT_EQ(
+        bvh.ClosestPointIf(p, hint, third, 1.01 * expected).distance_squared,
+        expected);
   }
 }
 

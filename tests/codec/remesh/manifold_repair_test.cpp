@@ -59,8 +59,8 @@ TEST(ManifoldRepairTest, SplitsAVertexJoiningTwoFans) {
 
 TEST(ManifoldRepairTest, CutsAnEdgeSharedByThreeFaces) {
   TriMesh mesh;
-  mesh.positions = {{0, 0, 0}, {1, 0, 0}, {0.5, 1, 0}, {0.5, -1, 0},
-                    {0.5, 0, 1}};
+  mesh.positions = {
+      {0, 0, 0}, {1, 0, 0}, {0.5, 1, 0}, {0.5, -1, 0}, {0.5, 0, 1}};
   mesh.faces = {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}};
   const RepairReport report = RepairManifold(mesh);
   EXPECT_EQ(report.non_manifold_edges, 1u);

@@ -23,9 +23,10 @@ inline TriMesh UvSphere(int rings, int segments, double radius = 1.0,
     const double theta = std::numbers::pi * r / rings;
     for (int s = 0; s < segments; ++s) {
       const double phi = 2 * std::numbers::pi * s / segments;
-      m.positions.push_back(center + radius * Vec3(std::sin(theta) * std::cos(phi),
-                                                   std::sin(theta) * std::sin(phi),
-                                                   std::cos(theta)));
+      m.positions.push_back(center +
+                            radius * Vec3(std::sin(theta) * std::cos(phi),
+                                          std::sin(theta) * std::sin(phi),
+                                          std::cos(theta)));
     }
   }
   m.positions.push_back(center + Vec3(0, 0, -radius));  // south pole

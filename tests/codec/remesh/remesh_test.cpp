@@ -89,8 +89,8 @@ TEST(RemeshTest, KeepsTheHandleOfATorus) {
 }
 
 TEST(RemeshTest, RemeshesEachComponentOnItsOwn) {
-  const TriMesh two = Combined(UvSphere(32, 48),
-                               Translated(Torus(48, 16), Vec3(4, 0, 0)));
+  const TriMesh two =
+      Combined(UvSphere(32, 48), Translated(Torus(48, 16), Vec3(4, 0, 0)));
   auto r = RemeshOrFail(two);
   ASSERT_TRUE(r.ok());
   ExpectFaithful(two, *r);

@@ -1,0 +1,58 @@
+#include "stream/stream_preparation.h"
+
+#include <cmath>
+
+#include "stream/stream_format.h"
+
+namespace meshwave {
+
+Result<PreparedStream> PrepareStream(const SemiRegularMesh& input,
+                                     const EncodeOptions& options) {
+  if (options.precision < 4 || options.precision > 30) {
+    return InvalidArgument("precision must be in [4, 30]");
+  }
+  if (options.deadzone < 0 || options.deadzone > 3) {
+    return InvalidArgument("deadzone code must be in [0, 3]");
+  }
+  PreparedStream out;
+  // The base mesh travels in an order that codes cheaply; the hierarchy
+  // (and so every coefficient's index) follows from that order.
+  const BaseMeshOrder order = ChooseTransmissionOrder(
+      input.hierarchy->vertex_count(0), input.hierarchy->faces(0));
+  MW_ASSIGN_OR_RETURN(out.mesh, RenumberBase(input, order.new_of_old, order.faces));
+  const SemiRegularHierarchy& h = *out.mesh.hierarchy;
+  const int levels = h.levels();
+  const Aabb box = BoundingBox(out.mesh.positions);
+  const double diag = box.Diagonal();
+  if (!(diag > 0) || !std::isfinite(diag)) {
+    return InvalidArgument("mesh has no extent (bounding-box diagonal is 0)");
+  }
+  out.step0 = std::ldexp(diag, -options.precision);
+  out.gains = ComputeSubbandGains(options.transform, levels);
+  MW_ASSIGN_OR_RETURN(WaveletTransform transform,
+                      WaveletTransform::Create(out.mesh.hierarchy, options.transform));
+  out.pyramid = transform.Forward(out.mesh.positions);
+
+  proto::StreamHeader& header = out.header;
+  header.set_format_version(kFormatVersion);
+  header.set_name(options.name);
+  header.set_vertices(h.vertex_count(levels));
+  header.set_faces(h.faces(levels).size());
+  for (int a = 0; a < 3; ++a) {
+    header.add_bbox_min(box.min[a]);
+    header.add_bbox_max(box.max[a]);
+  }
+  ToProto(options.transform, levels, *header.mutable_transform());
+  MW_ASSIGN_OR_RETURN(*header.mutable_base(),
+                      EncodeBaseMesh(out.pyramid.base, h.faces(0),
+                                     out.step0 / std::sqrt(out.gains.base)));
+  MW_ASSIGN_OR_RETURN(out.base,
+                      DecodeBaseMesh(header.base(), header.base().vertex_count()));
+  for (size_t v = 0; v < out.base.positions.size(); ++v) {
+    out.base_distortion +=
+        out.gains.base * (out.pyramid.base[v] - out.base.positions[v]).squaredNorm();
+  }
+  return out;
+}
+
+}  // namespace meshwave
