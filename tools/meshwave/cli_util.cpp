@@ -67,6 +67,34 @@ Result<uint64_t> ParseByteSize(const std::string& text) {
   return static_cast<uint64_t>(bytes);
 }
 
+void AddTransformOptions(CLI::App* cmd, std::string& predictor,
+                         std::string& update, int& levels, int& precision) {
+  cmd->add_option("--predictor,--transform", predictor,
+                  "Wavelet prediction: butterfly, linear or loop")
+      ->check(CLI::IsMember({"butterfly", "linear", "loop"}))
+      ->capture_default_str();
+  cmd->add_option("--update", update,
+                  "Lifting update: constant (lifted), none (unlifted) or valence")
+      ->check(CLI::IsMember({"constant", "none", "valence", "lifted", "unlifted"}))
+      ->capture_default_str();
+  cmd->add_option("--levels", levels,
+                  "Subdivision levels when remeshing (default: chosen from the input)")
+      ->check(CLI::Range(1, 8));
+  cmd->add_option("--precision", precision,
+                  "Finest step = bounding-box diagonal x 2^-precision")
+      ->check(CLI::Range(4, 30))
+      ->capture_default_str();
+}
+
+Status ApplyTransformOptions(const std::string& predictor,
+                             const std::string& update, int precision,
+                             EncodeOptions& options) {
+  MW_ASSIGN_OR_RETURN(options.transform.predictor, ParsePredictor(predictor));
+  MW_ASSIGN_OR_RETURN(options.transform.update, ParseUpdateWeights(update));
+  options.precision = precision;
+  return Status::Ok();
+}
+
 Result<std::string> ReadFileBytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) return Status(StatusCode::kNotFound, path + ": cannot open");

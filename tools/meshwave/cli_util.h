@@ -8,6 +8,9 @@
 #include <string>
 #include <string_view>
 
+#include <CLI/CLI.hpp>
+
+#include "meshwave/encoder.h"
 #include "meshwave/status.h"
 
 namespace meshwave::cli {
@@ -22,6 +25,15 @@ void PrintJson(const google::protobuf::Message& message);
 // Parses a byte count: "65536", "64KiB", "64k", "1.5MB", "2MiB", "1G".
 // Decimal (kB, MB) and binary (KiB, MiB, k, M) units.
 Result<uint64_t> ParseByteSize(const std::string& text);
+
+// The transform and quantiser options of the commands that encode (encode,
+// rd): --predictor/--transform, --update, --levels (remeshing), --precision.
+void AddTransformOptions(CLI::App* cmd, std::string& predictor,
+                         std::string& update, int& levels, int& precision);
+// Applies the parsed values of those options to `options`.
+Status ApplyTransformOptions(const std::string& predictor,
+                             const std::string& update, int precision,
+                             EncodeOptions& options);
 
 // Reads a whole file; IoError naming the path when it cannot.
 Result<std::string> ReadFileBytes(const std::string& path);

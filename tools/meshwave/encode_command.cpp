@@ -52,10 +52,9 @@ Result<SemiRegularMesh> LoadSemiRegular(const EncodeArgs& args) {
 
 Status Run(const EncodeArgs& args) {
   EncodeOptions options;
-  MW_ASSIGN_OR_RETURN(options.transform.predictor, ParsePredictor(args.predictor));
-  MW_ASSIGN_OR_RETURN(options.transform.update, ParseUpdateWeights(args.update));
+  MW_RETURN_IF_ERROR(
+      ApplyTransformOptions(args.predictor, args.update, args.precision, options));
   MW_ASSIGN_OR_RETURN(options.coder, ParseCoderKind(args.coder));
-  options.precision = args.precision;
   options.name = std::filesystem::path(args.in).stem().string();
   MW_ASSIGN_OR_RETURN(SemiRegularMesh mesh, LoadSemiRegular(args));
   MW_ASSIGN_OR_RETURN(EncodedStream stream, EncodeMesh(mesh, options));
@@ -86,23 +85,10 @@ void AddEncodeCommand(CLI::App& app, int& exit_code) {
                 "are remeshed first)");
   cmd->add_option("in", args->in, "Mesh file (.ply, .obj, .off)")->required();
   cmd->add_option("out", args->out, "Output stream (.mwv)")->required();
-  cmd->add_option("--predictor,--transform", args->predictor,
-                  "Wavelet prediction: butterfly, linear or loop")
-      ->check(CLI::IsMember({"butterfly", "linear", "loop"}))
-      ->capture_default_str();
-  cmd->add_option("--update", args->update,
-                  "Lifting update: constant (lifted), none (unlifted) or valence")
-      ->check(CLI::IsMember({"constant", "none", "valence", "lifted", "unlifted"}))
-      ->capture_default_str();
+  AddTransformOptions(cmd, args->predictor, args->update, args->levels,
+                      args->precision);
   cmd->add_option("--coder", args->coder, "Bitplane coder: 3xc or sim")
       ->check(CLI::IsMember({"3xc", "sim"}))
-      ->capture_default_str();
-  cmd->add_option("--levels", args->levels,
-                  "Subdivision levels when remeshing (default: chosen from the input)")
-      ->check(CLI::Range(1, 8));
-  cmd->add_option("--precision", args->precision,
-                  "Finest step = bounding-box diagonal x 2^-precision")
-      ->check(CLI::Range(4, 30))
       ->capture_default_str();
   cmd->add_flag("--remesh", args->force_remesh,
                 "Remesh even when the input is already semi-regular");

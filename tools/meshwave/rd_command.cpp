@@ -170,9 +170,8 @@ proto::RdReport Report(const RdArgs& args, const LoadedMesh& loaded,
 
 Status Run(const RdArgs& args) {
   EncodeOptions options;
-  MW_ASSIGN_OR_RETURN(options.transform.predictor, ParsePredictor(args.predictor));
-  MW_ASSIGN_OR_RETURN(options.transform.update, ParseUpdateWeights(args.update));
-  options.precision = args.precision;
+  MW_RETURN_IF_ERROR(
+      ApplyTransformOptions(args.predictor, args.update, args.precision, options));
   options.octree_leaf_size = args.leaf_size;
   options.name = std::filesystem::path(args.in).stem().string();
   MW_ASSIGN_OR_RETURN(std::vector<RdCoder> coders, ParseCoders(args.coders));
@@ -206,21 +205,8 @@ void AddRdCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--csv", args->csv,
                   "Write every curve point: coder,packets,bytes_total,bpv_total,"
                   "bpv_excl_base,psnr_db");
-  cmd->add_option("--predictor,--transform", args->predictor,
-                  "Wavelet prediction: butterfly, linear or loop")
-      ->check(CLI::IsMember({"butterfly", "linear", "loop"}))
-      ->capture_default_str();
-  cmd->add_option("--update", args->update,
-                  "Lifting update: constant (lifted), none (unlifted) or valence")
-      ->check(CLI::IsMember({"constant", "none", "valence", "lifted", "unlifted"}))
-      ->capture_default_str();
-  cmd->add_option("--levels", args->levels,
-                  "Subdivision levels when remeshing (default: chosen from the input)")
-      ->check(CLI::Range(1, 8));
-  cmd->add_option("--precision", args->precision,
-                  "Finest step = bounding-box diagonal x 2^-precision")
-      ->check(CLI::Range(4, 30))
-      ->capture_default_str();
+  AddTransformOptions(cmd, args->predictor, args->update, args->levels,
+                      args->precision);
   cmd->add_option("--leaf-size", args->leaf_size,
                   "Octree leaf size of SIM and 3xC (coefficients coded one by one "
                   "below it)")
