@@ -125,6 +125,44 @@ TEST_F(CompareCliTest, ReorderedVerticesAreMatchedByNearestNeighbour) {
       << text.out;
 }
 
+TEST_F(CompareCliTest, MatchingCanBeForced) {
+  // A copy with every vertex moved by a known offset, written in reverse
+  // order: "index" compares the wrong vertices, "nearest" finds the offset.
+  const TriMesh original = ReadOrDie(elephant_);
+  const double diag = BoundingBox(original.positions).Diagonal();
+  const Vec3 offset(1e-5 * diag, 0, 0);
+  TriMesh reversed;
+  const uint32_t n = static_cast<uint32_t>(original.positions.size());
+  for (uint32_t i = 0; i < n; ++i) {
+    reversed.positions.push_back(original.positions[n - 1 - i] + offset);
+  }
+  for (const Face& f : original.faces) {
+    reversed.faces.push_back({n - 1 - f[0], n - 1 - f[1], n - 1 - f[2]});
+  }
+  const auto path = dir_ / "reversed.ply";
+  ASSERT_TRUE(WriteMesh(reversed, path).ok());
+  const proto::CompareReport nearest = CompareJson(
+      {"--match", "nearest", "--min-samples", "100", elephant_.string(), path.string()});
+  EXPECT_EQ(nearest.vertex_error().matching(), "nearest_neighbour");
+  EXPECT_NEAR(nearest.vertex_error().rms().absolute(), offset.norm(), 1e-3 * offset.norm());
+  const proto::CompareReport index = CompareJson(
+      {"--match", "index", "--min-samples", "100", elephant_.string(), path.string()});
+  EXPECT_EQ(index.vertex_error().matching(), "same_index");
+  EXPECT_GT(index.vertex_error().rms().absolute(), 0.1 * diag);
+
+  // Nearest matching works across different vertex counts too.
+  const auto holes = testing::SampleMesh("holes.off");
+  const proto::CompareReport across = CompareJson(
+      {"--match", "nearest", "--min-samples", "100", elephant_.string(), holes.string()});
+  ASSERT_TRUE(across.has_vertex_error());
+  EXPECT_EQ(across.vertex_error().count(), original.positions.size());
+  EXPECT_EQ(across.vertex_error().same_index_rms(), 0);  // not measured
+
+  const testing::CliResult bad =
+      RunCli({"compare", "--match", "closest", elephant_.string(), path.string()});
+  EXPECT_NE(bad.exit_code, 0);
+}
+
 TEST_F(CompareCliTest, DifferentVertexCountsGiveOnlySurfaceDistance) {
   const auto holes = testing::SampleMesh("holes.off");
   const proto::CompareReport r =

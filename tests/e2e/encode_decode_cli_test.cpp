@@ -1,9 +1,12 @@
 // End-to-end: `meshwave encode` and `meshwave decode` as a user runs them.
 #include <gtest/gtest.h>
 
+#include <google/protobuf/util/json_util.h>
+
 #include <fstream>
 
 #include "e2e/cli_runner.h"
+#include "meshwave.pb.h"
 #include "meshwave/metrics.h"
 #include "meshwave/mesh.h"
 #include "meshwave/semiregular.h"
@@ -66,6 +69,31 @@ TEST(EncodeDecodeCliTest, BudgetAndMaxLevelGiveCoarserMeshes) {
               "--budget", "10"});
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("smaller than the stream header"), std::string::npos) << r.err;
+}
+
+TEST(EncodeDecodeCliTest, JsonReportDescribesTheDecode) {
+  TempDir dir;
+  const auto in = testing::SampleMesh("holes.off");
+  ASSERT_EQ(RunCli({"encode", in.string(), (dir / "h.mwv").string()}).exit_code, 0);
+  const size_t size = testing::ReadBytes(dir / "h.mwv").size();
+  auto r = RunCli({"decode", "--json", "--order", "rd", "--budget", std::to_string(size / 2),
+                   (dir / "h.mwv").string(), (dir / "half.ply").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  proto::DecodeReport report;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(r.out, &report).ok()) << r.out;
+  auto mesh = ReadMesh(dir / "half.ply");
+  ASSERT_TRUE(mesh.ok());
+  EXPECT_EQ(report.vertices(), mesh->positions.size());
+  EXPECT_EQ(report.faces(), mesh->faces.size());
+  EXPECT_EQ(report.order(), "rd");
+  EXPECT_EQ(report.level(), 2);
+  EXPECT_LE(report.bytes(), size / 2);
+  EXPECT_GT(report.packets(), 0u);
+  EXPECT_LT(report.packets(), report.packets_total());
+  EXPECT_GT(report.decode_ms(), 0);
+  // The index's estimate against the truth (nearest matching: canonical
+  // vertex order) stays within a few dB.
+  EXPECT_NEAR(report.estimated_psnr_db(), PsnrAgainst(in, dir / "half.ply"), 3.0);
 }
 
 TEST(EncodeDecodeCliTest, DamagedStreamsAreRefusedOrDecodedPartly) {

@@ -30,6 +30,10 @@ struct CompareArgs {
   double samples_per_face = SurfaceDistanceOptions{}.samples_per_face;
   uint64_t seed = SurfaceDistanceOptions{}.seed;
   size_t min_samples = SurfaceDistanceOptions{}.min_samples;
+  // auto: by index unless nearest-neighbour matching explains B far better
+  // (see above); index / nearest: forced, e.g. nearest for a coder that
+  // reorders vertices (Draco) at rates where "far better" is not clear.
+  std::string match = "auto";
 };
 
 proto::ScaledDistance Scaled(double distance, double diagonal) {
@@ -42,21 +46,24 @@ proto::ScaledDistance Scaled(double distance, double diagonal) {
 
 // Fills report->vertex_error (when the counts agree) and vertex_note.
 Status AddVertexError(const TriMesh& a, const TriMesh& b, double diagonal,
-                      proto::CompareReport& report) {
-  if (a.positions.size() != b.positions.size()) {
+                      const std::string& match, proto::CompareReport& report) {
+  if (a.positions.size() != b.positions.size() && match != "nearest") {
     report.set_vertex_note(
         "vertex counts differ (" + std::to_string(a.positions.size()) + " vs " +
         std::to_string(b.positions.size()) + "): no per-vertex error");
     return Status::Ok();
   }
-  MW_ASSIGN_OR_RETURN(const VertexErrorStats same,
-                      VertexError(a.positions, b.positions, diagonal));
   MW_ASSIGN_OR_RETURN(const VertexErrorStats nearest,
                       VertexErrorByNearest(a.positions, b.positions, diagonal));
+  VertexErrorStats same;
+  if (a.positions.size() == b.positions.size()) {
+    MW_ASSIGN_OR_RETURN(same, VertexError(a.positions, b.positions, diagonal));
+  }
   const bool reordered =
-      nearest.rms * kReorderRmsRatio < same.rms &&
-      static_cast<double>(nearest.distinct_matches) >=
-          kReorderMinDistinctFraction * static_cast<double>(nearest.count);
+      match == "nearest" ||
+      (match == "auto" && nearest.rms * kReorderRmsRatio < same.rms &&
+       static_cast<double>(nearest.distinct_matches) >=
+           kReorderMinDistinctFraction * static_cast<double>(nearest.count));
   const VertexErrorStats& chosen = reordered ? nearest : same;
   proto::VertexErrorReport& v = *report.mutable_vertex_error();
   v.set_matching(reordered ? "nearest_neighbour" : "same_index");
@@ -65,11 +72,11 @@ Status AddVertexError(const TriMesh& a, const TriMesh& b, double diagonal,
   *v.mutable_mean() = Scaled(chosen.mean, diagonal);
   v.set_count(chosen.count);
   v.set_distinct_matches(chosen.distinct_matches);
-  v.set_same_index_rms(same.rms);
+  if (a.positions.size() == b.positions.size()) v.set_same_index_rms(same.rms);
   v.set_nearest_rms(nearest.rms);
-  report.set_vertex_note(
-      reordered ? "vertices matched by nearest neighbour (orders differ)"
-                : "vertices matched by index");
+  report.set_vertex_note(!reordered          ? "vertices matched by index"
+                         : match == "nearest" ? "vertices matched by nearest neighbour (asked)"
+                                              : "vertices matched by nearest neighbour (orders differ)");
   return Status::Ok();
 }
 
@@ -90,7 +97,7 @@ Result<proto::CompareReport> Compare(const CompareArgs& args) {
                            "scale for relative errors");
   }
   report.set_diagonal(diagonal);
-  MW_RETURN_IF_ERROR(AddVertexError(a, b, diagonal, report));
+  MW_RETURN_IF_ERROR(AddVertexError(a, b, diagonal, args.match, report));
 
   SurfaceDistanceOptions options;
   options.samples_per_face = args.samples_per_face;
@@ -189,6 +196,12 @@ void AddCompareCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--min-samples", args->min_samples,
                   "At least this many surface samples on each mesh")
       ->check(CLI::Range(size_t{0}, size_t{1} << 31))
+      ->capture_default_str();
+  cmd->add_option("--match", args->match,
+                  "Vertex matching for the per-vertex error: auto (by index "
+                  "unless the orders clearly differ), index, or nearest "
+                  "(each vertex of A against the nearest vertex of B)")
+      ->check(CLI::IsMember({"auto", "index", "nearest"}))
       ->capture_default_str();
   cmd->add_option("--seed", args->seed,
                   "Seed of the random surface samples (same seed, same "

@@ -137,6 +137,7 @@ Result<EncodedStream> EncodeMesh(const SemiRegularMesh& input,
       out.packets.push_back(std::move(payload));
     }
   }
+  CalibrateDistortionIndex(prepared, header);
   return out;
 }
 

@@ -119,6 +119,7 @@ Result<PgcStream> EncodePgc(const SemiRegularMesh& input,
     index.add_distortion_reduction(static_cast<float>(reduction));
     out.packets.push_back(std::move(payload));
   }
+  CalibrateDistortionIndex(prepared, header);
   return out;
 }
 

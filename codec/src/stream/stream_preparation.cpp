@@ -1,5 +1,6 @@
 #include "stream/stream_preparation.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "stream/stream_format.h"
@@ -52,7 +53,29 @@ Result<PreparedStream> PrepareStream(const SemiRegularMesh& input,
     out.base_distortion +=
         out.gains.base * (out.pyramid.base[v] - out.base.positions[v]).squaredNorm();
   }
+  // What a decoder holding no packet shows: the decoded base, no details.
+  Pyramid coarse = out.pyramid;
+  coarse.base = out.base.positions;
+  for (auto& band : coarse.subbands) std::fill(band.begin(), band.end(), Vec3::Zero());
+  const std::vector<Vec3> start = transform.Inverse(coarse);
+  for (size_t v = 0; v < start.size(); ++v) {
+    out.zero_packet_distortion += (start[v] - out.mesh.positions[v]).squaredNorm();
+  }
   return out;
+}
+
+void CalibrateDistortionIndex(const PreparedStream& prepared,
+                              proto::StreamHeader& header) {
+  const double model = header.initial_distortion();
+  const double truth = prepared.zero_packet_distortion;
+  if (!(model > 0) || !(truth > 0) || !std::isfinite(model) || !std::isfinite(truth)) return;
+  const double scale = truth / model;
+  header.set_initial_distortion(truth);
+  proto::PacketIndex& index = *header.mutable_packets();
+  for (int i = 0; i < index.distortion_reduction_size(); ++i) {
+    index.set_distortion_reduction(
+        i, static_cast<float>(scale * index.distortion_reduction(i)));
+  }
 }
 
 }  // namespace meshwave
