@@ -11,6 +11,7 @@ packages=(
   libspdlog-dev
   libcli11-dev
   libsqlite3-dev
+  libssl-dev                   # SHA-256 (content hashes), later TLS
   libgtest-dev libgmock-dev libbenchmark-dev
 )
 

@@ -11,8 +11,8 @@
 #include "meshwave/container.h"
 #include "meshwave/encoder.h"
 #include "meshwave/mesh.h"
-#include "meshwave/remesh.h"
 #include "meshwave/semiregular.h"
+#include "meshwave/semiregular_input.h"
 
 namespace meshwave::cli {
 namespace {
@@ -27,27 +27,24 @@ struct EncodeArgs {
 
 Result<SemiRegularMesh> LoadSemiRegular(const EncodeArgs& args) {
   MW_ASSIGN_OR_RETURN(TriMesh mesh, ReadMesh(args.in));
-  CleanMesh(mesh);
-  if (!args.force_remesh) {
-    auto detected = DetectSemiRegular(mesh);
-    if (detected.ok()) {
-      std::cerr << args.in << ": semi-regular, "
-                << detected->mesh.levels() << " levels over "
-                << detected->mesh.hierarchy->faces(0).size()
-                << " base faces\n";
-      return std::move(detected->mesh);
-    }
-    std::cerr << args.in << ": not semi-regular ("
-              << detected.status().message() << "); remeshing first\n";
-  }
-  RemeshOptions options;
+  SemiRegularInputOptions options;
+  options.force_remesh = args.force_remesh;
   options.levels = args.levels;
-  MW_ASSIGN_OR_RETURN(RemeshResult remeshed, Remesh(mesh, options));
-  for (const auto& w : remeshed.warnings) std::cerr << "warning: " << w << "\n";
-  std::cerr << "remeshed: " << remeshed.levels << " levels over "
-            << remeshed.base_faces << " base faces, "
-            << remeshed.finest_vertices << " vertices\n";
-  return std::move(remeshed.mesh);
+  MW_ASSIGN_OR_RETURN(SemiRegularInput input, ToSemiRegular(std::move(mesh), options));
+  if (!input.remeshed) {
+    std::cerr << args.in << ": semi-regular, " << input.levels
+              << " levels over " << input.base_faces << " base faces\n";
+    return std::move(input.mesh);
+  }
+  if (!args.force_remesh) {
+    std::cerr << args.in << ": not semi-regular ("
+              << input.not_semiregular_reason << "); remeshing first\n";
+  }
+  for (const auto& w : input.warnings) std::cerr << "warning: " << w << "\n";
+  std::cerr << "remeshed: " << input.levels << " levels over "
+            << input.base_faces << " base faces, " << input.finest_vertices
+            << " vertices\n";
+  return std::move(input.mesh);
 }
 
 Status Run(const EncodeArgs& args) {

@@ -22,9 +22,23 @@ std::string SerializeContainer(const EncodedStream& stream,
 // All packets in canonical order.
 std::string SerializeFullContainer(const EncodedStream& stream);
 
+// The preamble and header of the container holding the packets `ids`:
+// SerializeContainer's output up to the first payload, so that a server can
+// send the payloads from elsewhere (a memory map) after it.
+std::string SerializeContainerHead(const proto::StreamHeader& header,
+                                   std::span<const uint32_t> ids);
+
 // The size SerializeContainer would produce, without building it.
 uint64_t ContainerSize(const proto::StreamHeader& header,
                        std::span<const uint32_t> ids);
+
+// Estimated PSNR (dB, peak = bounding-box diagonal) after each prefix of
+// `order`: element i is the estimate once order[0 .. i) is decoded, the same
+// figure ProgressiveDecoder::EstimatedPsnr gives (+infinity when no error
+// is left). The header must have passed ValidateStreamHeader and `order`
+// must hold ids of its index.
+std::vector<double> EstimatedPsnrCurve(const proto::StreamHeader& header,
+                                       std::span<const uint32_t> order);
 
 struct ParsedContainer {
   proto::StreamHeader header;

@@ -2,7 +2,10 @@
 
 #include <google/protobuf/io/coded_stream.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
+#include <limits>
 #include <unordered_set>
 
 #include "stream/stream_format.h"
@@ -40,16 +43,48 @@ uint64_t ContainerSize(const proto::StreamHeader& header,
   return size;
 }
 
-std::string SerializeContainer(const EncodedStream& stream,
-                               std::span<const uint32_t> ids) {
-  proto::StreamHeader header = stream.header;
+std::string SerializeContainerHead(const proto::StreamHeader& stream_header,
+                                   std::span<const uint32_t> ids) {
+  proto::StreamHeader header = stream_header;
   header.clear_present();
   for (uint32_t id : ids) header.add_present(id);
   const std::string head = header.SerializeAsString();
   std::string out(kContainerMagic, 4);
   PutU32(out, static_cast<uint32_t>(head.size()));
   out += head;
+  return out;
+}
+
+std::string SerializeContainer(const EncodedStream& stream,
+                               std::span<const uint32_t> ids) {
+  std::string out = SerializeContainerHead(stream.header, ids);
   for (uint32_t id : ids) out += stream.packets[id];
+  return out;
+}
+
+std::vector<double> EstimatedPsnrCurve(const proto::StreamHeader& header,
+                                       std::span<const uint32_t> order) {
+  // Mirrors ProgressiveDecoder::EstimatedPsnr, packet by packet.
+  double diagonal = 0;
+  for (int a = 0; a < 3 && a < header.bbox_min_size() && a < header.bbox_max_size(); ++a) {
+    const double d = header.bbox_max(a) - header.bbox_min(a);
+    diagonal += d * d;
+  }
+  diagonal = std::sqrt(diagonal);
+  const double vertices = static_cast<double>(std::max<uint64_t>(header.vertices(), 1));
+  auto psnr = [&](double distortion) {
+    const double mse = std::max(distortion, 0.0) / vertices;
+    if (mse <= 0) return std::numeric_limits<double>::infinity();
+    return 20 * std::log10(diagonal / std::sqrt(mse));
+  };
+  std::vector<double> out;
+  out.reserve(order.size() + 1);
+  double distortion = header.initial_distortion();
+  out.push_back(psnr(distortion));
+  for (uint32_t id : order) {
+    distortion -= header.packets().distortion_reduction(static_cast<int>(id));
+    out.push_back(psnr(distortion));
+  }
   return out;
 }
 

@@ -1,0 +1,121 @@
+#include "api_router.h"
+
+#include <spdlog/spdlog.h>
+
+#include "mesh_handlers.h"
+#include "mesh_id.h"
+#include "request_target.h"
+#include "response.h"
+#include "upload_handler.h"
+
+namespace meshwave::server {
+namespace {
+
+Response MethodNotAllowed(std::string_view allow) {
+  Response r = JsonError(http::status::method_not_allowed, "method not allowed here");
+  r.set(http::field::allow, allow);
+  return r;
+}
+
+bool IsMeshesRoot(const RequestTarget& t) {
+  return t.segments.size() == 2 && t.segments[0] == "v1" && t.segments[1] == "meshes";
+}
+
+Response Route(ServerContext& ctx, const Request& req, const RequestTarget& t) {
+  const auto& seg = t.segments;
+  const auto method = req.method();
+  const bool get = method == http::verb::get || method == http::verb::head;
+  if (seg.size() == 1 && seg[0] == "healthz") {
+    if (!get) return MethodNotAllowed("GET, HEAD");
+    Response r = Text(http::status::ok, "{\"status\": \"ok\"}\n", "application/json");
+    r.set(http::field::cache_control, "no-store");
+    return r;
+  }
+  if (seg.size() == 1 && seg[0] == "metrics") {
+    if (!get) return MethodNotAllowed("GET, HEAD");
+    const uint64_t meshes = ctx.catalog().Count().ok() ? *ctx.catalog().Count() : 0;
+    Response r = Text(http::status::ok, ctx.metrics().Render(meshes, ctx.cache().size()),
+                      "text/plain; version=0.0.4");
+    r.set(http::field::cache_control, "no-store");
+    return r;
+  }
+  if (seg.size() < 2 || seg[0] != "v1" || seg[1] != "meshes") {
+    return JsonError(http::status::not_found, "no such endpoint");
+  }
+  if (seg.size() == 2) {
+    if (!get) return MethodNotAllowed("GET, HEAD, POST");
+    return ListMeshes(ctx, req, t.query);
+  }
+  const std::string& id = seg[2];
+  if (!IsValidMeshId(id)) {
+    return JsonError(http::status::bad_request, "invalid mesh id (12 lowercase hex digits)");
+  }
+  if (seg.size() == 3) {
+    if (method == http::verb::delete_) {
+      if (!t.query.empty()) return JsonError(http::status::bad_request, "DELETE takes no query");
+      return DeleteMesh(ctx, id);
+    }
+    if (!get) return MethodNotAllowed("GET, HEAD, DELETE");
+    if (!t.query.empty()) return JsonError(http::status::bad_request, "unexpected query");
+    return DescribeMesh(ctx, req, id);
+  }
+  const std::string& what = seg[3];
+  const bool known = (seg.size() == 4 && (what == "header" || what == "stream" || what == "container")) ||
+                     (seg.size() == 5 && what == "packets");
+  if (!known) return JsonError(http::status::not_found, "no such endpoint");
+  if (!get) return MethodNotAllowed("GET, HEAD");
+  if (what == "stream") return GetStream(ctx, req, id, t.query);
+  if (!t.query.empty()) return JsonError(http::status::bad_request, "unexpected query");
+  if (what == "header") return GetHeader(ctx, req, id);
+  if (what == "container") return GetContainer(ctx, req, id);
+  return GetPacket(ctx, req, id, seg[4]);
+}
+
+}  // namespace
+
+HeaderDecision InspectHeader(const ServerContext& ctx, const http::request_header<>& header) {
+  HeaderDecision d;
+  const auto method = header.method();
+  if (method != http::verb::post && method != http::verb::delete_) return d;
+  auto target = ParseRequestTarget(header.target());
+  if (!target.ok()) return d;  // HandleRequest answers 400
+  const bool meshes = target->segments.size() >= 2 && target->segments[0] == "v1" &&
+                      target->segments[1] == "meshes";
+  if (!meshes) return d;
+  // Only routes that exist need a token; the rest get 404/405 later.
+  const bool upload = method == http::verb::post && IsMeshesRoot(*target);
+  const bool del = method == http::verb::delete_ && target->segments.size() == 3;
+  if (!upload && !del) return d;
+  d.reject = CheckAuthorization(ctx, header);
+  d.upload = upload && !d.reject;
+  return d;
+}
+
+void HandleRequest(ServerContext& ctx, Request req, std::function<void(Response)> done) {
+  try {
+    auto target = ParseRequestTarget(req.target());
+    if (!target.ok()) return done(StatusError(target.status()));
+    // Checked again here so that no caller can skip InspectHeader's check.
+    const bool del = req.method() == http::verb::delete_ && target->segments.size() == 3 &&
+                     target->segments[0] == "v1" && target->segments[1] == "meshes";
+    const bool upload = req.method() == http::verb::post && IsMeshesRoot(*target);
+    if (upload || del) {
+      if (auto refusal = CheckAuthorization(ctx, req)) return done(std::move(*refusal));
+    }
+    if (upload) {
+      const QueryParams query = target->query;
+      return UploadMesh(ctx, std::move(req), query, std::move(done));
+    }
+    return done(Route(ctx, req, *target));
+  } catch (const std::exception& e) {
+    // Library exceptions stop here: a 500, never a dead server.
+    spdlog::error("{} {}: {}", std::string(req.method_string()), std::string(req.target()), e.what());
+    return done(JsonError(http::status::internal_server_error, "internal error"));
+  }
+}
+
+Response RefuseWebSocketUpgrade(const http::request_header<>& /*header*/) {
+  return JsonError(http::status::not_implemented, "WebSocket streaming is not available yet");
+}
+
+}  // namespace meshwave::server

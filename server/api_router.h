@@ -1,0 +1,34 @@
+// Routes requests to handlers: the target is parsed and checked first
+// (ParseRequestTarget), ids validated (IsValidMeshId), methods matched,
+// and anything else answered with a 4xx JSON error.
+#ifndef MESHWAVE_SERVER_API_ROUTER_H_
+#define MESHWAVE_SERVER_API_ROUTER_H_
+
+#include <functional>
+#include <optional>
+
+#include "server_context.h"
+#include "slices_body.h"
+
+namespace meshwave::server {
+
+// What a session does once a request's header is read.
+struct HeaderDecision {
+  std::optional<Response> reject;  // answer this now, without the body
+  bool upload = false;             // the body may be as large as an upload
+};
+
+// Authentication of POST and DELETE happens here, so that a refused
+// upload's body is never read.
+HeaderDecision InspectHeader(const ServerContext& ctx, const http::request_header<>& header);
+
+// Handles a complete request. `done` runs once, on this thread for most
+// requests or later on the ingest worker for uploads.
+void HandleRequest(ServerContext& ctx, Request req, std::function<void(Response)> done);
+
+// The hook for WebSocket upgrades (GET /v1/ws): 501 until WebSockets land.
+Response RefuseWebSocketUpgrade(const http::request_header<>& header);
+
+}  // namespace meshwave::server
+
+#endif  // MESHWAVE_SERVER_API_ROUTER_H_

@@ -1,0 +1,139 @@
+#include "ingest.h"
+
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <utility>
+
+#include "durable_file.h"
+#include "ingest_lock.h"
+#include "mesh_id.h"
+#include "meshwave/container.h"
+#include "meshwave/encoder.h"
+#include "meshwave/progression.h"
+#include "meshwave/semiregular_input.h"
+#include "sha256.h"
+
+namespace meshwave::server {
+namespace {
+
+int64_t NowUnix() {
+  return std::chrono::duration_cast<std::chrono::seconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+Result<IngestResult> Store(Catalog& catalog, const std::string& container,
+                           const proto::StreamHeader& header, size_t packets,
+                           const std::string& name, const std::string& source) {
+  CatalogEntry e;
+  e.sha256 = Sha256Hex(container);
+  e.id = MeshIdFromSha256(e.sha256);
+  e.name = name;
+  e.source = source;
+  e.vertices = header.vertices();
+  e.faces = header.faces();
+  e.levels = header.transform().levels();
+  e.packets = static_cast<uint32_t>(packets);
+  e.bytes = container.size();
+  e.container = "containers/" + e.sha256 + ".mwv";
+  e.created_unix = NowUnix();
+
+  IngestLock lock(catalog.dir());
+  MW_RETURN_IF_ERROR(lock.status());
+  MW_ASSIGN_OR_RETURN(auto existing, catalog.Find(e.id));
+  if (existing) {
+    if (existing->sha256 != e.sha256) {
+      return Status(StatusCode::kInternal,
+                    "ingest: id " + e.id + " already names another container");
+    }
+    return IngestResult{*existing, true, false};
+  }
+  MW_RETURN_IF_ERROR(WriteFileDurably(catalog.ContainerPath(e), container));
+  MW_RETURN_IF_ERROR(catalog.Insert(e));
+  return IngestResult{e, false, false};
+}
+
+}  // namespace
+
+Result<IngestResult> IngestContainer(Catalog& catalog, std::string container,
+                                     const std::string& name,
+                                     const std::string& source) {
+  MW_ASSIGN_OR_RETURN(ParsedContainer parsed, ParseContainer(container));
+  MW_RETURN_IF_ERROR(ValidateStreamHeader(parsed.header));
+  if (static_cast<int>(parsed.ids.size()) != parsed.header.packets().length_size()) {
+    return ParseError("ingest: the container does not hold every packet");
+  }
+  return Store(catalog, container, parsed.header, parsed.ids.size(), name, source);
+}
+
+Result<IngestResult> IngestMeshBytes(Catalog& catalog, std::string_view bytes,
+                                     MeshFormat format, const std::string& name,
+                                     const std::string& source) {
+  MW_ASSIGN_OR_RETURN(TriMesh mesh, ParseMesh(bytes, format, source));
+  MW_ASSIGN_OR_RETURN(SemiRegularInput input, ToSemiRegular(std::move(mesh)));
+  for (const auto& w : input.warnings) spdlog::warn("{}: {}", source, w);
+  EncodeOptions options;
+  options.name = name;
+  MW_ASSIGN_OR_RETURN(EncodedStream stream, EncodeMesh(input.mesh, options));
+  const std::string container = SerializeFullContainer(stream);
+  MW_ASSIGN_OR_RETURN(IngestResult result,
+                      Store(catalog, container, stream.header, stream.packets.size(), name, source));
+  result.remeshed = input.remeshed;
+  return result;
+}
+
+Result<IngestResult> IngestMeshFile(Catalog& catalog,
+                                    const std::filesystem::path& path,
+                                    const std::string& name) {
+  MW_ASSIGN_OR_RETURN(MeshFormat format, FormatFromPath(path));
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return IoError("cannot read " + path.string());
+  std::stringstream ss;
+  ss << in.rdbuf();
+  if (!in && !in.eof()) return IoError("cannot read " + path.string());
+  return IngestMeshBytes(catalog, ss.str(), format,
+                         name.empty() ? path.stem().string() : name,
+                         path.filename().string());
+}
+
+Result<CleanupReport> RemoveOrphans(Catalog& catalog) {
+  IngestLock lock(catalog.dir());
+  MW_RETURN_IF_ERROR(lock.status());
+  MW_ASSIGN_OR_RETURN(std::vector<std::string> paths, catalog.ContainerPaths());
+  std::set<std::filesystem::path> known;
+  for (const auto& p : paths) known.insert(catalog.dir() / p);
+  CleanupReport report;
+  std::error_code ec;
+  for (const auto& f : std::filesystem::directory_iterator(catalog.containers_dir(), ec)) {
+    if (known.count(f.path())) continue;
+    const bool temp = f.path().filename().string().starts_with(kTempPrefix);
+    std::error_code rm;
+    std::filesystem::remove(f.path(), rm);
+    if (rm) return IoError("cannot remove " + f.path().string() + ": " + rm.message());
+    ++(temp ? report.temp_files : report.orphan_files);
+  }
+  if (ec) return IoError("cannot list " + catalog.containers_dir().string() + ": " + ec.message());
+  if (report.orphan_files + report.temp_files > 0) {
+    MW_RETURN_IF_ERROR(SyncDirectory(catalog.containers_dir()));
+  }
+  return report;
+}
+
+Result<bool> RemoveEntry(Catalog& catalog, const std::string& id) {
+  IngestLock lock(catalog.dir());
+  MW_RETURN_IF_ERROR(lock.status());
+  MW_ASSIGN_OR_RETURN(auto entry, catalog.Find(id));
+  if (!entry) return false;
+  MW_ASSIGN_OR_RETURN(bool removed, catalog.Remove(id));
+  if (!removed) return false;
+  std::error_code ec;
+  std::filesystem::remove(catalog.ContainerPath(*entry), ec);
+  if (ec) spdlog::warn("cannot remove {}: {}", entry->container, ec.message());
+  return true;
+}
+
+}  // namespace meshwave::server

@@ -1,0 +1,233 @@
+#include "mesh_handlers.h"
+
+#include "byte_range.h"
+#include "etag.h"
+#include "meshwave/container.h"
+#include "response.h"
+#include "stream_query.h"
+
+namespace meshwave::server {
+namespace {
+
+constexpr uint64_t kDefaultListLimit = 100;
+constexpr uint64_t kMaxListLimit = 1000;
+
+// The served mesh, or the error response to send instead.
+struct Lookup {
+  std::shared_ptr<const ServedMesh> mesh;
+  Response error;
+};
+
+Lookup Find(ServerContext& ctx, const std::string& id) {
+  Lookup l;
+  auto mesh = ctx.cache().Get(id);
+  if (!mesh.ok()) {
+    l.error = JsonError(http::status::internal_server_error,
+                        "mesh " + id + " cannot be served: " + mesh.status().message());
+  } else if (!*mesh) {
+    l.error = JsonError(http::status::not_found, "no mesh with id " + id);
+  } else {
+    l.mesh = std::move(*mesh);
+  }
+  return l;
+}
+
+// 304 when If-None-Match matches, else null.
+bool NotModified(const Request& req, const std::string& etag, Response& out) {
+  const auto inm = req[http::field::if_none_match];
+  if (inm.empty() || !IfNoneMatchMatches(inm, etag)) return false;
+  out = Response{http::status::not_modified, 11};
+  MarkImmutable(out, etag);
+  return true;
+}
+
+Response Binary(const std::shared_ptr<const ServedMesh>& mesh, const std::string& etag) {
+  Response r{http::status::ok, 11};
+  r.set(http::field::content_type, "application/octet-stream");
+  r.body().keep_alive = mesh;
+  MarkImmutable(r, etag);
+  return r;
+}
+
+}  // namespace
+
+void ToProto(const CatalogEntry& e, proto::MeshSummary& out) {
+  out.set_id(e.id);
+  out.set_name(e.name);
+  out.set_source(e.source);
+  out.set_vertices(e.vertices);
+  out.set_faces(e.faces);
+  out.set_levels(e.levels);
+  out.set_packets(e.packets);
+  out.set_bytes(e.bytes);
+  out.set_sha256(e.sha256);
+  out.set_created_unix(e.created_unix);
+}
+
+Response ListMeshes(ServerContext& ctx, const Request& req, const QueryParams& query) {
+  if (Status s = query.CheckAllowed({"limit", "offset"}); !s.ok()) return StatusError(s);
+  uint64_t limit = kDefaultListLimit, offset = 0;
+  if (auto v = query.Get("limit")) {
+    auto l = ParseUnsigned(*v, kMaxListLimit, "limit");
+    if (!l.ok()) return StatusError(l.status());
+    limit = *l;
+  }
+  if (auto v = query.Get("offset")) {
+    auto o = ParseUnsigned(*v, uint64_t{1} << 62, "offset");
+    if (!o.ok()) return StatusError(o.status());
+    offset = *o;
+  }
+  auto entries = ctx.catalog().List(limit, offset);
+  if (!entries.ok()) return StatusError(entries.status());
+  auto total = ctx.catalog().Count();
+  if (!total.ok()) return StatusError(total.status());
+  proto::MeshList list;
+  for (const auto& e : *entries) ToProto(e, *list.add_meshes());
+  list.set_total(*total);
+  list.set_offset(offset);
+  list.set_limit(limit);
+  Response r = Message(req, list);
+  r.set(http::field::cache_control, "no-cache");
+  return r;
+}
+
+Response DescribeMesh(ServerContext& ctx, const Request& req, const std::string& id) {
+  Lookup l = Find(ctx, id);
+  if (!l.mesh) return std::move(l.error);
+  const ServedMesh& m = *l.mesh;
+  proto::MeshDetails d;
+  ToProto(m.entry(), *d.mutable_mesh());
+  d.set_header_bytes(m.entry().bytes - m.payload_bytes());
+  d.set_payload_bytes(m.payload_bytes());
+  d.set_base_vertices(m.header().base().vertex_count());
+  d.set_base_faces(m.header().base().face_count());
+  for (Progression p : {Progression::kQuality, Progression::kResolution, Progression::kRd}) {
+    auto* o = d.add_orders();
+    o->set_name(ProgressionName(p));
+    o->set_packets(static_cast<uint32_t>(m.Order(p, -1).size()));
+  }
+  for (const auto& point : m.rd_table()) {
+    auto* p = d.add_rate_distortion();
+    p->set_packets(point.packets);
+    p->set_bytes(point.bytes);
+    // JSON has no infinity: a lossless prefix reports 999 dB.
+    p->set_psnr_db(std::isfinite(point.psnr_db) ? point.psnr_db : 999.0);
+  }
+  const std::string etag = StrongEtag(m.entry().sha256, "info");
+  Response r;
+  if (NotModified(req, etag, r)) return r;
+  r = Message(req, d);
+  MarkImmutable(r, etag);
+  r.set(http::field::vary, "Accept");
+  return r;
+}
+
+Response GetHeader(ServerContext& ctx, const Request& req, const std::string& id) {
+  Lookup l = Find(ctx, id);
+  if (!l.mesh) return std::move(l.error);
+  const std::string etag = StrongEtag(l.mesh->entry().sha256, "header");
+  Response r;
+  if (NotModified(req, etag, r)) return r;
+  r = Binary(l.mesh, etag);
+  r.set(http::field::content_type, kProtobufType);
+  r.body().AddSlice(l.mesh->header_bytes());
+  return r;
+}
+
+Response GetStream(ServerContext& ctx, const Request& req, const std::string& id,
+                   const QueryParams& query) {
+  auto q = ParseStreamQuery(query);
+  if (!q.ok()) return StatusError(q.status());
+  Lookup l = Find(ctx, id);
+  if (!l.mesh) return std::move(l.error);
+  const ServedMesh& m = *l.mesh;
+  if (q->max_level > static_cast<int>(m.levels())) {
+    return JsonError(http::status::bad_request,
+                     "max_level " + std::to_string(q->max_level) + " exceeds the " +
+                         std::to_string(m.levels()) + " levels of mesh " + id);
+  }
+  const auto& order = m.Order(q->order, q->max_level);
+  if (q->from > order.size()) {
+    return JsonError(http::status::bad_request,
+                     "from " + std::to_string(q->from) + " is past the end of the order (" +
+                         std::to_string(order.size()) + " packets)");
+  }
+  const Selection s = SelectPackets(m.header(), order, q->budget, q->from);
+  if (q->from == 0 && s.bytes == 0) {
+    return JsonError(http::status::bad_request,
+                     "budget " + std::to_string(q->budget) +
+                         " is smaller than the stream header (" +
+                         std::to_string(ContainerSize(m.header(), {})) + " bytes)");
+  }
+  // The response bytes depend only on these four numbers.
+  const std::string variant = std::string("s-") + ProgressionName(q->order) + "-" +
+                              (q->max_level < 0 ? std::string("all") : std::to_string(q->max_level)) + "-" + std::to_string(q->from) +
+                              "-" + std::to_string(s.next_cursor);
+  const std::string etag = StrongEtag(m.entry().sha256, variant);
+  Response r;
+  if (!NotModified(req, etag, r)) {
+    r = Binary(l.mesh, etag);
+    if (q->from == 0) {
+      r.set(http::field::content_type, "application/vnd.meshwave.mwv");
+      r.body().owned = SerializeContainerHead(m.header(), s.ids);
+    }
+    for (uint32_t id_k : s.ids) r.body().AddSlice(m.payload(id_k));
+  }
+  r.set("X-Meshwave-Packets", std::to_string(s.ids.size()));
+  r.set("X-Meshwave-Next-Cursor", std::to_string(s.next_cursor));
+  r.set("X-Meshwave-Complete", s.next_cursor == order.size() ? "true" : "false");
+  return r;
+}
+
+Response GetPacket(ServerContext& ctx, const Request& req, const std::string& id,
+                   const std::string& packet) {
+  auto k = ParseUnsigned(packet, 0xffffffffu, "packet number");
+  if (!k.ok()) return StatusError(k.status());
+  Lookup l = Find(ctx, id);
+  if (!l.mesh) return std::move(l.error);
+  if (*k >= l.mesh->packet_count()) {
+    return JsonError(http::status::not_found,
+                     "mesh " + id + " has " + std::to_string(l.mesh->packet_count()) +
+                         " packets, no packet " + packet);
+  }
+  const std::string etag = StrongEtag(l.mesh->entry().sha256, "p" + packet);
+  Response r;
+  if (NotModified(req, etag, r)) return r;
+  r = Binary(l.mesh, etag);
+  r.body().AddSlice(l.mesh->payload(static_cast<uint32_t>(*k)));
+  return r;
+}
+
+Response GetContainer(ServerContext& ctx, const Request& req, const std::string& id) {
+  Lookup l = Find(ctx, id);
+  if (!l.mesh) return std::move(l.error);
+  const std::string etag = StrongEtag(l.mesh->entry().sha256, "");
+  Response r;
+  if (NotModified(req, etag, r)) return r;
+  const std::string_view bytes = l.mesh->map()->bytes();
+  const auto range_header = req[http::field::range];
+  const RangeRequest range =
+      range_header.empty() ? RangeRequest{} : ParseRange(range_header, bytes.size());
+  if (range.kind == RangeRequest::kUnsatisfiable) {
+    r = JsonError(http::status::range_not_satisfiable,
+                  "range '" + std::string(range_header) + "' does not fit " +
+                      std::to_string(bytes.size()) + " bytes");
+    r.set(http::field::content_range, "bytes */" + std::to_string(bytes.size()));
+    return r;
+  }
+  r = Binary(l.mesh, etag);
+  r.set(http::field::content_type, "application/vnd.meshwave.mwv");
+  r.set(http::field::accept_ranges, "bytes");
+  if (range.kind == RangeRequest::kPartial) {
+    r.result(http::status::partial_content);
+    r.set(http::field::content_range, "bytes " + std::to_string(range.first) + "-" +
+                                          std::to_string(range.last) + "/" +
+                                          std::to_string(bytes.size()));
+    r.body().AddSlice(bytes.substr(range.first, range.last - range.first + 1));
+  } else {
+    r.body().AddSlice(bytes);
+  }
+  return r;
+}
+
+}  // namespace meshwave::server

@@ -1,0 +1,74 @@
+#include "metrics.h"
+
+#include <cstdio>
+
+namespace meshwave::server {
+
+void Metrics::RecordRequest(unsigned status, uint64_t bytes, double seconds) {
+  if (status < by_code_.size()) ++by_code_[status];
+  bytes_sent_ += bytes;
+  ++count_;
+  micros_sum_ += static_cast<uint64_t>(seconds * 1e6);
+  for (size_t i = 0; i < kBuckets.size(); ++i) {
+    if (seconds <= kBuckets[i]) ++buckets_[i];  // cumulative, as Prometheus wants
+  }
+}
+
+std::string Metrics::Render(uint64_t catalog_meshes, uint64_t open_containers) const {
+  std::string out;
+  char line[160];
+  auto add = [&](const char* text) { out += text; };
+  add("# HELP meshwave_http_requests_total HTTP requests answered, by status code.\n"
+      "# TYPE meshwave_http_requests_total counter\n");
+  for (size_t code = 100; code < by_code_.size(); ++code) {
+    const uint64_t n = by_code_[code].load();
+    if (n == 0) continue;
+    std::snprintf(line, sizeof line, "meshwave_http_requests_total{code=\"%zu\"} %llu\n",
+                  code, static_cast<unsigned long long>(n));
+    add(line);
+  }
+  add("# HELP meshwave_http_response_bytes_total Bytes written in responses.\n"
+      "# TYPE meshwave_http_response_bytes_total counter\n");
+  std::snprintf(line, sizeof line, "meshwave_http_response_bytes_total %llu\n",
+                static_cast<unsigned long long>(bytes_sent_.load()));
+  add(line);
+  add("# HELP meshwave_http_request_duration_seconds From request header to response written.\n"
+      "# TYPE meshwave_http_request_duration_seconds histogram\n");
+  for (size_t i = 0; i < kBuckets.size(); ++i) {
+    std::snprintf(line, sizeof line,
+                  "meshwave_http_request_duration_seconds_bucket{le=\"%g\"} %llu\n",
+                  kBuckets[i], static_cast<unsigned long long>(buckets_[i].load()));
+    add(line);
+  }
+  const auto count = static_cast<unsigned long long>(count_.load());
+  std::snprintf(line, sizeof line,
+                "meshwave_http_request_duration_seconds_bucket{le=\"+Inf\"} %llu\n"
+                "meshwave_http_request_duration_seconds_sum %.6f\n"
+                "meshwave_http_request_duration_seconds_count %llu\n",
+                count, static_cast<double>(micros_sum_.load()) * 1e-6, count);
+  add(line);
+  std::snprintf(line, sizeof line,
+                "# HELP meshwave_catalog_meshes Meshes in the catalog.\n"
+                "# TYPE meshwave_catalog_meshes gauge\n"
+                "meshwave_catalog_meshes %llu\n",
+                static_cast<unsigned long long>(catalog_meshes));
+  add(line);
+  std::snprintf(line, sizeof line,
+                "# HELP meshwave_open_containers Containers memory-mapped.\n"
+                "# TYPE meshwave_open_containers gauge\n"
+                "meshwave_open_containers %llu\n",
+                static_cast<unsigned long long>(open_containers));
+  add(line);
+  std::snprintf(line, sizeof line,
+                "# HELP meshwave_http_connections Open HTTP connections.\n"
+                "# TYPE meshwave_http_connections gauge\n"
+                "meshwave_http_connections %lld\n",
+                static_cast<long long>(connections_.load()));
+  add(line);
+  add("# HELP meshwave_websocket_connections Open WebSocket sessions.\n"
+      "# TYPE meshwave_websocket_connections gauge\n"
+      "meshwave_websocket_connections 0\n");
+  return out;
+}
+
+}  // namespace meshwave::server

@@ -1,0 +1,37 @@
+// Building responses: JSON errors, JSON or protobuf messages, immutable
+// resources with ETag and Cache-Control.
+#ifndef MESHWAVE_SERVER_RESPONSE_H_
+#define MESHWAVE_SERVER_RESPONSE_H_
+
+#include <google/protobuf/message.h>
+
+#include <string>
+#include <string_view>
+
+#include "meshwave/status.h"
+#include "slices_body.h"
+
+namespace meshwave::server {
+
+inline constexpr std::string_view kProtobufType = "application/x-protobuf";
+inline constexpr std::string_view kImmutable = "public, max-age=31536000, immutable";
+
+// {"error": "<message>"} with `status`.
+Response JsonError(http::status status, std::string_view message);
+// A Status from the codec or the catalog as a response: client errors
+// (invalid argument, parse) as 400, not found as 404, the rest as 500.
+Response StatusError(const Status& status);
+Response Text(http::status status, std::string body, std::string_view content_type);
+// `message` as protobuf when the request's Accept names
+// application/x-protobuf, else as JSON (proto3 mapping, .proto field names).
+Response Message(const Request& request, const google::protobuf::Message& message,
+                 http::status status = http::status::ok);
+// Marks an immutable resource: strong ETag and a year of Cache-Control.
+void MarkImmutable(Response& response, const std::string& etag);
+
+// JSON string literal of `s` (quotes included).
+std::string JsonQuote(std::string_view s);
+
+}  // namespace meshwave::server
+
+#endif  // MESHWAVE_SERVER_RESPONSE_H_

@@ -1,0 +1,48 @@
+#include "served_mesh.h"
+
+#include <utility>
+
+#include "meshwave/container.h"
+
+namespace meshwave::server {
+
+Result<std::shared_ptr<const ServedMesh>> ServedMesh::Load(
+    CatalogEntry entry, const std::filesystem::path& file) {
+  std::shared_ptr<ServedMesh> m(new ServedMesh());
+  MW_ASSIGN_OR_RETURN(m->map_, MappedFile::Open(file));
+  MW_ASSIGN_OR_RETURN(ParsedContainer parsed, ParseContainer(m->map_->bytes()));
+  MW_RETURN_IF_ERROR(ValidateStreamHeader(parsed.header));
+  const size_t count = static_cast<size_t>(parsed.header.packets().length_size());
+  if (parsed.ids.size() != count) {
+    return ParseError(file.string() + ": the container does not hold every packet");
+  }
+  m->payloads_.resize(count);
+  for (size_t i = 0; i < parsed.ids.size(); ++i) {
+    m->payloads_[parsed.ids[i]] = parsed.payloads[i];
+    m->payload_bytes_ += parsed.payloads[i].size();
+  }
+  m->header_ = std::move(parsed.header);
+  m->header_.clear_present();
+  m->header_bytes_ = m->header_.SerializeAsString();
+  const int levels = static_cast<int>(m->levels());
+  for (int max_level = -1; max_level <= levels; ++max_level) {
+    for (Progression p : {Progression::kQuality, Progression::kResolution, Progression::kRd}) {
+      m->orders_.push_back(PacketOrder(m->header_, p, max_level));
+    }
+  }
+  const auto& quality = m->Order(Progression::kQuality, -1);
+  const std::vector<double> psnr = EstimatedPsnrCurve(m->header_, quality);
+  std::vector<uint32_t> prefix;
+  for (size_t k = 0; k <= quality.size(); ++k) {
+    m->rd_table_.push_back({static_cast<uint32_t>(k), ContainerSize(m->header_, prefix), psnr[k]});
+    if (k < quality.size()) prefix.push_back(quality[k]);
+  }
+  m->entry_ = std::move(entry);
+  return std::shared_ptr<const ServedMesh>(std::move(m));
+}
+
+const std::vector<uint32_t>& ServedMesh::Order(Progression p, int max_level) const {
+  return orders_[3 * static_cast<size_t>(max_level + 1) + static_cast<size_t>(p)];
+}
+
+}  // namespace meshwave::server

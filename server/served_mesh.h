@@ -1,0 +1,64 @@
+// A catalog entry ready to serve: its container memory-mapped, the header
+// parsed and validated once, the packet orders for every level limit and
+// the quality order's rate-distortion table computed once. Immutable and
+// shared between requests.
+#ifndef MESHWAVE_SERVER_SERVED_MESH_H_
+#define MESHWAVE_SERVER_SERVED_MESH_H_
+
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "catalog.h"
+#include "mapped_file.h"
+#include "meshwave/progression.h"
+#include "meshwave/status.h"
+#include "stream.pb.h"
+
+namespace meshwave::server {
+
+struct RdTablePoint {
+  uint32_t packets = 0;
+  uint64_t bytes = 0;  // container size
+  double psnr_db = 0;
+};
+
+class ServedMesh {
+ public:
+  // Maps and checks the container of `entry` (ParseContainer,
+  // ValidateStreamHeader, all packets present): a corrupt file is an
+  // error, not a crash.
+  static Result<std::shared_ptr<const ServedMesh>> Load(CatalogEntry entry,
+                                                        const std::filesystem::path& file);
+
+  const CatalogEntry& entry() const { return entry_; }
+  const std::shared_ptr<const MappedFile>& map() const { return map_; }
+  // The StreamHeader with `present` cleared: the same for every truncation.
+  const proto::StreamHeader& header() const { return header_; }
+  const std::string& header_bytes() const { return header_bytes_; }
+  uint32_t levels() const { return header_.transform().levels(); }
+  size_t packet_count() const { return payloads_.size(); }
+  // Payload of packet `id` (< packet_count()), a view into the map.
+  std::string_view payload(uint32_t id) const { return payloads_[id]; }
+  uint64_t payload_bytes() const { return payload_bytes_; }
+  // PacketOrder(header, p, max_level); max_level in [-1, levels()].
+  const std::vector<uint32_t>& Order(Progression p, int max_level) const;
+  const std::vector<RdTablePoint>& rd_table() const { return rd_table_; }
+
+ private:
+  ServedMesh() = default;
+  CatalogEntry entry_;
+  std::shared_ptr<const MappedFile> map_;
+  proto::StreamHeader header_;
+  std::string header_bytes_;
+  std::vector<std::string_view> payloads_;
+  uint64_t payload_bytes_ = 0;
+  // orders_[3 * (max_level + 1) + progression]
+  std::vector<std::vector<uint32_t>> orders_;
+  std::vector<RdTablePoint> rd_table_;
+};
+
+}  // namespace meshwave::server
+
+#endif  // MESHWAVE_SERVER_SERVED_MESH_H_

@@ -1,0 +1,61 @@
+// What every connection of one server shares: settings, catalog, open
+// containers, counters, the ingest worker and the list of live sessions
+// (for a graceful shutdown). Owned by RunServer, outlives every session.
+#ifndef MESHWAVE_SERVER_SERVER_CONTEXT_H_
+#define MESHWAVE_SERVER_SERVER_CONTEXT_H_
+
+#include <atomic>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <vector>
+
+#include "catalog.h"
+#include "mesh_cache.h"
+#include "metrics.h"
+#include "net.h"
+#include "server_config.pb.h"
+
+namespace meshwave::server {
+
+// A connection the server can ask to finish its current response and close.
+class Closable {
+ public:
+  virtual ~Closable() = default;
+  virtual void Shutdown() = 0;  // thread-safe
+};
+
+class ServerContext {
+ public:
+  ServerContext(proto::ServerConfig config, std::unique_ptr<Catalog> catalog)
+      : config_(std::move(config)),
+        catalog_(std::move(catalog)),
+        cache_(*catalog_, config_.open_containers()) {}
+
+  const proto::ServerConfig& config() const { return config_; }
+  Catalog& catalog() { return *catalog_; }
+  MeshCache& cache() { return cache_; }
+  Metrics& metrics() { return metrics_; }
+  // Runs uploads (parse, remesh, encode, write) off the io threads: one at
+  // a time, as remeshing already uses both cores.
+  net::thread_pool& ingest_pool() { return ingest_pool_; }
+
+  bool stopping() const { return stopping_.load(); }
+  void Register(const std::shared_ptr<Closable>& session);
+  // Sets stopping and asks every live session to close after its response.
+  void ShutdownSessions();
+
+ private:
+  proto::ServerConfig config_;
+  std::unique_ptr<Catalog> catalog_;
+  MeshCache cache_;
+  Metrics metrics_;
+  net::thread_pool ingest_pool_{1};
+  std::atomic<bool> stopping_{false};
+  std::mutex sessions_mutex_;
+  std::vector<std::weak_ptr<Closable>> sessions_;
+};
+
+}  // namespace meshwave::server
+
+#endif  // MESHWAVE_SERVER_SERVER_CONTEXT_H_

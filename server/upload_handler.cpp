@@ -1,0 +1,117 @@
+#include "upload_handler.h"
+
+#include <openssl/crypto.h>
+#include <spdlog/spdlog.h>
+
+#include "ingest.h"
+#include "mesh_handlers.h"
+#include "response.h"
+
+namespace meshwave::server {
+namespace {
+
+constexpr size_t kMaxNameLength = 200;
+
+// The format of an uploaded mesh: ?format= when given, else from its first
+// bytes ("ply", an OFF header keyword), else OBJ (which has no magic).
+Result<MeshFormat> UploadFormat(const QueryParams& query, std::string_view body) {
+  if (auto f = query.Get("format")) {
+    if (*f == "ply") return MeshFormat::kPly;
+    if (*f == "obj") return MeshFormat::kObj;
+    if (*f == "off") return MeshFormat::kOff;
+    return InvalidArgument("unknown format '" + *f + "' (ply, obj, off)");
+  }
+  if (body.starts_with("ply")) return MeshFormat::kPly;
+  size_t i = 0;
+  while (i < body.size() && (body[i] == ' ' || body[i] == '\n' || body[i] == '\r' || body[i] == '\t')) ++i;
+  const std::string_view head = body.substr(i, 8);
+  for (std::string_view off : {"OFF", "COFF", "NOFF", "CNOFF"}) {
+    if (head.starts_with(off)) return MeshFormat::kOff;
+  }
+  return MeshFormat::kObj;
+}
+
+Status CheckName(const std::string& name) {
+  if (name.empty() || name.size() > kMaxNameLength) {
+    return InvalidArgument("name must have 1 to " + std::to_string(kMaxNameLength) + " bytes");
+  }
+  for (char c : name) {
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
+      return InvalidArgument("name holds a control character");
+    }
+  }
+  return Status::Ok();
+}
+
+}  // namespace
+
+std::optional<Response> CheckAuthorization(const ServerContext& ctx,
+                                           const http::request_header<>& header) {
+  const std::string& token = ctx.config().upload_token();
+  const auto auth = header[http::field::authorization];
+  if (auth.empty() || !auth.starts_with("Bearer ")) {
+    Response r = JsonError(http::status::unauthorized, "a bearer token is required");
+    r.set(http::field::www_authenticate, "Bearer realm=\"meshwave\"");
+    return r;
+  }
+  if (token.empty()) {
+    return JsonError(http::status::forbidden, "uploads are disabled on this server");
+  }
+  const std::string_view given = auth.substr(7);
+  // Constant time, so the token cannot be guessed byte by byte.
+  if (given.size() != token.size() ||
+      CRYPTO_memcmp(given.data(), token.data(), token.size()) != 0) {
+    return JsonError(http::status::forbidden, "the bearer token is not valid");
+  }
+  return std::nullopt;
+}
+
+void UploadMesh(ServerContext& ctx, Request req, const QueryParams& query,
+                std::function<void(Response)> done) {
+  if (Status s = query.CheckAllowed({"name", "format"}); !s.ok()) {
+    return done(StatusError(s));
+  }
+  if (req.body().empty()) {
+    return done(JsonError(http::status::bad_request, "the request body (a mesh file) is empty"));
+  }
+  const std::string name = query.Get("name").value_or("upload");
+  if (Status s = CheckName(name); !s.ok()) return done(StatusError(s));
+  auto format = UploadFormat(query, req.body());
+  if (!format.ok()) return done(StatusError(format.status()));
+  const char* ext = *format == MeshFormat::kPly ? ".ply" : *format == MeshFormat::kOff ? ".off" : ".obj";
+  net::post(ctx.ingest_pool(), [&ctx, req = std::move(req), name, format = *format, ext,
+                                done = std::move(done)]() mutable {
+    Response r;
+    try {
+      auto result = IngestMeshBytes(ctx.catalog(), req.body(), format, name, name + ext);
+      if (!result.ok()) {
+        const auto code = result.status().code();
+        r = code == StatusCode::kIoError || code == StatusCode::kInternal
+                ? JsonError(http::status::internal_server_error, result.status().message())
+                : JsonError(http::status::unprocessable_entity, result.status().message());
+      } else {
+        proto::MeshSummary summary;
+        ToProto(result->entry, summary);
+        r = Message(req, summary, result->already_present ? http::status::ok
+                                                          : http::status::created);
+        r.set(http::field::location, "/v1/meshes/" + result->entry.id);
+        spdlog::info("uploaded {} as {} ({} bytes{})", name, result->entry.id,
+                     result->entry.bytes, result->remeshed ? ", remeshed" : "");
+      }
+    } catch (const std::exception& e) {  // e.g. bad_alloc on a huge mesh
+      r = JsonError(http::status::internal_server_error, std::string("ingest failed: ") + e.what());
+    }
+    done(std::move(r));
+  });
+}
+
+Response DeleteMesh(ServerContext& ctx, const std::string& id) {
+  auto removed = RemoveEntry(ctx.catalog(), id);
+  if (!removed.ok()) return StatusError(removed.status());
+  if (!*removed) return JsonError(http::status::not_found, "no mesh with id " + id);
+  ctx.cache().Evict(id);
+  spdlog::info("deleted {}", id);
+  return Response{http::status::no_content, 11};
+}
+
+}  // namespace meshwave::server

@@ -1,0 +1,128 @@
+// Atomic ingest: content-addressed containers, idempotence, orphan and
+// temporary file cleanup, deletion, and refusals that leave nothing behind.
+#include "ingest.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "durable_file.h"
+#include "e2e/cli_runner.h"
+#include "meshwave/container.h"
+#include "sha256.h"
+#include "test_data.h"
+
+namespace meshwave::server {
+namespace {
+
+using meshwave::testing::ReadBytes;
+using meshwave::testing::SharedMesh;
+using meshwave::testing::TempDir;
+
+size_t FilesIn(const std::filesystem::path& dir) {
+  size_t n = 0;
+  for ([[maybe_unused]] const auto& f : std::filesystem::directory_iterator(dir)) ++n;
+  return n;
+}
+
+TEST(IngestTest, StoresAContentAddressedContainer) {
+  TempDir tmp;
+  auto catalog = Catalog::Open(tmp / "c").value();
+  auto r = IngestMeshFile(*catalog, SharedMesh("holes_patch_sr2.ply"));
+  ASSERT_TRUE(r.ok()) << r.status().ToString();
+  EXPECT_FALSE(r->already_present);
+  EXPECT_FALSE(r->remeshed);
+  const CatalogEntry& e = r->entry;
+  EXPECT_EQ(e.name, "holes_patch_sr2");
+  EXPECT_EQ(e.source, "holes_patch_sr2.ply");
+  EXPECT_EQ(e.container, "containers/" + e.sha256 + ".mwv");
+  EXPECT_EQ(e.id, e.sha256.substr(0, 12));
+  const std::string bytes = ReadBytes(catalog->ContainerPath(e));
+  EXPECT_EQ(Sha256Hex(bytes), e.sha256);
+  EXPECT_EQ(bytes.size(), e.bytes);
+  auto parsed = ParseContainer(bytes);
+  ASSERT_TRUE(parsed.ok());
+  EXPECT_EQ(parsed->ids.size(), e.packets);
+  EXPECT_EQ(parsed->header.vertices(), e.vertices);
+  EXPECT_TRUE(catalog->Find(e.id)->has_value());
+}
+
+TEST(IngestTest, SameFileTwiceGivesTheSameEntry) {
+  TempDir tmp;
+  auto catalog = Catalog::Open(tmp / "c").value();
+  auto a = IngestMeshFile(*catalog, SharedMesh("holes_patch_sr2.ply"));
+  auto b = IngestMeshFile(*catalog, SharedMesh("holes_patch_sr2.ply"));
+  ASSERT_TRUE(a.ok() && b.ok());
+  EXPECT_TRUE(b->already_present);
+  EXPECT_EQ(a->entry.id, b->entry.id);
+  EXPECT_EQ(*catalog->Count(), 1u);
+  EXPECT_EQ(FilesIn(catalog->containers_dir()), 1u);
+}
+
+TEST(IngestTest, RemeshesIrregularInput) {
+  TempDir tmp;
+  auto catalog = Catalog::Open(tmp / "c").value();
+  auto r = IngestMeshFile(*catalog, meshwave::testing::SampleMesh("elephant.off"));
+  ASSERT_TRUE(r.ok()) << r.status().ToString();
+  EXPECT_TRUE(r->remeshed);
+  EXPECT_GE(r->entry.levels, 1u);
+}
+
+TEST(IngestTest, RejectsMalformedMeshLeavingNothing) {
+  TempDir tmp;
+  auto catalog = Catalog::Open(tmp / "c").value();
+  auto r = IngestMeshBytes(*catalog, "ply\nformat ascii 1.0\nelement vertex 99999999\n",
+                           MeshFormat::kPly, "bad", "bad.ply");
+  EXPECT_FALSE(r.ok());
+  EXPECT_EQ(*catalog->Count(), 0u);
+  EXPECT_EQ(FilesIn(catalog->containers_dir()), 0u);
+  EXPECT_FALSE(IngestContainer(*catalog, "MWV1 not a container", "x", "x.mwv").ok());
+  EXPECT_EQ(FilesIn(catalog->containers_dir()), 0u);
+}
+
+TEST(IngestTest, RemovesOrphanAndTemporaryFiles) {
+  TempDir tmp;
+  auto catalog = Catalog::Open(tmp / "c").value();
+  auto r = IngestMeshFile(*catalog, SharedMesh("holes_patch_sr2.ply"));
+  ASSERT_TRUE(r.ok());
+  // A container renamed into place but never committed, and a half write.
+  const auto orphan = catalog->containers_dir() / (std::string(64, 'a') + ".mwv");
+  const auto temp = catalog->containers_dir() / (std::string(kTempPrefix) + "123-0-x.mwv");
+  std::ofstream(orphan) << "orphan";
+  std::ofstream(temp) << "half";
+  auto report = RemoveOrphans(*catalog);
+  ASSERT_TRUE(report.ok());
+  EXPECT_EQ(report->orphan_files, 1u);
+  EXPECT_EQ(report->temp_files, 1u);
+  EXPECT_FALSE(std::filesystem::exists(orphan));
+  EXPECT_FALSE(std::filesystem::exists(temp));
+  EXPECT_TRUE(std::filesystem::exists(catalog->ContainerPath(r->entry)));
+}
+
+TEST(IngestTest, RemoveEntryDeletesRowThenFile) {
+  TempDir tmp;
+  auto catalog = Catalog::Open(tmp / "c").value();
+  auto r = IngestMeshFile(*catalog, SharedMesh("holes_patch_sr2.ply"));
+  ASSERT_TRUE(r.ok());
+  EXPECT_TRUE(*RemoveEntry(*catalog, r->entry.id));
+  EXPECT_FALSE(catalog->Find(r->entry.id)->has_value());
+  EXPECT_FALSE(std::filesystem::exists(catalog->ContainerPath(r->entry)));
+  EXPECT_FALSE(*RemoveEntry(*catalog, r->entry.id));
+}
+
+TEST(DurableFileTest, WritesWholeFileWithoutTemporaries) {
+  TempDir tmp;
+  std::filesystem::create_directories(tmp / "d");
+  ASSERT_TRUE(WriteFileDurably(tmp / "d/f.bin", "hello").ok());
+  EXPECT_EQ(ReadBytes(tmp / "d/f.bin"), "hello");
+  EXPECT_EQ(FilesIn(tmp / "d"), 1u);
+  EXPECT_FALSE(WriteFileDurably(tmp / "missing/f.bin", "x").ok());
+}
+
+TEST(Sha256Test, MatchesKnownDigest) {
+  EXPECT_EQ(Sha256Hex("abc"),
+            "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
+}
+
+}  // namespace
+}  // namespace meshwave::server

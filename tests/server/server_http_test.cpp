@@ -1,0 +1,575 @@
+// The meshwave-server binary end to end: ingest shared meshes, start it on
+// a free port, and check every endpoint with a Beast client, including the
+// refusals, then stop it with SIGTERM (exit code 0).
+#include <google/protobuf/util/json_util.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <set>
+
+#include "catalog.h"
+#include "catalog_api.pb.h"
+#include "e2e/cli_runner.h"
+#include "http_client_testonly.h"
+#include "meshwave/container.h"
+#include "meshwave/metrics.h"
+#include "meshwave/progression.h"
+#include "meshwave/progressive_decoder.h"
+#include "server_process_testonly.h"
+#include "sha256.h"
+#include "test_data.h"
+
+namespace meshwave::testing {
+namespace {
+
+using server::Sha256Hex;
+
+constexpr char kToken[] = "test-token-1234";
+
+std::vector<std::filesystem::path> TestMeshes() {
+  return {SampleMesh("elephant.off"), SampleMesh("holes.off"), SharedMesh("holes_patch_sr2.ply"),
+          SharedMesh("elephant_cartoon_sr2.obj")};
+}
+
+proto::MeshList ParseList(const std::string& json) {
+  proto::MeshList list;
+  EXPECT_TRUE(google::protobuf::util::JsonStringToMessage(json, &list).ok()) << json;
+  return list;
+}
+
+// Decodes a container; the positions of the finest level.
+std::vector<Vec3> Decode(std::string_view bytes, double* estimated_psnr = nullptr) {
+  auto parsed = ParseContainer(bytes);
+  EXPECT_TRUE(parsed.ok()) << parsed.status().ToString();
+  if (!parsed.ok()) return {};
+  auto decoder = ProgressiveDecoder::Create(parsed->header);
+  EXPECT_TRUE(decoder.ok());
+  if (!decoder.ok()) return {};
+  for (size_t i = 0; i < parsed->ids.size(); ++i) {
+    EXPECT_TRUE((*decoder)->AddPacket(parsed->ids[i], parsed->payloads[i]).ok());
+  }
+  if (estimated_psnr) *estimated_psnr = (*decoder)->EstimatedPsnr();
+  return (*decoder)->Positions();
+}
+
+double Diagonal(const proto::StreamHeader& h) {
+  double d = 0;
+  for (int a = 0; a < 3; ++a) d += std::pow(h.bbox_max(a) - h.bbox_min(a), 2);
+  return std::sqrt(d);
+}
+
+double Psnr(const std::vector<Vec3>& reference, const std::vector<Vec3>& test, double peak) {
+  auto e = VertexError(reference, test, peak);
+  EXPECT_TRUE(e.ok());
+  return e.ok() ? e->psnr_db : -1;
+}
+
+bool IsJsonError(const HttpReply& r) {
+  return r.Header("content-type") == "application/json" &&
+         r.body.find("\"error\"") != std::string::npos;
+}
+
+class ServerHttpTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    work_ = tmp_ / "work";
+    std::filesystem::create_directories(work_);
+    catalog_ = tmp_ / "catalog";
+    std::vector<std::string> args = {"ingest", "--catalog", catalog_.string()};
+    for (const auto& m : TestMeshes()) args.push_back(m.string());
+    const pid_t ingest = SpawnServer(args, work_ / "ingest.log");
+    ASSERT_EQ(WaitExit(ingest, std::chrono::seconds(120)), 0) << ReadBytes(work_ / "ingest.log");
+    server_ = std::make_unique<ServerProcess>(
+        catalog_, work_, std::vector<std::string>{std::string("MESHWAVE_UPLOAD_TOKEN=") + kToken});
+    ASSERT_TRUE(server_->running()) << ReadBytes(server_->log());
+    port_ = server_->port();
+    const HttpReply list = HttpGet(port_, "/v1/meshes");
+    ASSERT_EQ(list.status, 200u);
+    const proto::MeshList meshes = ParseList(list.body);
+    for (const auto& m : meshes.meshes()) ids_[m.name()] = m.id();
+    ASSERT_EQ(ids_.size(), 4u) << list.body;
+  }
+
+  void TearDown() override {
+    if (server_) {
+      EXPECT_EQ(server_->Stop(), 0) << ReadBytes(server_->log());
+    }
+  }
+
+  std::string Container(const std::string& id) {
+    const HttpReply r = HttpGet(port_, "/v1/meshes/" + id + "/container");
+    EXPECT_EQ(r.status, 200u);
+    return r.body;
+  }
+
+  TempDir tmp_;
+  std::filesystem::path work_, catalog_;
+  std::unique_ptr<ServerProcess> server_;
+  uint16_t port_ = 0;
+  std::map<std::string, std::string> ids_;  // name -> id
+};
+
+TEST_F(ServerHttpTest, ListsCatalogAsJsonWithPaging) {
+  const HttpReply all = HttpGet(port_, "/v1/meshes");
+  EXPECT_EQ(all.Header("content-type"), "application/json");
+  const proto::MeshList list = ParseList(all.body);
+  EXPECT_EQ(list.total(), 4u);
+  ASSERT_EQ(list.meshes_size(), 4);
+  for (const auto& m : list.meshes()) {
+    EXPECT_GT(m.vertices(), 0u);
+    EXPECT_GT(m.packets(), 0u);
+    EXPECT_EQ(m.id(), m.sha256().substr(0, 12));
+  }
+  EXPECT_EQ(ParseList(HttpGet(port_, "/v1/meshes?limit=2").body).meshes_size(), 2);
+  const proto::MeshList tail = ParseList(HttpGet(port_, "/v1/meshes?limit=2&offset=3").body);
+  ASSERT_EQ(tail.meshes_size(), 1);
+  EXPECT_EQ(tail.meshes(0).id(), list.meshes(3).id());
+}
+
+TEST_F(ServerHttpTest, ListsCatalogAsProtobuf) {
+  const HttpReply r = HttpGet(port_, "/v1/meshes", {{"Accept", "application/x-protobuf"}});
+  ASSERT_EQ(r.status, 200u);
+  EXPECT_EQ(r.Header("content-type"), "application/x-protobuf");
+  proto::MeshList list;
+  ASSERT_TRUE(list.ParseFromString(r.body));
+  EXPECT_EQ(list.meshes_size(), 4);
+  EXPECT_EQ(list.total(), 4u);
+}
+
+TEST_F(ServerHttpTest, DescribesMeshWithRateDistortionTable) {
+  const std::string id = ids_.at("holes_patch_sr2");
+  const HttpReply r = HttpGet(port_, "/v1/meshes/" + id);
+  ASSERT_EQ(r.status, 200u) << r.body;
+  proto::MeshDetails d;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(r.body, &d).ok());
+  EXPECT_EQ(d.mesh().id(), id);
+  EXPECT_EQ(d.header_bytes() + d.payload_bytes(), d.mesh().bytes());
+  ASSERT_EQ(d.orders_size(), 3);
+  EXPECT_EQ(d.orders(0).name(), "quality");
+  ASSERT_EQ(d.rate_distortion_size(), static_cast<int>(d.mesh().packets()) + 1);
+  for (int i = 1; i < d.rate_distortion_size(); ++i) {
+    EXPECT_GT(d.rate_distortion(i).bytes(), d.rate_distortion(i - 1).bytes());
+    EXPECT_GE(d.rate_distortion(i).psnr_db(), d.rate_distortion(i - 1).psnr_db() - 1e-9);
+  }
+  EXPECT_EQ(d.rate_distortion(d.rate_distortion_size() - 1).bytes(), d.mesh().bytes());
+  // The table's last figure is what a decoder of the whole stream estimates.
+  double estimate = 0;
+  Decode(Container(id), &estimate);
+  EXPECT_NEAR(d.rate_distortion(d.rate_distortion_size() - 1).psnr_db(), estimate, 1e-6);
+}
+
+TEST_F(ServerHttpTest, HeaderIsTheContainersStreamHeader) {
+  for (const auto& [name, id] : ids_) {
+    const HttpReply r = HttpGet(port_, "/v1/meshes/" + id + "/header");
+    ASSERT_EQ(r.status, 200u);
+    proto::StreamHeader served;
+    ASSERT_TRUE(served.ParseFromString(r.body));
+    auto parsed = ParseContainer(Container(id));
+    ASSERT_TRUE(parsed.ok());
+    parsed->header.clear_present();
+    EXPECT_EQ(served.SerializeAsString(), parsed->header.SerializeAsString()) << name;
+    EXPECT_TRUE(ValidateStreamHeader(served).ok());
+  }
+}
+
+TEST_F(ServerHttpTest, StreamDecodesLikeALocalTruncation) {
+  for (const auto& [name, id] : ids_) {
+    const std::string full = Container(id);
+    auto parsed = ParseContainer(full);
+    ASSERT_TRUE(parsed.ok());
+    proto::StreamHeader header = parsed->header;
+    header.clear_present();
+    std::map<uint32_t, std::string_view> payloads;
+    for (size_t i = 0; i < parsed->ids.size(); ++i) payloads[parsed->ids[i]] = parsed->payloads[i];
+    const std::vector<Vec3> reference = Decode(full);
+    const double peak = Diagonal(header);
+    const uint64_t head = ContainerSize(header, {});
+    for (Progression p : {Progression::kQuality, Progression::kResolution, Progression::kRd}) {
+      const auto order = PacketOrder(header, p);
+      for (uint64_t budget : {head, head + 700, full.size() / 3, 2 * full.size() / 3,
+                              uint64_t{full.size()}}) {
+        const std::string target = "/v1/meshes/" + id + "/stream?order=" + ProgressionName(p) +
+                                   "&budget=" + std::to_string(budget);
+        const HttpReply r = HttpGet(port_, target);
+        ASSERT_EQ(r.status, 200u) << target << " " << r.body;
+        // The same truncation made here with the codec library.
+        const Selection s = SelectPackets(header, order, budget);
+        std::string local = SerializeContainerHead(header, s.ids);
+        for (uint32_t k : s.ids) local += payloads.at(k);
+        EXPECT_EQ(r.body.size(), local.size()) << target;
+        EXPECT_LE(r.body.size(), budget);
+        EXPECT_EQ(r.Header("x-meshwave-packets"), std::to_string(s.ids.size()));
+        EXPECT_EQ(r.Header("x-meshwave-next-cursor"), std::to_string(s.next_cursor));
+        EXPECT_EQ(r.Header("x-meshwave-complete"), s.next_cursor == order.size() ? "true" : "false");
+        double served_estimate = 0, local_estimate = 0;
+        const double served_psnr = Psnr(reference, Decode(r.body, &served_estimate), peak);
+        const double local_psnr = Psnr(reference, Decode(local, &local_estimate), peak);
+        EXPECT_EQ(served_psnr, local_psnr) << target;
+        EXPECT_EQ(served_estimate, local_estimate) << target;
+        EXPECT_EQ(r.body, local) << target;
+      }
+    }
+  }
+}
+
+TEST_F(ServerHttpTest, StreamLimitsLevels) {
+  const std::string id = ids_.at("elephant_cartoon_sr2");
+  auto parsed = ParseContainer(Container(id));
+  ASSERT_TRUE(parsed.ok());
+  const auto order = PacketOrder(parsed->header, Progression::kResolution, 1);
+  const HttpReply r = HttpGet(port_, "/v1/meshes/" + id + "/stream?order=resolution&max_level=1");
+  ASSERT_EQ(r.status, 200u);
+  EXPECT_EQ(r.Header("x-meshwave-packets"), std::to_string(order.size()));
+  EXPECT_EQ(r.Header("x-meshwave-complete"), "true");
+  auto served = ParseContainer(r.body);
+  ASSERT_TRUE(served.ok());
+  EXPECT_EQ(served->ids, order);
+}
+
+TEST_F(ServerHttpTest, StreamContinuesFromCursor) {
+  const std::string id = ids_.at("elephant");
+  const std::string full = Container(id);
+  auto parsed = ParseContainer(full);
+  ASSERT_TRUE(parsed.ok());
+  proto::StreamHeader header = parsed->header;
+  header.clear_present();
+  const auto order = PacketOrder(header, Progression::kRd);
+  const uint64_t head = ContainerSize(header, {});
+
+  HttpReply first = HttpGet(port_, "/v1/meshes/" + id + "/stream?order=rd&budget=" +
+                                       std::to_string(head + 1000));
+  ASSERT_EQ(first.status, 200u);
+  auto start = ParseContainer(first.body);
+  ASSERT_TRUE(start.ok());
+  auto decoder = ProgressiveDecoder::Create(start->header);
+  ASSERT_TRUE(decoder.ok());
+  for (size_t i = 0; i < start->ids.size(); ++i) {
+    ASSERT_TRUE((*decoder)->AddPacket(start->ids[i], start->payloads[i]).ok());
+  }
+  size_t cursor = std::stoul(first.Header("x-meshwave-next-cursor"));
+  EXPECT_EQ(cursor, start->ids.size());
+  uint64_t budget = 1500;
+  bool complete = first.Header("x-meshwave-complete") == "true";
+  HttpConnection conn(port_);  // keep-alive: every step on one connection
+  while (!complete) {
+    const std::string target = "/v1/meshes/" + id + "/stream?order=rd&from=" +
+                               std::to_string(cursor) + "&budget=" + std::to_string(budget);
+    const HttpReply r = conn.Send(http::verb::get, target);
+    ASSERT_EQ(r.status, 200u) << r.body;
+    EXPECT_TRUE(r.keep_alive);
+    const size_t next = std::stoul(r.Header("x-meshwave-next-cursor"));
+    ASSERT_EQ(std::stoul(r.Header("x-meshwave-packets")), next - cursor);
+    // Payloads only: split them by the index's lengths.
+    std::string_view body = r.body;
+    for (size_t k = cursor; k < next; ++k) {
+      const uint32_t pid = order[k];
+      const size_t length = header.packets().length(static_cast<int>(pid));
+      ASSERT_GE(body.size(), length);
+      ASSERT_TRUE((*decoder)->AddPacket(pid, body.substr(0, length)).ok());
+      body.remove_prefix(length);
+    }
+    EXPECT_TRUE(body.empty());
+    EXPECT_LE(r.body.size(), budget);
+    if (next == cursor) budget *= 2;  // the next packet is larger than the budget
+    cursor = next;
+    complete = r.Header("x-meshwave-complete") == "true";
+  }
+  EXPECT_EQ(cursor, order.size());
+  double full_estimate = 0;
+  const auto reference = Decode(full, &full_estimate);
+  EXPECT_EQ((*decoder)->Positions(), reference);
+  EXPECT_EQ((*decoder)->EstimatedPsnr(), full_estimate);
+}
+
+TEST_F(ServerHttpTest, ServesSinglePackets) {
+  const std::string id = ids_.at("holes");
+  auto parsed = ParseContainer(Container(id));
+  ASSERT_TRUE(parsed.ok());
+  for (size_t i = 0; i < parsed->ids.size(); ++i) {
+    const HttpReply r =
+        HttpGet(port_, "/v1/meshes/" + id + "/packets/" + std::to_string(parsed->ids[i]));
+    ASSERT_EQ(r.status, 200u);
+    EXPECT_EQ(r.body, parsed->payloads[i]);
+  }
+  const HttpReply past =
+      HttpGet(port_, "/v1/meshes/" + id + "/packets/" + std::to_string(parsed->ids.size()));
+  EXPECT_EQ(past.status, 404u);
+  EXPECT_TRUE(IsJsonError(past));
+}
+
+TEST_F(ServerHttpTest, ContainerAnswersRangeRequests) {
+  const std::string id = ids_.at("holes_patch_sr2");
+  const std::string full = Container(id);
+  EXPECT_EQ(Sha256Hex(full).substr(0, 12), id);
+  const std::string base = "/v1/meshes/" + id + "/container";
+  HttpReply r = HttpGet(port_, base, {{"Range", "bytes=10-19"}});
+  EXPECT_EQ(r.status, 206u);
+  EXPECT_EQ(r.body, full.substr(10, 10));
+  EXPECT_EQ(r.Header("content-range"), "bytes 10-19/" + std::to_string(full.size()));
+  r = HttpGet(port_, base, {{"Range", "bytes=-5"}});
+  EXPECT_EQ(r.status, 206u);
+  EXPECT_EQ(r.body, full.substr(full.size() - 5));
+  r = HttpGet(port_, base, {{"Range", "bytes=100-"}});
+  EXPECT_EQ(r.status, 206u);
+  EXPECT_EQ(r.body, full.substr(100));
+  r = HttpGet(port_, base, {{"Range", "bytes=" + std::to_string(full.size()) + "-"}});
+  EXPECT_EQ(r.status, 416u);
+  EXPECT_EQ(r.Header("content-range"), "bytes */" + std::to_string(full.size()));
+  EXPECT_TRUE(IsJsonError(r));
+  r = HttpGet(port_, base, {{"Range", "bytes=9-3"}});
+  EXPECT_EQ(r.status, 416u);
+  r = HttpGet(port_, base, {{"Range", "bytes=0-1,4-5"}});  // several: the whole
+  EXPECT_EQ(r.status, 200u);
+  EXPECT_EQ(r.body, full);
+  EXPECT_EQ(r.Header("accept-ranges"), "bytes");
+}
+
+TEST_F(ServerHttpTest, ImmutableResourcesAnswerIfNoneMatch) {
+  const std::string id = ids_.at("elephant_cartoon_sr2");
+  for (const std::string suffix : {"/header", "/container", "/packets/0",
+                                   "/stream?order=quality&budget=9000", ""}) {
+    const std::string target = "/v1/meshes/" + id + suffix;
+    const HttpReply r = HttpGet(port_, target);
+    ASSERT_EQ(r.status, 200u) << target;
+    const std::string etag = r.Header("etag");
+    ASSERT_FALSE(etag.empty()) << target;
+    EXPECT_EQ(etag.front(), '"');  // strong
+    EXPECT_EQ(r.Header("cache-control"), "public, max-age=31536000, immutable");
+    HttpReply again = HttpGet(port_, target, {{"If-None-Match", etag}});
+    EXPECT_EQ(again.status, 304u) << target;
+    EXPECT_TRUE(again.body.empty());
+    EXPECT_EQ(again.Header("etag"), etag);
+    again = HttpGet(port_, target, {{"If-None-Match", "\"other\", W/" + etag}});
+    EXPECT_EQ(again.status, 304u) << target;
+    again = HttpGet(port_, target, {{"If-None-Match", "\"other\""}});
+    EXPECT_EQ(again.status, 200u) << target;
+  }
+  // Another stream query gives other bytes, so another tag.
+  const auto a = HttpGet(port_, "/v1/meshes/" + id + "/stream?budget=9000").Header("etag");
+  const auto b = HttpGet(port_, "/v1/meshes/" + id + "/stream?budget=12000").Header("etag");
+  EXPECT_NE(a, b);
+}
+
+TEST_F(ServerHttpTest, UploadAndDeleteNeedTheToken) {
+  const std::string mesh = ReadBytes(SharedMesh("elephant_cartoon_sr2.obj"));
+  HttpConnection c1(port_);
+  HttpReply r = c1.Send(http::verb::post, "/v1/meshes?name=uploaded", {}, mesh);
+  EXPECT_EQ(r.status, 401u);
+  EXPECT_TRUE(IsJsonError(r));
+  HttpConnection c2(port_);
+  r = c2.Send(http::verb::post, "/v1/meshes?name=uploaded", {{"Authorization", "Bearer wrong"}},
+              mesh);
+  EXPECT_EQ(r.status, 403u);
+  HttpConnection c3(port_);
+  const std::pair<std::string, std::string> auth = {"Authorization", std::string("Bearer ") + kToken};
+  r = c3.Send(http::verb::post, "/v1/meshes?name=uploaded", {auth}, mesh);
+  ASSERT_EQ(r.status, 201u) << r.body;
+  proto::MeshSummary summary;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(r.body, &summary).ok());
+  EXPECT_EQ(summary.name(), "uploaded");
+  EXPECT_EQ(r.Header("location"), "/v1/meshes/" + summary.id());
+  r = c3.Send(http::verb::post, "/v1/meshes?name=uploaded", {auth}, mesh);
+  EXPECT_EQ(r.status, 200u);  // same bytes: the same entry
+  EXPECT_EQ(ParseList(HttpGet(port_, "/v1/meshes").body).total(), 5u);
+  r = c3.Send(http::verb::post, "/v1/meshes?name=junk&format=ply", {auth}, "ply\nnonsense\n");
+  EXPECT_EQ(r.status, 422u);
+  EXPECT_TRUE(IsJsonError(r));
+
+  const std::string target = "/v1/meshes/" + summary.id();
+  EXPECT_EQ(HttpConnection(port_).Send(http::verb::delete_, target).status, 401u);
+  EXPECT_EQ(HttpConnection(port_)
+                .Send(http::verb::delete_, target, {{"Authorization", "Bearer nope"}})
+                .status,
+            403u);
+  EXPECT_EQ(HttpConnection(port_).Send(http::verb::delete_, target, {auth}).status, 204u);
+  EXPECT_EQ(HttpGet(port_, target).status, 404u);
+  EXPECT_EQ(HttpGet(port_, target + "/container").status, 404u);
+  EXPECT_EQ(HttpConnection(port_).Send(http::verb::delete_, target, {auth}).status, 404u);
+  EXPECT_EQ(ParseList(HttpGet(port_, "/v1/meshes").body).total(), 4u);
+}
+
+TEST_F(ServerHttpTest, BadRequestsGetJsonErrorsAndServerStaysUp) {
+  const std::string id = ids_.at("holes");
+  const std::string m = "/v1/meshes/" + id;
+  const std::vector<std::pair<std::string, unsigned>> corpus = {
+      {"GET /v1/meshes/xyz HTTP/1.1", 400},
+      {"GET /v1/meshes/0123456789AB HTTP/1.1", 400},
+      {"GET /v1/meshes/0123456789ab0 HTTP/1.1", 400},
+      {"GET /v1/meshes/000000000000 HTTP/1.1", 404},
+      {"GET /v1/meshes/../../etc/passwd HTTP/1.1", 400},
+      {"GET /v1/meshes/%2e%2e/%2e%2e/etc/passwd HTTP/1.1", 400},
+      {"GET /v1/meshes/" + id + "%2f..%2f HTTP/1.1", 400},
+      {"GET /v1/meshes/%00 HTTP/1.1", 400},
+      {"GET " + m + "/stream?budget=-1 HTTP/1.1", 400},
+      {"GET " + m + "/stream?budget=abc HTTP/1.1", 400},
+      {"GET " + m + "/stream?budget=99999999999999999999999999 HTTP/1.1", 400},
+      {"GET " + m + "/stream?budget=18446744073709551616 HTTP/1.1", 400},
+      {"GET " + m + "/stream?budget=10 HTTP/1.1", 400},  // below the header
+      {"GET " + m + "/stream?order=best HTTP/1.1", 400},
+      {"GET " + m + "/stream?max_level=99 HTTP/1.1", 400},
+      {"GET " + m + "/stream?from=999999 HTTP/1.1", 400},
+      {"GET " + m + "/stream?from=-1 HTTP/1.1", 400},
+      {"GET " + m + "/stream?evil=1 HTTP/1.1", 400},
+      {"GET " + m + "/packets/-1 HTTP/1.1", 400},
+      {"GET " + m + "/packets/99999999999 HTTP/1.1", 400},
+      {"GET " + m + "/packets/1000 HTTP/1.1", 404},
+      {"GET " + m + "/bogus HTTP/1.1", 404},
+      {"GET " + m + "/header?x=1 HTTP/1.1", 400},
+      {"GET /v1/nothing HTTP/1.1", 404},
+      {"GET /v2/meshes HTTP/1.1", 404},
+      {"GET /v1/meshes?limit=100000 HTTP/1.1", 400},
+      {"GET /v1/meshes?limit=-5 HTTP/1.1", 400},
+      {"GET /v1/meshes?foo=1 HTTP/1.1", 400},
+      {"GET relative/path HTTP/1.1", 400},
+      {"PUT " + m + " HTTP/1.1", 405},
+      {"POST " + m + "/header HTTP/1.1\r\nContent-Length: 0", 405},
+      {"DELETE /healthz HTTP/1.1", 405},
+      {"PATCH /v1/meshes HTTP/1.1", 405},
+      {"GET /v1/meshes HTTP/1.1\r\nContent-Length: 10000000", 413},
+      {"GET /healthz HTTP/1.1\r\nX-Big: " + std::string(64 * 1024, 'a'), 431},
+      {"HELLO", 400},
+      {"GET /v1/meshes HTTP/9.9", 400},
+      {"GET /v1/ws HTTP/1.1\r\nConnection: Upgrade\r\nUpgrade: websocket\r\n"
+       "Sec-WebSocket-Version: 13\r\nSec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==", 501},
+  };
+  for (const auto& [request, expected] : corpus) {
+    HttpConnection c(port_);
+    ASSERT_TRUE(c.connected());
+    const HttpReply r = c.SendRaw(request + "\r\nHost: x\r\n\r\n");
+    EXPECT_EQ(r.status, expected) << request.substr(0, 120);
+    EXPECT_TRUE(IsJsonError(r)) << request.substr(0, 120) << " -> " << r.body;
+  }
+  const HttpReply health = HttpGet(port_, "/healthz");
+  EXPECT_EQ(health.status, 200u);
+  EXPECT_EQ(HttpGet(port_, "/v1/meshes").status, 200u);
+}
+
+TEST_F(ServerHttpTest, MetricsCountRequests) {
+  HttpGet(port_, "/v1/meshes");
+  HttpGet(port_, "/v1/nothing");
+  const HttpReply r = HttpGet(port_, "/metrics");
+  ASSERT_EQ(r.status, 200u);
+  EXPECT_NE(r.body.find("meshwave_http_requests_total{code=\"200\"}"), std::string::npos);
+  EXPECT_NE(r.body.find("meshwave_http_requests_total{code=\"404\"} 1"), std::string::npos);
+  EXPECT_NE(r.body.find("meshwave_http_request_duration_seconds_bucket{le=\"+Inf\"}"),
+            std::string::npos);
+  EXPECT_NE(r.body.find("meshwave_http_response_bytes_total "), std::string::npos);
+  EXPECT_NE(r.body.find("meshwave_catalog_meshes 4"), std::string::npos);
+  EXPECT_NE(r.body.find("meshwave_websocket_connections 0"), std::string::npos);
+}
+
+TEST_F(ServerHttpTest, HeadAnswersWithoutBody) {
+  HttpConnection c(port_);
+  const std::string id = ids_.at("holes");
+  const HttpReply r = c.Send(http::verb::head, "/v1/meshes/" + id + "/container");
+  EXPECT_EQ(r.status, 200u);
+  EXPECT_TRUE(r.body.empty());
+  EXPECT_EQ(r.Header("content-length"), std::to_string(Container(id).size()));
+}
+
+TEST_F(ServerHttpTest, StopsGracefullyWithIdleConnectionsOpen) {
+  HttpConnection idle(port_);
+  ASSERT_EQ(idle.Send(http::verb::get, "/healthz").status, 200u);  // keep-alive
+  EXPECT_EQ(server_->Stop(), 0) << ReadBytes(server_->log());
+  EXPECT_TRUE(idle.ClosedByServer());
+  server_.reset();
+}
+
+TEST_F(ServerHttpTest, RefusesConnectionsPastTheCap) {
+  const auto dir = tmp_ / "capped";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "server.conf") << "max_connections: 2\nidle_timeout_seconds: 20\n";
+  ServerProcess capped(catalog_, dir, {}, {"--config", (dir / "server.conf").string()});
+  ASSERT_TRUE(capped.running()) << ReadBytes(capped.log());
+  HttpConnection a(capped.port()), b(capped.port());
+  ASSERT_EQ(a.Send(http::verb::get, "/healthz").status, 200u);
+  ASSERT_EQ(b.Send(http::verb::get, "/healthz").status, 200u);
+  HttpConnection c(capped.port());
+  const HttpReply refused = c.Send(http::verb::get, "/healthz");
+  EXPECT_EQ(refused.status, 503u);
+  EXPECT_TRUE(IsJsonError(refused));
+  EXPECT_EQ(a.Send(http::verb::get, "/healthz").status, 200u);  // the others still work
+  EXPECT_EQ(capped.Stop(), 0);
+}
+
+TEST(ServerStartTest, RejectsABadConfigFile) {
+  TempDir tmp;
+  std::filesystem::create_directories(tmp / "w");
+  std::ofstream(tmp / "w/bad.conf") << "threads: many\n";
+  const pid_t pid = SpawnServer({"--catalog", (tmp / "c").string(), "--config",
+                                 (tmp / "w/bad.conf").string()},
+                                tmp / "w/log");
+  EXPECT_EQ(WaitExit(pid), 1);
+  EXPECT_NE(ReadBytes(tmp / "w/log").find("bad.conf"), std::string::npos);
+}
+
+// kill -9 of an ingest run, then a restart: every row has its file, no
+// file lacks a row, and every committed entry is served.
+TEST(ServerCrashTest, KilledIngestLeavesConsistentCatalog) {
+  TempDir tmp;
+  const auto work = tmp / "work";
+  const auto catalog_dir = tmp / "catalog";
+  std::filesystem::create_directories(work);
+  std::vector<std::string> args = {"ingest", "--catalog", catalog_dir.string(),
+                                   SharedMesh("holes_patch_sr2.ply").string()};
+  // Copies under other names encode to other containers (the name is in
+  // the header), so each is a new entry.
+  for (int i = 0; i < 6; ++i) {
+    const auto copy = work / ("elephant" + std::to_string(i) + ".off");
+    std::filesystem::copy_file(SampleMesh("elephant.off"), copy);
+    args.push_back(copy.string());
+  }
+  const pid_t ingest = SpawnServer(args, work / "ingest.log");
+  ASSERT_GT(ingest, 0);
+  const auto containers = catalog_dir / "containers";
+  const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  auto count_files = [&] {
+    size_t n = 0;
+    std::error_code ec;
+    for (const auto& f : std::filesystem::directory_iterator(containers, ec)) {
+      n += f.path().extension() == ".mwv" ? 1 : 0;
+    }
+    return n;
+  };
+  while (count_files() < 3 && std::chrono::steady_clock::now() < end) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  ::kill(ingest, SIGKILL);
+  EXPECT_EQ(WaitExit(ingest), -1);  // killed, not finished
+  // What a crash between rename and insert, or inside a write, leaves.
+  std::ofstream(containers / (std::string(64, 'b') + ".mwv")) << "renamed, never committed";
+  std::ofstream(containers / ".tmp-999999-0-x.mwv") << "half written";
+
+  ServerProcess server(catalog_dir, work);
+  ASSERT_TRUE(server.running()) << ReadBytes(server.log());
+  const HttpReply list = HttpGet(server.port(), "/v1/meshes");
+  ASSERT_EQ(list.status, 200u);
+  const proto::MeshList entries = ParseList(list.body);
+  EXPECT_GE(entries.meshes_size(), 2);
+  std::set<std::string> expected_files;
+  for (const auto& m : entries.meshes()) {
+    expected_files.insert(m.sha256() + ".mwv");
+    const HttpReply c = HttpGet(server.port(), "/v1/meshes/" + m.id() + "/container");
+    ASSERT_EQ(c.status, 200u) << m.id();
+    EXPECT_EQ(Sha256Hex(c.body), m.sha256());
+    EXPECT_TRUE(ParseContainer(c.body).ok());
+  }
+  std::set<std::string> files;
+  for (const auto& f : std::filesystem::directory_iterator(containers)) {
+    files.insert(f.path().filename().string());
+  }
+  EXPECT_EQ(files, expected_files);
+  EXPECT_EQ(server.Stop(), 0);
+
+  // Ingesting again completes the catalog.
+  const pid_t again = SpawnServer(args, work / "ingest2.log");
+  EXPECT_EQ(WaitExit(again, std::chrono::seconds(120)), 0) << ReadBytes(work / "ingest2.log");
+  auto catalog = server::Catalog::Open(catalog_dir);
+  ASSERT_TRUE(catalog.ok());
+  EXPECT_EQ(*(*catalog)->Count(), 7u);
+}
+
+}  // namespace
+}  // namespace meshwave::testing
