@@ -80,7 +80,7 @@ struct RemeshResult {
   size_t finest_faces = 0;
 
   // Quality of the finest level against the repaired input.
-  size_t flipped_faces = 0;     // normal opposing the input's nearest face
+  size_t flipped_faces = 0;     // normal opposing the input's under it
   size_t degenerate_faces = 0;  // no area to speak of (min angle < 0.005°)
   double min_angle_degrees = 0;
   // Fitting: new vertices placed along the normal, at the closest point,

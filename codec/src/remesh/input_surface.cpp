@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <utility>
 
 namespace meshwave::remesh {
@@ -84,6 +85,22 @@ InputSurface::Projection InputSurface::Closest(const Vec3& q, const Vec3& n,
                (!oriented || normals_[f].dot(n) > min_dot);
       },
       max_distance * max_distance);
+  return {hit.point, hit.face};
+}
+
+InputSurface::Projection InputSurface::ClosestWithin(const Vec3& q,
+                                                     const Vec3& n,
+                                                     double min_dot,
+                                                     uint32_t component,
+                                                     uint32_t hint) const {
+  const bool oriented = n.squaredNorm() > 0;
+  const auto hit = bvh_.ClosestPointIf(
+      q, hint,
+      [&](uint32_t f) {
+        return components_.of_face[f] == component &&
+               (!oriented || normals_[f].dot(n) > min_dot);
+      },
+      std::numeric_limits<double>::infinity());
   return {hit.point, hit.face};
 }
 

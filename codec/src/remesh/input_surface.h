@@ -53,6 +53,11 @@ class InputSurface {
       const Vec3& q, const Vec3& n, uint32_t component, uint32_t hint,
       double max_distance = std::numeric_limits<double>::infinity()) const;
 
+  // The closest point of `component` among its faces whose unit normal m
+  // has m·n > min_dot (n of any length; every face when n is zero).
+  Projection ClosestWithin(const Vec3& q, const Vec3& n, double min_dot,
+                           uint32_t component, uint32_t hint) const;
+
   // Whether `point` (on face `face`) lies on a boundary edge of the input,
   // to within 1e-9 of the edge's length.
   bool OnBoundary(const Vec3& point, uint32_t face) const;

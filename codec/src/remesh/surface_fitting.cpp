@@ -35,6 +35,11 @@ constexpr double kMaxProjectionRatio = 2.0;
 // times the length of the edge it splits.
 constexpr double kRayToNearestRatio = 3.0;
 constexpr double kRaySlack = 0.05;
+// Sweeps of FixFolds over the faces still bad after untangling.
+constexpr int kFixSweeps = 4;
+// SlideOnLoop tries the points that cut the loop between a boundary
+// vertex's neighbours into this many equal parts.
+constexpr int kSlideSteps = 8;
 
 // Area-weighted unit normals of the first `count` vertices.
 std::vector<Vec3> VertexNormals(const std::vector<Face>& faces,
@@ -88,7 +93,8 @@ class Fitter {
           VertexRings rings,
           VertexRings::Build(h_.vertex_count(j + 1), h_.faces(j + 1)));
       for (int r = 0; r < options_.relax_rounds; ++r) Relax(j + 1, rings);
-      const size_t bad = UntangleLevel(j + 1, rings);
+      UntangleLevel(j + 1, rings);
+      const size_t bad = FixFolds(j + 1, rings);
       if (j + 1 == levels) stats_.unrepaired_faces = bad;
       done += static_cast<double>(h_.faces(j + 1).size());
       if (options_.progress) options_.progress(j + 1, done / total);
@@ -246,6 +252,207 @@ class Fitter {
       Untangle(level, rings, last_quarter);
     }
     return MarkBadFaces(level, false);
+  }
+
+  // The faces folds are judged on exactly, one vertex at a time: what
+  // Untangle leaves (it judges moves by the remesh's own normals, in
+  // parallel Jacobi rounds, on the surface only) is taken face by face, in
+  // index order. Each inner vertex of a bad face (then, failing that, of
+  // its neighbours) tries points toward the centroid and the kernel of its
+  // ring, in the tangent planes of its good faces and of the input under
+  // it, on the surface and off it (half-way and full); a move is kept only
+  // if fewer of the vertex's faces are then flipped (IsFlipped, the test
+  // the result is measured with) or degenerate. Sequential, so every move
+  // is judged against the ring it will have, and deterministic. Returns
+  // the number of bad faces left.
+  size_t FixFolds(int level, const VertexRings& rings) {
+    const auto& faces = h_.faces(level);
+    size_t bad = MarkBadFaces(level, false);
+    for (int sweep = 0; sweep < kFixSweeps && bad > 0; ++sweep) {
+      std::vector<uint32_t> list;
+      for (uint32_t f = 0; f < faces.size(); ++f) {
+        if (bad_face_[f]) list.push_back(f);
+      }
+      for (uint32_t f : list) {
+        if (FaceBadness(faces[f]) == 0) continue;
+        bool fixed = false;
+        for (uint32_t v : faces[f]) fixed = fixed || TryFix(v, rings);
+        if (fixed) continue;
+        // The ring of a corner may itself be folded (no kernel): its
+        // neighbours move first when that leaves fewer bad faces around
+        // them, or as many with a better worst face, then the corners
+        // try again.
+        for (uint32_t v : faces[f]) {
+          for (uint32_t u : rings.Ring(v)) {
+            if (!fixed && u != faces[f][0] && u != faces[f][1] &&
+                u != faces[f][2]) {
+              fixed = TryFix(u, rings, /*allow_equal=*/true) &&
+                      FaceBadness(faces[f]) == 0;
+            }
+          }
+        }
+        for (uint32_t v : faces[f]) TryFix(v, rings);
+      }
+      bad = MarkBadFaces(level, false);
+    }
+    return bad;
+  }
+
+  // 1 when the face is flipped against the input or degenerate, else 0.
+  int FaceBadness(const Face& f) const {
+    const Vec3& a = positions_[f[0]];
+    const Vec3& b = positions_[f[1]];
+    const Vec3& c = positions_[f[2]];
+    if (Compactness(a, b, c) < kDegenerateCompactness) return 1;
+    return IsFlipped(surface_, a, b, c, anchors_[f[0]].component,
+                     anchors_[f[0]].face)
+               ? 1
+               : 0;
+  }
+
+  // Bad faces around inner vertex v (closed ring) and minus the worst
+  // compactness, for comparing positions of v.
+  std::pair<int, double> RingBadness(uint32_t v, std::span<const uint32_t> ring,
+                                     bool closed = true) const {
+    int count = 0;
+    double worst = 1;
+    const size_t faces = closed ? ring.size() : ring.size() - 1;
+    for (size_t i = 0; i < faces; ++i) {
+      const Face f = {v, ring[i], ring[(i + 1) % ring.size()]};
+      count += FaceBadness(f);
+      worst = std::min(worst, Compactness(positions_[f[0]], positions_[f[1]],
+                                          positions_[f[2]]));
+    }
+    return {count, -worst};
+  }
+
+  // Moves inner vertex v to the best of its candidate points if that leaves
+  // fewer bad faces around it (or, with allow_equal, as many but with a
+  // better worst face). Returns whether it moved.
+  bool TryFix(uint32_t v, const VertexRings& rings, bool allow_equal = false) {
+    if (rings.IsBoundary(v)) return SlideOnLoop(v, rings);
+    if (anchors_[v].loop != kNone) return false;
+    const auto ring = rings.Ring(v);
+    const auto now = RingBadness(v, ring);
+    if (now.first == 0 && !allow_equal) return false;
+    const Vec3 start = positions_[v];
+    const uint32_t face = anchors_[v].face;
+    // Normals: of the good faces around v, and of the input under v.
+    Vec3 good = Vec3::Zero();
+    for (size_t i = 0; i < ring.size(); ++i) {
+      const Face f = {v, ring[i], ring[(i + 1) % ring.size()]};
+      if (FaceBadness(f)) continue;
+      good += (positions_[f[1]] - start).cross(positions_[f[2]] - start);
+    }
+    Vec3 centroid = Vec3::Zero();
+    for (uint32_t u : ring) centroid += positions_[u];
+    centroid /= static_cast<double>(ring.size());
+    std::array<Vec3, 2> normals = {Vec3::Zero(), Vec3::Zero()};
+    if (good.norm() > 0) normals[0] = good.normalized();
+    if (face != InputSurface::kNoFace) normals[1] = surface_.FaceNormal(face);
+    auto best = now;
+    Vec3 best_point = start;
+    uint32_t best_face = face;
+    const auto consider = [&](const Vec3& p, uint32_t p_face) {
+      positions_[v] = p;
+      const auto badness = RingBadness(v, ring);
+      positions_[v] = start;
+      if (badness < best) {
+        best = badness;
+        best_point = p;
+        best_face = p_face;
+      }
+    };
+    for (const Vec3& n : normals) {
+      if (!(n.norm() > 0)) continue;
+      Vec3 d = centroid - start;
+      d -= d.dot(n) * n;
+      for (const Vec3& target :
+           {Vec3(start + d), KernelPoint(centroid, n, ring)}) {
+        for (const double t : {1.0, 0.5}) {
+          const Vec3 q = start + t * (target - start);
+          const InputSurface::Projection p =
+              surface_.Closest(q, n, anchors_[v].component, face,
+                               kMaxProjectionRatio * (q - start).norm());
+          if (p.found() && !surface_.OnBoundary(p.point, p.face)) {
+            consider(p.point, p.face);
+          }
+          consider(q, p.found() ? p.face : face);
+        }
+      }
+    }
+    // Then toward each ring vertex: a face across a sharp rim may need its
+    // corner moved along the rim rather than toward the ring's middle.
+    if (best.first > 0) {
+      const uint32_t component = anchors_[v].component;
+      for (uint32_t u : ring) {
+        for (const double t : {0.5, 0.25}) {
+          const Vec3 q = start + t * (positions_[u] - start);
+          const InputSurface::Projection p =
+              surface_.Closest(q, Vec3::Zero(), component, face,
+                               kMaxProjectionRatio * (q - start).norm());
+          if (p.found() && !surface_.OnBoundary(p.point, p.face)) {
+            consider(p.point, p.face);
+          }
+          consider(q, p.found() ? p.face : face);
+        }
+      }
+    }
+    const bool better =
+        best.first < now.first || (allow_equal && best.first == now.first &&
+                                   best.second < now.second - 1e-3);
+    if (!better || best_point == start) return false;
+    positions_[v] = best_point;
+    anchors_[v].face = best_face;
+    ++stats_.repair_moves;
+    return true;
+  }
+
+  // A boundary vertex on an input boundary loop, between two neighbours on
+  // the same loop, tries other points of the loop between them (a face
+  // folded over a jagged boundary can only unfold along it). Moves if that
+  // leaves fewer bad faces around it.
+  bool SlideOnLoop(uint32_t v, const VertexRings& rings) {
+    const uint32_t loop = anchors_[v].loop;
+    const auto ring = rings.Ring(v);
+    if (loop == kNone || ring.size() < 2) return false;
+    uint32_t x = ring.front(), y = ring.back();
+    if (anchors_[x].loop != loop || anchors_[y].loop != loop) return false;
+    const BoundaryLoops& loops = surface_.loops();
+    const double length = loops.Length(loop);
+    const auto forward = [&](double from, double to) {
+      return std::fmod(std::fmod(to - from, length) + length, length);
+    };
+    if (forward(anchors_[x].s, anchors_[v].s) >
+        forward(anchors_[x].s, anchors_[y].s)) {
+      std::swap(x, y);
+    }
+    const double from = anchors_[x].s;
+    const double span = forward(from, anchors_[y].s);
+    const auto now = RingBadness(v, ring, false);
+    if (now.first == 0 || !(span > 0)) return false;
+    const Vec3 start = positions_[v];
+    auto best = now;
+    double best_s = anchors_[v].s;
+    BoundaryLoops::Point best_point{start, anchors_[v].face};
+    for (int k = 1; k < kSlideSteps; ++k) {
+      const double s = from + span * k / kSlideSteps;
+      const BoundaryLoops::Point p = loops.At(loop, s);
+      positions_[v] = p.position;
+      const auto badness = RingBadness(v, ring, false);
+      positions_[v] = start;
+      if (badness < best) {
+        best = badness;
+        best_s = s;
+        best_point = p;
+      }
+    }
+    if (!(best.first < now.first)) return false;
+    positions_[v] = best_point.position;
+    anchors_[v].face = best_point.face;
+    anchors_[v].s = std::fmod(best_s, length);
+    ++stats_.repair_moves;
+    return true;
   }
 
   // Marks the one-ring of every marked vertex too.

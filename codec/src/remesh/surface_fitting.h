@@ -72,7 +72,12 @@ void PlaceBaseVertices(const SimplifiedMesh& base, const InputSurface& surface,
 //    step re-projected onto the sheet the vertex is on;
 // 3. untangling of folded faces (IsFlipped) and degenerate ones: their
 //    vertices (first only the new ones, then any) try the ring centroid and
-//    a kernel point of their ring and keep the better, for repair_rounds.
+//    a kernel point of their ring and keep the better, for repair_rounds;
+// 4. FixFolds: the faces still flipped (IsFlipped) or degenerate, one at a
+//    time in index order: a corner moves (toward its ring's centroid or
+//    kernel, or toward one ring neighbour; on the surface or, failing
+//    that, just off it) when fewer of its faces are then bad by the exact
+//    test; a corner on an input boundary loop slides along the loop.
 // Deterministic: the same input gives the same result for any thread count.
 Status FitLevels(std::shared_ptr<const SemiRegularHierarchy> hierarchy,
                  const InputSurface& surface, const FitOptions& options,

@@ -80,6 +80,57 @@ inline TriMesh WavySheet(int n, int hole) {
   return m;
 }
 
+// A closed slab `thickness` thick, bent along a cylinder: the top sheet is
+// the part of the cylinder of radius `radius` around the y axis through
+// (0, 0, -radius) with |angle| <= `half_angle` and |y| <= half_width, the
+// bottom sheet the same at radius - thickness, and four walls close it.
+// n x n cells per sheet. Not oriented: run RepairManifold on it.
+inline TriMesh ThinCurvedSlab(int n, double radius, double thickness,
+                              double half_angle, double half_width) {
+  TriMesh m;
+  const auto at = [n](int sheet, int i, int j) {
+    return static_cast<uint32_t>(sheet * (n + 1) * (n + 1) + j * (n + 1) + i);
+  };
+  for (int sheet = 0; sheet < 2; ++sheet) {
+    const double r = sheet == 0 ? radius : radius - thickness;
+    for (int j = 0; j <= n; ++j) {
+      for (int i = 0; i <= n; ++i) {
+        const double angle = half_angle * (2.0 * i / n - 1);
+        const double y = half_width * (2.0 * j / n - 1);
+        m.positions.emplace_back(r * std::sin(angle), y,
+                                 r * std::cos(angle) - radius);
+      }
+    }
+  }
+  for (int sheet = 0; sheet < 2; ++sheet) {
+    for (int j = 0; j < n; ++j) {
+      for (int i = 0; i < n; ++i) {
+        const uint32_t a = at(sheet, i, j), b = at(sheet, i + 1, j),
+                       c = at(sheet, i + 1, j + 1), d = at(sheet, i, j + 1);
+        if (sheet == 0) {
+          m.faces.push_back({a, b, c});
+          m.faces.push_back({a, c, d});
+        } else {
+          m.faces.push_back({a, c, b});
+          m.faces.push_back({a, d, c});
+        }
+      }
+    }
+  }
+  // Walls: a strip of quads along each side, top to bottom.
+  const auto wall = [&](uint32_t t0, uint32_t t1, uint32_t b0, uint32_t b1) {
+    m.faces.push_back({t0, b0, b1});
+    m.faces.push_back({t0, b1, t1});
+  };
+  for (int k = 0; k < n; ++k) {
+    wall(at(0, k, 0), at(0, k + 1, 0), at(1, k, 0), at(1, k + 1, 0));
+    wall(at(0, k + 1, n), at(0, k, n), at(1, k + 1, n), at(1, k, n));
+    wall(at(0, 0, k + 1), at(0, 0, k), at(1, 0, k + 1), at(1, 0, k));
+    wall(at(0, n, k), at(0, n, k + 1), at(1, n, k), at(1, n, k + 1));
+  }
+  return m;
+}
+
 // Appends `b` to `a` as a separate component.
 inline TriMesh Combined(const TriMesh& a, const TriMesh& b) {
   TriMesh out = a;
