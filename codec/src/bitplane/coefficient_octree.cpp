@@ -41,19 +41,22 @@ CoefficientOctree::CoefficientOctree(std::span<const IntVec3> positions,
   // The root is the power-of-two cube that encloses the positions, scaled
   // to 21 bits per axis, so the first split already separates them.
   const int shift = bits - kMaxDepth;
-  std::vector<uint64_t> code(n);
+  // (code, index) pairs sorted directly: ties by index, as the canonical
+  // order requires, and no indirect loads in the comparisons.
+  std::vector<std::pair<uint64_t, uint32_t>> keyed(n);
   for (size_t i = 0; i < n; ++i) {
     uint64_t c = 0;
     for (int a = 0; a < 3; ++a) {
       const uint64_t x = static_cast<uint64_t>(positions[i][a] - lo[a]);
       c |= Spread(shift >= 0 ? x >> shift : x << -shift) << (2 - a);
     }
-    code[i] = c;
+    keyed[i] = {c, static_cast<uint32_t>(i)};
   }
-  std::sort(order_.begin(), order_.end(), [&](uint32_t a, uint32_t b) {
-    return code[a] != code[b] ? code[a] < code[b] : a < b;
-  });
-  for (size_t i = 0; i < n; ++i) codes_[i] = code[order_[i]];
+  std::sort(keyed.begin(), keyed.end());
+  for (size_t i = 0; i < n; ++i) {
+    codes_[i] = keyed[i].first;
+    order_[i] = keyed[i].second;
+  }
 }
 
 int CoefficientOctree::Children(const OctreeNode& n,

@@ -14,74 +14,6 @@ uint64_t EdgeKey(uint32_t a, uint32_t b) {
   return (uint64_t{a} << 32) | b;
 }
 
-// The connectivity code: each corner is a new vertex (the next index), a
-// vertex in a small move-to-front cache of recently used ones (coded by its
-// cache slot), or an older one (coded by how far back it is).
-class CornerCoder {
- public:
-  static constexpr size_t kCacheSize = 16;
-
-  void Encode(ArithmeticEncoder& enc, int corner, uint32_t v, uint32_t next_new) {
-    enc.Encode(v == next_new, is_new_[corner]);
-    if (v == next_new) {
-      Touch(v, cache_.size());
-      return;
-    }
-    const size_t slot = Find(v);
-    enc.Encode(slot < cache_.size(), in_cache_);
-    if (slot < cache_.size()) {
-      EncodeGolomb(enc, slot_, static_cast<uint32_t>(slot));
-    } else {
-      EncodeGolomb(enc, back_, next_new - 1 - v);
-    }
-    Touch(v, slot);
-  }
-
-  // Returns false when the bytes name a vertex that cannot exist.
-  bool Decode(ArithmeticDecoder& dec, int corner, uint32_t& next_new, uint32_t& v) {
-    if (dec.Decode(is_new_[corner])) {
-      v = next_new++;
-      Touch(v, cache_.size());
-      return true;
-    }
-    if (dec.Decode(in_cache_)) {
-      const uint32_t slot = DecodeGolomb(dec, slot_);
-      if (slot >= cache_.size()) return false;
-      v = cache_[slot];
-      Touch(v, slot);
-      return true;
-    }
-    const uint32_t back = DecodeGolomb(dec, back_);
-    if (back >= next_new) return false;
-    v = next_new - 1 - back;
-    Touch(v, Find(v));
-    return true;
-  }
-
- private:
-  size_t Find(uint32_t v) const {
-    for (size_t i = 0; i < cache_.size(); ++i) {
-      if (cache_[i] == v) return i;
-    }
-    return cache_.size();
-  }
-  // Moves v to the front (slot == size: not in the cache yet).
-  void Touch(uint32_t v, size_t slot) {
-    if (slot == cache_.size()) {
-      if (cache_.size() < kCacheSize) cache_.push_back(v);
-      slot = cache_.size() - 1;
-    }
-    for (size_t i = slot; i > 0; --i) cache_[i] = cache_[i - 1];
-    cache_[0] = v;
-  }
-
-  std::vector<uint32_t> cache_;
-  BinaryContext is_new_[3];
-  BinaryContext in_cache_;
-  GolombContexts slot_;
-  GolombContexts back_;
-};
-
 // Contexts of the position code.
 struct PositionContexts {
   SignedGolombContexts residual[3];
@@ -148,53 +80,9 @@ class PositionPredictor {
 
 }  // namespace
 
-BaseMeshOrder ChooseTransmissionOrder(uint32_t vertex_count,
-                                      const std::vector<Face>& faces) {
-  // Faces adjacent through an edge.
-  std::unordered_map<uint64_t, std::array<uint32_t, 2>> by_edge;
-  by_edge.reserve(faces.size() * 2);
-  constexpr uint32_t kNone = 0xffffffffu;
-  for (uint32_t f = 0; f < faces.size(); ++f) {
-    for (int c = 0; c < 3; ++c) {
-      auto [it, fresh] = by_edge.try_emplace(EdgeKey(faces[f][c], faces[f][(c + 1) % 3]),
-                                             std::array<uint32_t, 2>{kNone, kNone});
-      (it->second[0] == kNone ? it->second[0] : it->second[1]) = f;
-    }
-  }
-  BaseMeshOrder order;
-  order.new_of_old.assign(vertex_count, kNone);
-  std::vector<char> queued(faces.size(), 0);
-  uint32_t next = 0;
-  for (uint32_t start = 0; start < faces.size(); ++start) {
-    if (queued[start]) continue;
-    // Depth first, so that most faces share an edge with the face coded
-    // just before them and their corners are recent (cheap in the cache).
-    std::vector<uint32_t> stack{start};
-    queued[start] = 1;
-    while (!stack.empty()) {
-      const uint32_t f = stack.back();
-      stack.pop_back();
-      Face renamed;
-      for (int c = 0; c < 3; ++c) {
-        uint32_t& id = order.new_of_old[faces[f][c]];
-        if (id == kNone) id = next++;
-        renamed[c] = id;
-      }
-      order.faces.push_back(renamed);
-      for (int c = 2; c >= 0; --c) {
-        for (uint32_t g : by_edge[EdgeKey(faces[f][c], faces[f][(c + 1) % 3])]) {
-          if (g != kNone && !queued[g]) {
-            queued[g] = 1;
-            stack.push_back(g);
-          }
-        }
-      }
-    }
-  }
-  for (uint32_t& id : order.new_of_old) {
-    if (id == kNone) id = next++;  // unused vertices (not in a valid base)
-  }
-  return order;
+Result<BaseMeshOrder> ChooseTransmissionOrder(uint32_t vertex_count,
+                                              const std::vector<Face>& faces) {
+  return TraverseBaseMesh(vertex_count, faces, nullptr);
 }
 
 Result<proto::BaseMesh> EncodeBaseMesh(const std::vector<Vec3>& positions,
@@ -217,21 +105,15 @@ Result<proto::BaseMesh> EncodeBaseMesh(const std::vector<Vec3>& positions,
     }
   }
   ArithmeticEncoder enc;
-  CornerCoder corners;
-  uint32_t next_new = 0;
-  for (const Face& f : faces) {
-    for (int c = 0; c < 3; ++c) {
-      const uint32_t v = f[c];
-      if (v > next_new) {
-        return Status(StatusCode::kInternal, "base faces are not in transmission order");
-      }
-      corners.Encode(enc, c, v, next_new);
-      if (v == next_new) ++next_new;
-    }
+  MW_ASSIGN_OR_RETURN(const BaseMeshOrder order,
+                      TraverseBaseMesh(static_cast<uint32_t>(positions.size()), faces, &enc));
+  if (order.faces != faces) {
+    return Status(StatusCode::kInternal, "base faces are not in transmission order");
   }
-  if (next_new != positions.size()) {
+  if (order.used_vertices != positions.size()) {
     return Status(StatusCode::kInternal, "base faces do not use every vertex");
   }
+  const uint32_t next_new = order.used_vertices;
   const PositionPredictor predictor(faces, next_new);
   PositionContexts pc;
   for (uint32_t v = 0; v < next_new; ++v) {
@@ -268,30 +150,9 @@ Result<DecodedBase> DecodeBaseMesh(const proto::BaseMesh& base, uint32_t max_ver
   }
   ArithmeticDecoder dec(base.coded());
   DecodedBase out;
-  CornerCoder corners;
-  uint32_t next_new = 0;
-  for (uint64_t i = 0; i < f; ++i) {
-    Face face;
-    for (int c = 0; c < 3; ++c) {
-      if (!corners.Decode(dec, c, next_new, face[c])) {
-        return ParseError("base mesh: face " + std::to_string(i) +
-                          " refers to a vertex not seen yet");
-      }
-      if (next_new > v) {
-        return ParseError("base mesh: face " + std::to_string(i) +
-                          " introduces more vertices than the " + std::to_string(v) +
-                          " announced");
-      }
-    }
-    out.faces.push_back(face);
-    if ((i & 1023) == 0 && dec.overrun()) {
-      return ParseError("base mesh: coded bytes end before face " + std::to_string(i));
-    }
-  }
-  if (next_new != v) {
-    return ParseError("base mesh: faces use " + std::to_string(next_new) + " of " +
-                      std::to_string(v) + " vertices");
-  }
+  MW_ASSIGN_OR_RETURN(out.faces,
+                      DecodeBaseConnectivity(dec, static_cast<uint32_t>(v), f));
+  const uint32_t next_new = static_cast<uint32_t>(v);
   const PositionPredictor predictor(out.faces, next_new);
   PositionContexts pc;
   out.grid.resize(v);

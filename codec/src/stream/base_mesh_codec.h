@@ -8,19 +8,17 @@
 #include "bitplane/coefficient_octree.h"
 #include "meshwave/mesh.h"
 #include "meshwave/status.h"
+#include "stream/base_connectivity.h"
 #include "stream.pb.h"
 
 namespace meshwave {
 
-// The order the base mesh travels in: faces in breadth-first order over
-// shared edges (neighbours stay close), vertices numbered by their first
-// appearance in that face list. Both make the indices cheap to code.
-struct BaseMeshOrder {
-  std::vector<uint32_t> new_of_old;  // vertex renumbering
-  std::vector<Face> faces;           // in new vertex indices
-};
-BaseMeshOrder ChooseTransmissionOrder(uint32_t vertex_count,
-                                      const std::vector<Face>& faces);
+// The order the base mesh travels in (stream/base_connectivity.h): faces
+// in a depth-first traversal over shared edges, each rotated to start at
+// the edge it is entered by; vertices numbered by first appearance. Errors
+// for faces that are degenerate or share an edge three times.
+Result<BaseMeshOrder> ChooseTransmissionOrder(uint32_t vertex_count,
+                                              const std::vector<Face>& faces);
 
 struct DecodedBase {
   std::vector<Vec3> positions;  // origin + step * grid

@@ -107,6 +107,7 @@ Result<EncodedStream> EncodeMesh(const SemiRegularMesh& input,
     }
     for (int b = top; b >= 0; --b) {
       ArithmeticEncoder enc;
+      ComponentContexts contexts;  // shared by the packet's three components
       double reduction = 0;
       for (int c = 0; c < 3; ++c) {
         const QuantizedComponent& q = quantized[j][c];
@@ -116,7 +117,6 @@ Result<EncodedStream> EncodeMesh(const SemiRegularMesh& input,
           parent = {layout.parent_of, quantized[j - 1][c].q0,
                     quantized[j - 1][c].negative};
         }
-        ComponentContexts contexts;
         EncoderIo io(enc, layout.tree, q.q0, q.negative);
         touched.clear();
         CodeBitplane(layout.tree, state[c], b, parent, contexts, io, &touched);

@@ -131,6 +131,7 @@ Status ProgressiveDecoder::AddPacket(uint32_t id, std::string_view payload) {
   ArithmeticDecoder dec(payload);
   DecoderIo io(dec);
   const SubbandLayout& layout = m.layouts[j];
+  ComponentContexts contexts;  // shared by the packet's three components
   for (int c = 0; c < 3; ++c) {
     ComponentState& s = m.states[j][c];
     if (b > s.top) continue;
@@ -138,7 +139,6 @@ Status ProgressiveDecoder::AddPacket(uint32_t id, std::string_view payload) {
     if (m.header.coder() == proto::CODER_3XC && j > 0) {
       parent = {layout.parent_of, m.states[j - 1][c].mag, m.states[j - 1][c].negative};
     }
-    ComponentContexts contexts;
     CodeBitplane(layout.tree, s, b, parent, contexts, io, nullptr);
   }
   if (dec.overrun()) {

@@ -12,7 +12,7 @@
 
 namespace meshwave {
 
-inline constexpr uint32_t kFormatVersion = 1;
+inline constexpr uint32_t kFormatVersion = 2;
 inline constexpr char kContainerMagic[4] = {'M', 'W', 'V', '1'};
 // Limits on what a stream may ask a decoder to build.
 inline constexpr uint32_t kMaxBaseVertices = 1u << 24;

@@ -36,14 +36,28 @@ class StencilBuilder {
 
  private:
   // Start of an identical weight run already in the table, or of a new one.
+  // Most stencils repeat the previous one's weights (regular vertices), so
+  // that run is tried before any hashing.
   uint32_t FindOrAddRun(StencilTable& table, uint64_t hash) {
+    if (last_size_ == terms_.size() && last_hash_ == hash && SameWeights(table, last_start_)) {
+      return last_start_;
+    }
+    last_size_ = terms_.size();
+    last_hash_ = hash;
+    last_start_ = FindOrAddHashedRun(table, hash);
+    return last_start_;
+  }
+  bool SameWeights(const StencilTable& table, uint32_t start) const {
+    if (start + terms_.size() > table.weights.size()) return false;
+    for (size_t i = 0; i < terms_.size(); ++i) {
+      if (table.weights[start + i] != terms_[i].second) return false;
+    }
+    return true;
+  }
+  uint32_t FindOrAddHashedRun(StencilTable& table, uint64_t hash) {
     auto& starts = runs_[hash];
     for (uint32_t start : starts) {
-      bool same = start + terms_.size() <= table.weights.size();
-      for (size_t i = 0; same && i < terms_.size(); ++i) {
-        same = table.weights[start + i] == terms_[i].second;
-      }
-      if (same) return start;
+      if (SameWeights(table, start)) return start;
     }
     const uint32_t start = static_cast<uint32_t>(table.weights.size());
     for (const auto& term : terms_) table.weights.push_back(term.second);
@@ -53,6 +67,9 @@ class StencilBuilder {
 
   std::vector<std::pair<uint32_t, double>> terms_;
   std::unordered_map<uint64_t, std::vector<uint32_t>> runs_;  // hash -> starts
+  size_t last_size_ = 0;
+  uint64_t last_hash_ = 0;
+  uint32_t last_start_ = 0;
 };
 
 // Level-j topology queries the stencils need.
@@ -72,28 +89,28 @@ class LevelView {
     }
     return kNone;
   }
-  // Edge of face f joining u and w.
-  uint32_t EdgeOf(uint32_t f, uint32_t u, uint32_t w) const {
-    for (int i = 0; i < 3; ++i) {
-      const uint32_t a = faces_[f][i], b = faces_[f][(i + 1) % 3];
-      if ((a == u && b == w) || (a == w && b == u)) return face_edges_[f][i];
-    }
-    return kNone;
-  }
-  // The wing across edge (u, w) of face f, whose third vertex is z: the
-  // vertex opposite (u, w) in the neighbouring face, or the reflection
-  // u + w - z on a boundary.
-  void AddWing(StencilBuilder& s, uint32_t f, uint32_t u, uint32_t w,
-               uint32_t z, double weight) const {
-    const uint32_t g = EdgeOf(f, u, w);
-    const auto& ef = edge_faces_[g];
-    const uint32_t other = ef[0] == f ? ef[1] : ef[0];
-    if (other == kNone) {
-      s.Add(u, weight);
-      s.Add(w, weight);
-      s.Add(z, -weight);
-    } else {
-      s.Add(Opposite(other, g), weight);
+  // The two wings of face f beside its edge e: across each other edge of
+  // f, the vertex opposite it in the neighbouring face, or the reflection
+  // of f's third corner on a boundary. Slots, not searches: this runs for
+  // every edge of every level.
+  void AddWings(StencilBuilder& s, uint32_t f, uint32_t e, double weight) const {
+    int i = 0;
+    while (face_edges_[f][i] != e) ++i;
+    for (int k = 1; k <= 2; ++k) {
+      const int slot = (i + k) % 3;
+      const uint32_t g = face_edges_[f][slot];
+      const auto& ef = edge_faces_[g];
+      const uint32_t other = ef[0] == f ? ef[1] : ef[0];
+      if (other == kNone) {
+        // Edge (u, w) of f and f's corner z off it: reflect z.
+        const uint32_t u = faces_[f][slot], w = faces_[f][(slot + 1) % 3];
+        const uint32_t z = faces_[f][(slot + 2) % 3];
+        s.Add(u, weight);
+        s.Add(w, weight);
+        s.Add(z, -weight);
+      } else {
+        s.Add(Opposite(other, g), weight);
+      }
     }
   }
   // The boundary neighbour of boundary vertex v that is not `not_this`.
@@ -112,6 +129,23 @@ class LevelView {
   const VertexRings& rings_;
 };
 
+// Zorin's weight of ring neighbour i of a vertex of valence k >= 5, from a
+// table filled once per valence (cosines are most of the set-up time
+// otherwise).
+double ZorinWeight(int k, int i) {
+  thread_local std::vector<std::vector<double>> table;
+  if (static_cast<size_t>(k) >= table.size()) table.resize(k + 1);
+  std::vector<double>& row = table[k];
+  if (row.empty()) {
+    row.resize(k);
+    for (int n = 0; n < k; ++n) {
+      const double a = 2 * std::numbers::pi * n / k;
+      row[n] = (0.25 + std::cos(a) + 0.5 * std::cos(2 * a)) / k;
+    }
+  }
+  return row[i];
+}
+
 // Zorin's rule seen from an interior vertex v of valence K != 6 towards the
 // edge's other endpoint e0, scaled by `scale` (1/2 when averaging two).
 void AddExtraordinary(const LevelView& view, StencilBuilder& s, uint32_t v,
@@ -128,8 +162,7 @@ void AddExtraordinary(const LevelView& view, StencilBuilder& s, uint32_t v,
     } else if (k == 4) {
       w = i == 0 ? 3.0 / 8 : (i == 2 ? -1.0 / 8 : 0.0);
     } else {
-      const double a = 2 * std::numbers::pi * i / k;
-      w = (0.25 + std::cos(a) + 0.5 * std::cos(2 * a)) / k;
+      w = ZorinWeight(k, i);
     }
     if (w != 0) s.Add(ring[(start + i) % k], w * scale);
   }
@@ -158,10 +191,8 @@ void AddButterfly(const LevelView& view, StencilBuilder& s, uint32_t e) {
   s.Add(c2, 0.5);
   s.Add(c3, 0.125);
   s.Add(c4, 0.125);
-  view.AddWing(s, fa, c1, c3, c2, -1.0 / 16);
-  view.AddWing(s, fa, c2, c3, c1, -1.0 / 16);
-  view.AddWing(s, fb, c1, c4, c2, -1.0 / 16);
-  view.AddWing(s, fb, c2, c4, c1, -1.0 / 16);
+  view.AddWings(s, fa, e, -1.0 / 16);
+  view.AddWings(s, fb, e, -1.0 / 16);
 }
 
 }  // namespace

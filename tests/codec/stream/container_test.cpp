@@ -79,10 +79,12 @@ TEST(ContainerTest, RejectsBadMagicVersionTrailingBytes) {
   EXPECT_NE(ParseContainer(bad).status().message().find("magic"), std::string::npos);
   EXPECT_NE(ParseContainer(bytes + "zz").status().message().find("after the last packet"),
             std::string::npos);
-  EncodedStream v2 = Stream();
-  v2.header.set_format_version(2);
-  EXPECT_EQ(ParseContainer(SerializeFullContainer(v2)).status().code(),
-            StatusCode::kUnsupported);
+  for (uint32_t version : {1u, 3u}) {  // the old base code, and a future one
+    EncodedStream other = Stream();
+    other.header.set_format_version(version);
+    EXPECT_EQ(ParseContainer(SerializeFullContainer(other)).status().code(),
+              StatusCode::kUnsupported);
+  }
   EXPECT_FALSE(ParseContainer("MWV1").ok());
 }
 
