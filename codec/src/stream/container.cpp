@@ -25,22 +25,33 @@ uint32_t GetU32(std::string_view b) {
 
 }  // namespace
 
+namespace {
+
+// Bytes the packed `present` field adds to a header: tag, length, varints.
+uint64_t PresentFieldSize(uint64_t id_bytes) {
+  return id_bytes == 0 ? 0
+                       : 1 + google::protobuf::io::CodedOutputStream::VarintSize64(id_bytes) +
+                             id_bytes;
+}
+
+}  // namespace
+
 uint64_t ContainerSize(const proto::StreamHeader& header,
                        std::span<const uint32_t> ids) {
-  proto::StreamHeader h = header;
-  h.clear_present();
-  uint64_t size = 8 + h.ByteSizeLong();
+  // The header's size with its own `present` list swapped for `ids`,
+  // without copying the header (this runs once per packet when a budget
+  // is fitted).
+  uint64_t own_id_bytes = 0;
+  for (uint32_t id : header.present()) {
+    own_id_bytes += google::protobuf::io::CodedOutputStream::VarintSize32(id);
+  }
+  uint64_t size = 8 + header.ByteSizeLong() - PresentFieldSize(own_id_bytes);
   uint64_t id_bytes = 0;
   for (uint32_t id : ids) {
     id_bytes += google::protobuf::io::CodedOutputStream::VarintSize32(id);
     size += header.packets().length(static_cast<int>(id));
   }
-  if (!ids.empty()) {
-    size += 1 +
-            google::protobuf::io::CodedOutputStream::VarintSize64(id_bytes) +
-            id_bytes;
-  }
-  return size;
+  return size + PresentFieldSize(id_bytes);
 }
 
 std::string SerializeContainerHead(const proto::StreamHeader& stream_header,

@@ -50,6 +50,15 @@ TEST(ContainerTest, SizeMatchesSerialization) {
     std::vector<uint32_t> ids(order.begin(), order.begin() + static_cast<long>(n));
     EXPECT_EQ(ContainerSize(Stream().header, ids), SerializeContainer(Stream(), ids).size());
   }
+  // A header that already lists packets (as a parsed container's does):
+  // its own list does not count, the one asked about does.
+  const std::vector<uint32_t> held(order.begin(), order.begin() + static_cast<long>(order.size() / 2));
+  const std::string partial = SerializeContainer(Stream(), held);
+  auto parsed = ParseContainer(partial);
+  ASSERT_TRUE(parsed.ok());
+  EXPECT_EQ(ContainerSize(parsed->header, held), partial.size());
+  EXPECT_EQ(ContainerSize(parsed->header, {}), SerializeContainer(Stream(), {}).size());
+  EXPECT_EQ(ContainerSize(parsed->header, order), SerializeFullContainer(Stream()).size());
 }
 
 TEST(ContainerTest, BudgetSelectsLongestFittingPrefix) {
