@@ -15,6 +15,9 @@ void AddRemeshCommand(CLI::App& app, int& exit_code);
 void AddEncodeCommand(CLI::App& app, int& exit_code);
 void AddDecodeCommand(CLI::App& app, int& exit_code);
 void AddRdCommand(CLI::App& app, int& exit_code);
+void AddFetchCommand(CLI::App& app, int& exit_code);
+void AddRefineCommand(CLI::App& app, int& exit_code);
+void AddCatalogCommand(CLI::App& app, int& exit_code);
 
 }  // namespace meshwave::cli
 

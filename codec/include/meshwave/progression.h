@@ -44,6 +44,11 @@ Selection SelectPackets(const proto::StreamHeader& header,
                         const std::vector<uint32_t>& order, uint64_t budget,
                         size_t cursor = 0);
 
+// The payload length in bytes of packet `id` (an id of the header's index;
+// the header must have passed validation). Lets a client split a stream of
+// concatenated payloads without reading the packet index itself.
+uint64_t PacketLength(const proto::StreamHeader& header, uint32_t id);
+
 // Checks that an untrusted header is complete and consistent: version,
 // transform, quantizers, and a packet index holding exactly the packets
 // (j, b), b from the subband's top bitplane down to 0, in that order.

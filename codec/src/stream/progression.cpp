@@ -175,6 +175,10 @@ std::vector<uint32_t> PacketOrder(const proto::StreamHeader& h,
   return order;
 }
 
+uint64_t PacketLength(const proto::StreamHeader& h, uint32_t id) {
+  return h.packets().length(static_cast<int>(id));
+}
+
 Selection SelectPackets(const proto::StreamHeader& h,
                         const std::vector<uint32_t>& order, uint64_t budget,
                         size_t cursor) {

@@ -1,0 +1,44 @@
+// What a client keeps between runs: FILE, a valid partial container of the
+// packets received (`meshwave decode FILE` reads it), and FILE.session, a
+// ClientState protobuf naming the server URL, mesh, order, level limit,
+// cursor and byte budget. Both are written atomically (temporary file,
+// fsync, rename); the container format is not changed.
+#ifndef MESHWAVE_CLIENT_LOCAL_STATE_H_
+#define MESHWAVE_CLIENT_LOCAL_STATE_H_
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "meshwave/client/url.h"
+#include "meshwave/progression.h"
+#include "meshwave/status.h"
+
+namespace meshwave::client {
+
+struct LocalState {
+  MeshUrl url;
+  Progression order = Progression::kQuality;
+  int max_level = -1;
+  size_t cursor = 0;          // packets of the order in `container`
+  uint64_t budget_bytes = 0;  // container bytes asked for so far
+  std::string container;      // holds exactly order[0 .. cursor)
+};
+
+// FILE.session.
+std::filesystem::path SidecarPath(const std::filesystem::path& file);
+
+// Writes the container, then the sidecar. IoError naming the path.
+Status SaveState(const std::filesystem::path& file, const LocalState& state);
+
+// Reads and checks both files; safe on untrusted bytes. Refuses (kParseError,
+// naming the file) a sidecar that does not parse or names an unknown
+// version, URL or order, a container that does not parse or is cut short,
+// and a cursor that differs from the container's packet count. Whether the
+// packets are the order's prefix and pass their CRCs is checked when a
+// Session restores the container.
+Result<LocalState> LoadState(const std::filesystem::path& file);
+
+}  // namespace meshwave::client
+
+#endif  // MESHWAVE_CLIENT_LOCAL_STATE_H_

@@ -1,0 +1,100 @@
+// The HTTP transport: /header, /packets/{k} and /stream of one mesh.
+#include <charconv>
+
+#include "co_status.h"
+#include "http_client.h"
+#include "meshwave/client/transport.h"
+
+namespace meshwave::client {
+namespace {
+
+// Large enough for any header ValidateStreamHeader accepts, small enough
+// that a hostile server cannot make us buffer without bound.
+constexpr uint64_t kHeaderLimit = uint64_t{1} << 26;
+constexpr uint64_t kPacketLimit = uint64_t{1} << 30;
+
+Result<uint64_t> HeaderNumber(const http::response_header<>& head,
+                              std::string_view name) {
+  const auto it = head.find(name);
+  if (it == head.end()) {
+    return ParseError("the response has no " + std::string(name) + " header");
+  }
+  const std::string_view v = it->value();
+  uint64_t n = 0;
+  auto [ptr, ec] = std::from_chars(v.data(), v.data() + v.size(), n);
+  if (v.empty() || ec != std::errc() || ptr != v.data() + v.size()) {
+    return ParseError(std::string(name) + " \"" + std::string(v) +
+                      "\" is not a number");
+  }
+  return n;
+}
+
+Result<StreamHead> ParseStreamHead(const http::response_header<>& head) {
+  StreamHead h;
+  MW_ASSIGN_OR_RETURN(uint64_t packets,
+                      HeaderNumber(head, "X-Meshwave-Packets"));
+  MW_ASSIGN_OR_RETURN(uint64_t next,
+                      HeaderNumber(head, "X-Meshwave-Next-Cursor"));
+  h.packets = static_cast<size_t>(packets);
+  h.next_cursor = static_cast<size_t>(next);
+  const auto complete = head.find("X-Meshwave-Complete");
+  h.complete = complete != head.end() && complete->value() == "true";
+  if (head.find(http::field::content_length) != head.end()) {
+    MW_ASSIGN_OR_RETURN(uint64_t length, HeaderNumber(head, "Content-Length"));
+    h.content_length = length;
+  }
+  return h;
+}
+
+class HttpTransport final : public Transport {
+ public:
+  HttpTransport(net::any_io_executor executor, const MeshUrl& url,
+                const TransportOptions& options)
+      : url_(url), client_(std::move(executor), url.server, options) {}
+
+  net::any_io_executor executor() override { return client_.executor(); }
+
+  net::awaitable<Result<std::string>> GetHeader() override {
+    co_return co_await client_.GetBody(url_.Path() + "/header",
+                                       "application/x-protobuf", kHeaderLimit);
+  }
+
+  net::awaitable<Result<std::string>> GetPacket(uint32_t id) override {
+    co_return co_await client_.GetBody(
+        url_.Path() + "/packets/" + std::to_string(id), "", kPacketLimit);
+  }
+
+  net::awaitable<Status> Stream(const StreamRequest& request,
+                                StreamSink& sink) override {
+    std::string target =
+        url_.Path() + "/stream?order=" + ProgressionName(request.order);
+    if (request.max_level >= 0)
+      target += "&max_level=" + std::to_string(request.max_level);
+    if (request.from > 0) target += "&from=" + std::to_string(request.from);
+    if (request.budget) target += "&budget=" + std::to_string(*request.budget);
+    co_return co_await client_.Get(
+        target, "",
+        [&](const http::response_header<>& head) -> Status {
+          auto h = ParseStreamHead(head);
+          if (!h.ok()) return h.status().WithContext("GET " + target);
+          return sink.OnHead(*h);
+        },
+        [&](std::string_view bytes) { return sink.OnBytes(bytes); });
+  }
+
+  void Close() override { client_.Close(); }
+
+ private:
+  MeshUrl url_;
+  HttpClient client_;
+};
+
+}  // namespace
+
+std::unique_ptr<Transport> MakeHttpTransport(net::any_io_executor executor,
+                                             const MeshUrl& url,
+                                             const TransportOptions& options) {
+  return std::make_unique<HttpTransport>(std::move(executor), url, options);
+}
+
+}  // namespace meshwave::client

@@ -1,0 +1,48 @@
+# `cmake --install`: the codec and client libraries, their public headers,
+# the generated protobuf headers they include, and a CMake package so that
+# another project can find_package(meshwave) and link meshwave::client.
+include(CMakePackageConfigHelpers)
+include(GNUInstallDirs)
+
+# Include directories as seen from the build tree and from an install.
+set_property(TARGET meshwave_codec PROPERTY INTERFACE_INCLUDE_DIRECTORIES
+  "$<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/codec/include>"
+  "$<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>")
+set_property(TARGET meshwave_proto PROPERTY INTERFACE_INCLUDE_DIRECTORIES
+  "$<BUILD_INTERFACE:${PROJECT_BINARY_DIR}/proto>"
+  "$<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>")
+set_property(TARGET meshwave_client_proto PROPERTY INTERFACE_INCLUDE_DIRECTORIES
+  "$<BUILD_INTERFACE:${PROJECT_BINARY_DIR}/client>"
+  "$<BUILD_INTERFACE:${PROJECT_BINARY_DIR}/client/proto>"
+  "$<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>")
+
+set_target_properties(meshwave_codec PROPERTIES EXPORT_NAME codec)
+set_target_properties(meshwave_proto PROPERTIES EXPORT_NAME proto)
+set_target_properties(meshwave_client PROPERTIES EXPORT_NAME client)
+set_target_properties(meshwave_client_proto PROPERTIES EXPORT_NAME client_proto)
+# Static libraries name their private dependencies for linking only; the
+# warning flags of meshwave_options do not reach consumers.
+set_target_properties(meshwave_options PROPERTIES EXPORT_NAME options)
+
+install(TARGETS meshwave_codec meshwave_proto meshwave_client meshwave_client_proto
+                meshwave_options
+  EXPORT meshwaveTargets
+  ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+  INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/codec/include/meshwave
+  DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} FILES_MATCHING PATTERN "*.h")
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/client/include/meshwave
+  DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} FILES_MATCHING PATTERN "*.h")
+install(DIRECTORY ${PROJECT_BINARY_DIR}/proto/ ${PROJECT_BINARY_DIR}/client/
+  DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} FILES_MATCHING PATTERN "*.pb.h"
+  PATTERN "CMakeFiles" EXCLUDE)
+
+set(MESHWAVE_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/meshwave)
+install(EXPORT meshwaveTargets NAMESPACE meshwave:: DESTINATION ${MESHWAVE_CMAKE_DIR})
+configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/meshwaveConfig.cmake.in
+  ${PROJECT_BINARY_DIR}/meshwaveConfig.cmake INSTALL_DESTINATION ${MESHWAVE_CMAKE_DIR})
+write_basic_package_version_file(${PROJECT_BINARY_DIR}/meshwaveConfigVersion.cmake
+  COMPATIBILITY SameMinorVersion)
+install(FILES ${PROJECT_BINARY_DIR}/meshwaveConfig.cmake
+              ${PROJECT_BINARY_DIR}/meshwaveConfigVersion.cmake
+  DESTINATION ${MESHWAVE_CMAKE_DIR})

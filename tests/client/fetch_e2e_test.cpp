@@ -1,0 +1,369 @@
+// The client end to end: `meshwave fetch`, `refine` and `catalog` against a
+// real meshwave-server on 127.0.0.1 (holes.off and elephant.off ingested
+// once), directly or through a loopback proxy that cuts, stalls or corrupts.
+#include <gtest/gtest.h>
+
+#include <google/protobuf/util/json_util.h>
+#include <signal.h>
+
+#include <map>
+#include <memory>
+#include <thread>
+
+#include "catalog_api.pb.h"
+#include "client_state.pb.h"
+#include "e2e/cli_runner.h"
+#include "meshwave/container.h"
+#include "server/http_client_testonly.h"
+#include "server/server_process_testonly.h"
+#include "tcp_proxy_testonly.h"
+
+namespace meshwave {
+namespace {
+
+using testing::HttpGet;
+using testing::ReadBytes;
+using testing::RunCli;
+using testing::ServerProcess;
+using testing::TcpProxy;
+using testing::TempDir;
+
+proto::FetchReport ParseReport(const std::string& json) {
+  proto::FetchReport r;
+  google::protobuf::util::JsonParseOptions o;
+  o.ignore_unknown_fields = true;
+  EXPECT_TRUE(google::protobuf::util::JsonStringToMessage(json, &r, o).ok())
+      << json;
+  return r;
+}
+
+void WriteFile(const std::filesystem::path& p, const std::string& bytes) {
+  std::ofstream(p, std::ios::binary) << bytes;
+}
+
+// Sum of X-Meshwave-Packets over the responses in a proxy transcript.
+size_t PacketsAnnounced(const std::string& transcript) {
+  size_t total = 0;
+  const std::string key = "X-Meshwave-Packets: ";
+  for (size_t pos = transcript.find(key); pos != std::string::npos;
+       pos = transcript.find(key, pos + 1)) {
+    total += std::stoul(transcript.substr(pos + key.size(), 12));
+  }
+  return total;
+}
+
+class ClientE2eTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new TempDir();
+    catalog_ = *dir_ / "catalog";
+    std::vector<std::string> args = {
+        "ingest", "--catalog", catalog_.string(),
+        testing::SampleMesh("holes.off").string(),
+        testing::SampleMesh("elephant.off").string()};
+    const pid_t ingest = testing::SpawnServer(args, *dir_ / "ingest.log");
+    ASSERT_EQ(testing::WaitExit(ingest, std::chrono::seconds(120)), 0)
+        << ReadBytes(*dir_ / "ingest.log");
+    std::filesystem::create_directories(*dir_ / "server");
+    server_ = new ServerProcess(catalog_, *dir_ / "server");
+    ASSERT_TRUE(server_->running()) << ReadBytes(server_->log());
+    const auto reply = HttpGet(server_->port(), "/v1/meshes");
+    proto::MeshList list;
+    google::protobuf::util::JsonParseOptions o;
+    o.ignore_unknown_fields = true;
+    ASSERT_TRUE(
+        google::protobuf::util::JsonStringToMessage(reply.body, &list, o).ok());
+    for (const auto& m : list.meshes()) {
+      if (m.source().find("holes") != std::string::npos) holes_ = m.id();
+      if (m.source().find("elephant") != std::string::npos) elephant_ = m.id();
+    }
+    ASSERT_FALSE(holes_.empty()) << reply.body;
+    ASSERT_FALSE(elephant_.empty()) << reply.body;
+  }
+  static void TearDownTestSuite() {
+    delete server_;
+    delete dir_;
+  }
+
+  static std::string Url(uint16_t port, const std::string& id) {
+    return "http://127.0.0.1:" + std::to_string(port) + "/v1/meshes/" + id;
+  }
+  static std::string Url(const std::string& id) {
+    return Url(server_->port(), id);
+  }
+
+  // The mesh `meshwave decode` gives for the server's own truncation.
+  std::string DecodeOfServerTruncation(const TempDir& dir,
+                                       const std::string& id,
+                                       const std::string& order,
+                                       const std::string& query,
+                                       const std::string& max_level = "") {
+    const auto reply = HttpGet(
+        server_->port(), "/v1/meshes/" + id + "/stream?order=" + order + query);
+    EXPECT_EQ(reply.status, 200u) << reply.body;
+    WriteFile(dir / "part.mwv", reply.body);
+    std::vector<std::string> args = {"decode", (dir / "part.mwv").string(),
+                                     (dir / "decoded.ply").string(), "--order",
+                                     order};
+    if (!max_level.empty()) {
+      args.push_back("--max-level");
+      args.push_back(max_level);
+    }
+    const auto r = RunCli(args);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return ReadBytes(dir / "decoded.ply");
+  }
+
+  static inline TempDir* dir_ = nullptr;
+  static inline std::filesystem::path catalog_;
+  static inline ServerProcess* server_ = nullptr;
+  static inline std::string holes_, elephant_;
+};
+
+TEST_F(ClientE2eTest, CatalogListsTheIngestedMeshes) {
+  auto r = RunCli(
+      {"catalog", "http://127.0.0.1:" + std::to_string(server_->port())});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find(holes_), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(elephant_), std::string::npos) << r.out;
+  r = RunCli({"catalog", "http://127.0.0.1:" + std::to_string(server_->port()),
+              "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("\"meshes\""), std::string::npos);
+}
+
+TEST_F(ClientE2eTest, FetchAtABudgetEqualsDecodeOfTheSameTruncation) {
+  TempDir dir;
+  for (const std::string& id : {holes_, elephant_}) {
+    for (const std::string order : {"quality", "resolution", "rd"}) {
+      for (const std::string budget : {"2500", "6000"}) {
+        const auto r = RunCli({"fetch", Url(id), "--budget", budget, "--order",
+                               order, "--out", (dir / "fetched.ply").string()});
+        ASSERT_EQ(r.exit_code, 0) << r.err;
+        EXPECT_EQ(ReadBytes(dir / "fetched.ply"),
+                  DecodeOfServerTruncation(dir, id, order, "&budget=" + budget))
+            << id << " " << order << " " << budget;
+      }
+    }
+  }
+}
+
+TEST_F(ClientE2eTest, MaxLevelFetchEqualsDecodeWithTheSameLimit) {
+  TempDir dir;
+  const auto r =
+      RunCli({"fetch", Url(elephant_), "--order", "resolution", "--max-level",
+              "1", "--out", (dir / "coarse.ply").string(), "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto report = ParseReport(r.out);
+  EXPECT_TRUE(report.complete());
+  EXPECT_EQ(ReadBytes(dir / "coarse.ply"),
+            DecodeOfServerTruncation(dir, elephant_, "resolution",
+                                     "&max_level=1", "1"));
+}
+
+TEST_F(ClientE2eTest, PsnrAndRateBudgets) {
+  TempDir dir;
+  auto r = RunCli({"fetch", Url(elephant_), "--psnr", "50", "--out",
+                   (dir / "p.ply").string(), "--json", "--lods",
+                   (dir / "lods").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto report = ParseReport(r.out);
+  EXPECT_GE(report.estimated_psnr_db(), 50);
+  ASSERT_GE(report.steps_size(), 2);
+  // The step before the last had not reached it: the shortest prefix.
+  EXPECT_LT(report.steps(report.steps_size() - 2).estimated_psnr_db(), 50);
+  EXPECT_TRUE(std::filesystem::exists(report.steps(0).lod_file()));
+  EXPECT_TRUE(std::filesystem::exists(
+      report.steps(report.steps_size() - 1).lod_file()));
+
+  // 400 kbit/s for 0.1 s is 5000 bytes.
+  r = RunCli({"fetch", Url(elephant_), "--rate", "400kbit", "--deadline",
+              "100ms", "--out", (dir / "rate.ply").string(), "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_LE(ParseReport(r.out).bytes(), 5000u);
+  r = RunCli({"fetch", Url(elephant_), "--budget", "5000", "--out",
+              (dir / "b.ply").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(ReadBytes(dir / "rate.ply"), ReadBytes(dir / "b.ply"));
+}
+
+TEST_F(ClientE2eTest, TruePsnrWithAReference) {
+  TempDir dir;
+  const auto r = RunCli({"fetch", Url(holes_), "--budget", "8000", "--out",
+                         (dir / "h.ply").string(), "--json", "--reference",
+                         testing::SampleMesh("holes.off").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto report = ParseReport(r.out);
+  EXPECT_GT(report.true_psnr_db(), 20);
+  for (const auto& s : report.steps()) EXPECT_GT(s.true_psnr_db(), 0);
+}
+
+TEST_F(ClientE2eTest, RefineTwiceEqualsOneLargerFetchAndNoPacketIsSentTwice) {
+  TempDir dir;
+  TcpProxy proxy(server_->port());
+  const std::string url = Url(proxy.port(), elephant_);
+  const std::string state = (dir / "e.mwv").string();
+  auto r = RunCli({"fetch", url, "--budget", "3000", "--order", "rd", "--state",
+                   state, "--out", (dir / "first.ply").string(), "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  size_t received = ParseReport(r.out).packets_received();
+  for (const char* more : {"2000", "3000"}) {
+    r = RunCli({"refine", state, "--more", more, "--out",
+                (dir / "refined.ply").string(), "--json"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    received += ParseReport(r.out).packets_received();
+  }
+  const auto final_report = ParseReport(r.out);
+  EXPECT_GT(final_report.packets_received(), 0u);
+  EXPECT_EQ(received, final_report.packets());
+
+  // Bit for bit: the state is the server's own container at the sum of the
+  // budgets, and the mesh is a single fetch's.
+  const auto whole = HttpGet(
+      server_->port(), "/v1/meshes/" + elephant_ + "/stream?order=rd&budget=" +
+                           std::to_string(3000 + 2000 + 3000));
+  EXPECT_EQ(ReadBytes(state), whole.body);
+  r = RunCli({"fetch", Url(elephant_), "--budget", "8000", "--order", "rd",
+              "--out", (dir / "single.ply").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(ReadBytes(dir / "refined.ply"), ReadBytes(dir / "single.ply"));
+
+  // What the server said it sent: every packet once.
+  EXPECT_EQ(PacketsAnnounced(proxy.Transcript()), final_report.packets());
+  // The state decodes with the plain decoder too.
+  r = RunCli({"decode", state, (dir / "d.ply").string(), "--order", "rd"});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+}
+
+TEST_F(ClientE2eTest, RefuseACorruptStateFile) {
+  TempDir dir;
+  const std::string state = (dir / "s.mwv").string();
+  auto r = RunCli({"fetch", Url(holes_), "--budget", "5000", "--state", state,
+                   "--out", (dir / "a.ply").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::string bytes = ReadBytes(state);
+  bytes[bytes.size() - 2] ^=
+      0x55;  // inside the last payload: the CRC catches it
+  WriteFile(state, bytes);
+  r = RunCli({"refine", state, "--more", "4KiB"});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("CRC32C mismatch"), std::string::npos) << r.err;
+}
+
+TEST_F(ClientE2eTest, ResumesAfterTheProxyCutsTheConnection) {
+  TempDir dir;
+  TcpProxy proxy(server_->port());
+  proxy.CutAfter(3000, 2);
+  const auto r =
+      RunCli({"fetch", Url(proxy.port(), elephant_), "--out",
+              (dir / "cut.ply").string(), "--json", "--retry-delay", "20ms"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto report = ParseReport(r.out);
+  EXPECT_EQ(report.retries(), 2u);
+  EXPECT_TRUE(report.complete());
+  EXPECT_EQ(report.packets_received(), report.packets());  // nothing twice
+  EXPECT_EQ(ReadBytes(dir / "cut.ply"),
+            DecodeOfServerTruncation(dir, elephant_, "quality", ""));
+}
+
+TEST_F(ClientE2eTest, ResumesWhenTheServerIsKilledMidStreamAndRestarted) {
+  TempDir dir;
+  std::filesystem::create_directories(dir / "a");
+  std::filesystem::create_directories(dir / "b");
+  auto first = std::make_unique<ServerProcess>(catalog_, dir / "a");
+  ASSERT_TRUE(first->running());
+  TcpProxy proxy(first->port());
+  proxy.StallAfter(5000);
+  testing::CliResult r;
+  std::thread fetch([&] {
+    r = RunCli({"fetch", Url(proxy.port(), elephant_), "--order", "rd", "--out",
+                (dir / "k.ply").string(), "--json", "--retry-delay", "50ms"});
+  });
+  if (!proxy.WaitStalled(std::chrono::seconds(20))) {
+    proxy.DropStalled();
+    fetch.join();
+    FAIL() << "the transfer never reached the stall point: " << r.err;
+  }
+  ::kill(first->pid(), SIGKILL);
+  first->Stop();
+  ServerProcess second(catalog_, dir / "b");
+  ASSERT_TRUE(second.running());
+  proxy.set_upstream(second.port());
+  proxy.DropStalled();
+  fetch.join();
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto report = ParseReport(r.out);
+  EXPECT_GE(report.retries(), 1u);
+  EXPECT_EQ(report.packets_received(), report.packets());
+  EXPECT_EQ(ReadBytes(dir / "k.ply"),
+            DecodeOfServerTruncation(dir, elephant_, "rd", ""));
+}
+
+TEST_F(ClientE2eTest, ReadTimeoutOnAStalledConnectionIsRetried) {
+  TempDir dir;
+  TcpProxy proxy(server_->port());
+  proxy.StallAfter(3000);  // never released
+  const auto r = RunCli({"fetch", Url(proxy.port(), elephant_), "--out",
+                         (dir / "t.ply").string(), "--json", "--timeout",
+                         "300ms", "--retry-delay", "10ms"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(ParseReport(r.out).retries(), 1u);
+  proxy.DropStalled();
+}
+
+TEST_F(ClientE2eTest, ACorruptByteOnTheWireIsAClearError) {
+  TempDir dir;
+  TcpProxy clean(server_->port());
+  auto r = RunCli({"fetch", Url(clean.port(), elephant_), "--budget", "6000",
+                   "--out", (dir / "ok.ply").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  // Find the first payload byte in what the server sent: after the HTTP
+  // head, the preamble and the stream header.
+  const std::string t = clean.Transcript();
+  const size_t body = t.find("\r\n\r\n") + 4;
+  uint32_t header = 0;
+  for (int i = 7; i >= 4; --i)
+    header = header << 8 | static_cast<uint8_t>(t[body + i]);
+  TcpProxy corrupt(server_->port());
+  corrupt.CorruptAt(static_cast<int64_t>(body + 8 + header + 100));
+  r = RunCli({"fetch", Url(corrupt.port(), elephant_), "--budget", "6000",
+              "--out", (dir / "bad.ply").string()});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("meshwave fetch: "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("CRC32C mismatch"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "bad.ply"));
+  EXPECT_EQ(corrupt.connections(), 1);  // refused, not retried
+
+  // A corrupt stream header is refused too.
+  TcpProxy corrupt_header(server_->port());
+  corrupt_header.CorruptAt(static_cast<int64_t>(body + 1));
+  r = RunCli({"fetch", Url(corrupt_header.port(), elephant_), "--budget",
+              "6000", "--out", (dir / "bad.ply").string()});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("wrong magic"), std::string::npos) << r.err;
+}
+
+TEST_F(ClientE2eTest, ServerRefusalsAreClearErrors) {
+  TempDir dir;
+  auto r =
+      RunCli({"fetch", Url("0123456789ab"), "--out", (dir / "x.ply").string()});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("404"), std::string::npos) << r.err;
+  r = RunCli({"fetch", Url(holes_), "--budget", "10", "--out",
+              (dir / "x.ply").string()});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("smaller than the stream header"), std::string::npos)
+      << r.err;
+  r = RunCli({"fetch", "http://127.0.0.1:1/v1/meshes/0123456789ab", "--out",
+              (dir / "x.ply").string(), "--retries", "1", "--retry-delay",
+              "1ms"});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("connecting to 127.0.0.1:1"), std::string::npos)
+      << r.err;
+  r = RunCli({"fetch", Url(holes_), "--budget", "1k", "--psnr", "40", "--out",
+              (dir / "x.ply").string()});
+  EXPECT_EQ(r.exit_code, 1);
+}
+
+}  // namespace
+}  // namespace meshwave

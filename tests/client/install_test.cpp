@@ -1,0 +1,56 @@
+// `cmake --install` to a temporary prefix, then docs/client-example built
+// against it with find_package(meshwave) and run: the package is usable
+// from outside the source tree.
+#include <gtest/gtest.h>
+
+#include "e2e/cli_runner.h"
+
+namespace meshwave {
+namespace {
+
+using testing::ShellQuote;
+using testing::TempDir;
+
+int RunShell(const std::string& cmd, const std::filesystem::path& log) {
+  return std::system(
+      (cmd + " >>" + ShellQuote(log.string()) + " 2>&1").c_str());
+}
+
+TEST(ClientInstallTest, ExampleProjectBuildsAgainstTheInstalledPackage) {
+  TempDir dir;
+  const auto log = dir / "log.txt";
+  const std::string cmake = ShellQuote(MESHWAVE_CMAKE_COMMAND);
+  const auto prefix = dir / "prefix";
+  ASSERT_EQ(RunShell(cmake + " --install " + ShellQuote(MESHWAVE_BUILD_DIR) +
+                    " --prefix " + ShellQuote(prefix.string()),
+                log),
+            0)
+      << testing::ReadBytes(log);
+  EXPECT_TRUE(
+      std::filesystem::exists(prefix / "include/meshwave/client/session.h"));
+  EXPECT_TRUE(std::filesystem::exists(prefix / "include/stream.pb.h"));
+  EXPECT_TRUE(std::filesystem::exists(
+      prefix / "lib/cmake/meshwave/meshwaveConfig.cmake"));
+
+  const auto build = dir / "example";
+  ASSERT_EQ(RunShell(cmake + " -S " + ShellQuote(MESHWAVE_EXAMPLE_DIR) + " -B " +
+                    ShellQuote(build.string()) + " -DCMAKE_BUILD_TYPE=Release" +
+                    " -DCMAKE_PREFIX_PATH=" + ShellQuote(prefix.string()),
+                log),
+            0)
+      << testing::ReadBytes(log);
+  ASSERT_EQ(RunShell(cmake + " --build " + ShellQuote(build.string()) + " -j2", log),
+            0)
+      << testing::ReadBytes(log);
+  // It runs, and refuses a malformed URL with the library's message.
+  const int code = RunShell(
+      ShellQuote((build / "fetch_example").string()) + " ftp://x 100 out.ply",
+      log);
+  EXPECT_EQ(WEXITSTATUS(code), 1);
+  EXPECT_NE(testing::ReadBytes(log).find("expected http:// or https://"),
+            std::string::npos)
+      << testing::ReadBytes(log);
+}
+
+}  // namespace
+}  // namespace meshwave

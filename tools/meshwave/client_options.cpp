@@ -1,0 +1,49 @@
+#include "client_options.h"
+
+#include <cmath>
+
+#include "meshwave/client/budget.h"
+
+namespace meshwave::cli {
+namespace {
+
+Result<std::chrono::milliseconds> Millis(const std::string& text) {
+  MW_ASSIGN_OR_RETURN(double seconds, client::ParseDuration(text));
+  return std::chrono::milliseconds(
+      static_cast<int64_t>(std::ceil(seconds * 1000)));
+}
+
+}  // namespace
+
+void AddClientOptions(CLI::App* cmd, ClientArgs& args) {
+  cmd->add_option("--connect-timeout", args.connect_timeout,
+                  "Time to connect (and finish the TLS handshake), e.g. 5s")
+      ->capture_default_str();
+  cmd->add_option("--timeout", args.timeout,
+                  "Time any single read or write may take")
+      ->capture_default_str();
+  cmd->add_option(
+         "--retries", args.retries,
+         "Retries of a request that fails without progress (backoff doubles)")
+      ->check(CLI::Range(0, 100))
+      ->capture_default_str();
+  cmd->add_option("--retry-delay", args.retry_delay,
+                  "Wait before the first retry")
+      ->capture_default_str();
+  cmd->add_option(
+      "--ca-file", args.ca_file,
+      "PEM certificates to trust for https (default: the system's)");
+}
+
+Status ApplyClientOptions(const ClientArgs& args,
+                          client::TransportOptions& transport,
+                          client::RetryPolicy& retry) {
+  MW_ASSIGN_OR_RETURN(transport.connect_timeout, Millis(args.connect_timeout));
+  MW_ASSIGN_OR_RETURN(transport.read_timeout, Millis(args.timeout));
+  MW_ASSIGN_OR_RETURN(retry.initial_delay, Millis(args.retry_delay));
+  transport.ca_file = args.ca_file;
+  retry.max_attempts = args.retries + 1;
+  return Status::Ok();
+}
+
+}  // namespace meshwave::cli

@@ -1,0 +1,30 @@
+// The network options of the commands that talk to a server (fetch,
+// refine, catalog): timeouts, retries, trusted certificates.
+#ifndef MESHWAVE_TOOLS_CLIENT_OPTIONS_H_
+#define MESHWAVE_TOOLS_CLIENT_OPTIONS_H_
+
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "meshwave/client/backoff.h"
+#include "meshwave/client/transport.h"
+
+namespace meshwave::cli {
+
+struct ClientArgs {
+  std::string connect_timeout = "5s";
+  std::string timeout = "10s";
+  int retries = 5;
+  std::string retry_delay = "100ms";
+  std::string ca_file;
+};
+
+void AddClientOptions(CLI::App* cmd, ClientArgs& args);
+Status ApplyClientOptions(const ClientArgs& args,
+                          client::TransportOptions& transport,
+                          client::RetryPolicy& retry);
+
+}  // namespace meshwave::cli
+
+#endif  // MESHWAVE_TOOLS_CLIENT_OPTIONS_H_

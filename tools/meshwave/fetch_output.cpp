@@ -1,0 +1,164 @@
+#include "fetch_output.h"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include "cli_util.h"
+#include "meshwave/metrics.h"
+
+namespace meshwave::cli {
+namespace {
+
+double MsSince(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(
+             std::chrono::steady_clock::now() - t)
+      .count();
+}
+
+std::string HumanBytes(uint64_t n) {
+  char buf[32];
+  if (n < 10 * 1024) {
+    std::snprintf(buf, sizeof buf, "%llu B",
+                  static_cast<unsigned long long>(n));
+  } else if (n < 10 * 1024 * 1024) {
+    std::snprintf(buf, sizeof buf, "%.1f KiB", static_cast<double>(n) / 1024);
+  } else {
+    std::snprintf(buf, sizeof buf, "%.1f MiB",
+                  static_cast<double>(n) / (1024 * 1024));
+  }
+  return buf;
+}
+
+std::string Db(double db) {
+  if (std::isinf(db)) return "lossless";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.2f dB", db);
+  return buf;
+}
+
+}  // namespace
+
+Result<std::unique_ptr<FetchOutput>> FetchOutput::Create(
+    const FetchOutputOptions& options) {
+  std::unique_ptr<FetchOutput> out(new FetchOutput(options));
+  if (!options.reference.empty()) {
+    MW_ASSIGN_OR_RETURN(TriMesh ref, ReadMesh(options.reference));
+    out->reference_diagonal_ = BoundingBox(ref.positions).Diagonal();
+    out->reference_ = std::move(ref);
+  }
+  if (!options.lods.empty()) {
+    std::error_code ec;
+    std::filesystem::create_directories(options.lods, ec);
+    if (ec)
+      return IoError("cannot create " + options.lods + ": " + ec.message());
+  }
+  out->terminal_ = !options.json && ::isatty(STDERR_FILENO) == 1;
+  return out;
+}
+
+double FetchOutput::TruePsnr(const ProgressiveDecoder& decoder) const {
+  if (!reference_) return 0;
+  auto e = VertexErrorByNearest(reference_->positions,
+                                decoder.Positions(options_.max_level),
+                                reference_diagonal_);
+  return e.ok() ? e->psnr_db : 0;
+}
+
+void FetchOutput::OnProgress(const client::Progress& p,
+                             const ProgressiveDecoder& decoder) {
+  if (report_.steps_size() == 0) report_.set_first_mesh_ms(MsSince(start_));
+  proto::FetchStep* step = report_.add_steps();
+  step->set_packets(p.packets);
+  step->set_bytes(p.bytes);
+  step->set_level(p.level);
+  step->set_estimated_psnr_db(p.estimated_psnr_db);
+  if (reference_) step->set_true_psnr_db(TruePsnr(decoder));
+  if (!options_.lods.empty() && lod_error_.ok()) {
+    char name[32];
+    std::snprintf(name, sizeof name, "lod_%04zu.ply", p.packets);
+    const std::string path =
+        (std::filesystem::path(options_.lods) / name).string();
+    lod_error_ = WriteMesh(decoder.Mesh(options_.max_level), path);
+    step->set_lod_file(path);
+  }
+  step->set_elapsed_ms(MsSince(start_));
+  if (terminal_) {
+    std::fprintf(stderr, "\r%10s  %5zu/%zu packets  level %d/%d  PSNR %s",
+                 HumanBytes(p.bytes).c_str(), p.packets, p.order_packets,
+                 p.level, p.levels, Db(p.estimated_psnr_db).c_str());
+    if (reference_)
+      std::fprintf(stderr, " (true %s)", Db(step->true_psnr_db()).c_str());
+    if (p.retries > 0) std::fprintf(stderr, "  %d retries", p.retries);
+    std::fprintf(stderr, "\033[K");
+    std::fflush(stderr);
+    line_open_ = true;
+  }
+}
+
+client::ProgressHandler FetchOutput::Handler() {
+  return [this](const client::Progress& p, const ProgressiveDecoder& d) {
+    OnProgress(p, d);
+  };
+}
+
+Status FetchOutput::Finish(const client::Session& session,
+                           const std::string& url, const std::string& state) {
+  if (line_open_) std::fprintf(stderr, "\n");
+  line_open_ = false;
+  MW_RETURN_IF_ERROR(lod_error_);
+  const ProgressiveDecoder* decoder = session.decoder();
+  if (decoder == nullptr)
+    return Status(StatusCode::kInternal, "no stream header received");
+  const client::Progress p = session.progress();
+  const TriMesh mesh = decoder->Mesh(options_.max_level);
+  if (!options_.out.empty()) MW_RETURN_IF_ERROR(WriteMesh(mesh, options_.out));
+
+  report_.set_mesh_url(url);
+  report_.set_order(ProgressionName(session.options().order));
+  report_.set_max_level(options_.max_level);
+  report_.set_packets(p.packets);
+  report_.set_packets_total(p.order_packets);
+  report_.set_bytes(p.bytes);
+  report_.set_received_bytes(p.received_bytes);
+  report_.set_packets_received(p.packets_received);
+  report_.set_level(p.level);
+  report_.set_levels(p.levels);
+  report_.set_estimated_psnr_db(p.estimated_psnr_db);
+  if (reference_) report_.set_true_psnr_db(TruePsnr(*decoder));
+  report_.set_complete(p.complete());
+  report_.set_retries(static_cast<uint32_t>(p.retries));
+  report_.set_output(options_.out);
+  report_.set_state(state);
+  report_.set_vertices(mesh.positions.size());
+  report_.set_faces(mesh.faces.size());
+  report_.set_elapsed_ms(MsSince(start_));
+  if (options_.json) {
+    PrintJson(report_);
+    return Status::Ok();
+  }
+  if (!options_.out.empty()) {
+    std::printf(
+        "wrote %s: %zu vertices, %zu faces (complete levels %d of %d)\n",
+        options_.out.c_str(), mesh.positions.size(), mesh.faces.size(), p.level,
+        p.levels);
+  }
+  std::printf(
+      "%zu of %zu packets in %s order, %llu bytes (%llu received), estimated "
+      "PSNR %s",
+      p.packets, p.order_packets, ProgressionName(session.options().order),
+      static_cast<unsigned long long>(p.bytes),
+      static_cast<unsigned long long>(p.received_bytes),
+      Db(p.estimated_psnr_db).c_str());
+  if (reference_)
+    std::printf(", true PSNR %s", Db(report_.true_psnr_db()).c_str());
+  std::printf("\n");
+  if (!state.empty())
+    std::printf("state in %s (refine with: meshwave refine %s --more SIZE)\n",
+                state.c_str(), state.c_str());
+  return Status::Ok();
+}
+
+}  // namespace meshwave::cli

@@ -1,0 +1,61 @@
+// What `meshwave fetch` and `meshwave refine` show and write while a
+// session refines a mesh: a progress line on a terminal, one mesh per
+// refinement in --lods, the true PSNR against --reference, the final mesh
+// and a summary (text or --json).
+#ifndef MESHWAVE_TOOLS_FETCH_OUTPUT_H_
+#define MESHWAVE_TOOLS_FETCH_OUTPUT_H_
+
+#include <chrono>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "client_state.pb.h"
+#include "meshwave/client/session.h"
+#include "meshwave/mesh.h"
+
+namespace meshwave::cli {
+
+struct FetchOutputOptions {
+  std::string out;        // final mesh (.ply or .obj)
+  std::string lods;       // directory for one mesh per refinement, or empty
+  std::string reference;  // original mesh for the true PSNR, or empty
+  bool json = false;
+  int max_level = -1;
+};
+
+class FetchOutput {
+ public:
+  // Reads the reference and creates the --lods directory.
+  static Result<std::unique_ptr<FetchOutput>> Create(
+      const FetchOutputOptions& options);
+
+  // The session's progress handler. Failures to write a LOD are kept and
+  // returned by Finish (a handler cannot stop the session).
+  client::ProgressHandler Handler();
+
+  // Writes the final mesh and prints the summary. `state` names the state
+  // file written, if any.
+  Status Finish(const client::Session& session, const std::string& url,
+                const std::string& state);
+
+ private:
+  explicit FetchOutput(FetchOutputOptions options)
+      : options_(std::move(options)) {}
+  double TruePsnr(const ProgressiveDecoder& decoder) const;
+  void OnProgress(const client::Progress& p, const ProgressiveDecoder& decoder);
+
+  FetchOutputOptions options_;
+  std::optional<TriMesh> reference_;
+  double reference_diagonal_ = 0;
+  bool terminal_ = false;
+  bool line_open_ = false;
+  Status lod_error_;
+  proto::FetchReport report_;
+  std::chrono::steady_clock::time_point start_ =
+      std::chrono::steady_clock::now();
+};
+
+}  // namespace meshwave::cli
+
+#endif  // MESHWAVE_TOOLS_FETCH_OUTPUT_H_
