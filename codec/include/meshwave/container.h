@@ -28,6 +28,10 @@ std::string SerializeFullContainer(const EncodedStream& stream);
 std::string SerializeContainerHead(const proto::StreamHeader& header,
                                    std::span<const uint32_t> ids);
 
+// Bytes the header's packed `present` field takes when its ids' varints
+// take `id_bytes` bytes (0 when empty): for adding sizes up packet by packet.
+uint64_t PresentFieldSize(uint64_t id_bytes);
+
 // The size SerializeContainer would produce, without building it.
 uint64_t ContainerSize(const proto::StreamHeader& header,
                        std::span<const uint32_t> ids);

@@ -25,16 +25,11 @@ uint32_t GetU32(std::string_view b) {
 
 }  // namespace
 
-namespace {
-
-// Bytes the packed `present` field adds to a header: tag, length, varints.
 uint64_t PresentFieldSize(uint64_t id_bytes) {
   return id_bytes == 0 ? 0
                        : 1 + google::protobuf::io::CodedOutputStream::VarintSize64(id_bytes) +
                              id_bytes;
 }
-
-}  // namespace
 
 uint64_t ContainerSize(const proto::StreamHeader& header,
                        std::span<const uint32_t> ids) {

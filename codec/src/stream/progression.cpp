@@ -1,5 +1,7 @@
 #include "meshwave/progression.h"
 
+#include <google/protobuf/io/coded_stream.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -184,22 +186,31 @@ Selection SelectPackets(const proto::StreamHeader& h,
                         size_t cursor) {
   Selection s;
   s.next_cursor = std::min(cursor, order.size());
-  std::vector<uint32_t> ids;
-  uint64_t bytes = cursor == 0 ? ContainerSize(h, ids) : 0;
+  // From cursor 0 the container's size is the header's plus, per packet,
+  // its payload and its id in `present`: sizes are added, not recomputed
+  // (ContainerSize walks the whole header; calling it per packet made
+  // fitting a budget quadratic in the packet count).
+  const uint64_t empty = cursor == 0 ? ContainerSize(h, {}) : 0;
+  uint64_t bytes = empty;
   if (bytes > budget) return s;  // not even the header fits
+  uint64_t payload = 0, id_bytes = 0;
   while (s.next_cursor < order.size()) {
     const uint32_t id = order[s.next_cursor];
-    ids.push_back(id);
-    const uint64_t next = cursor == 0 ? ContainerSize(h, ids)
-                                      : bytes + h.packets().length(static_cast<int>(id));
-    if (next > budget) {
-      ids.pop_back();
+    const uint64_t length = h.packets().length(static_cast<int>(id));
+    uint64_t next = bytes + length;
+    if (cursor == 0) {
+      const uint64_t ids = id_bytes + google::protobuf::io::CodedOutputStream::VarintSize32(id);
+      next = empty + payload + length + PresentFieldSize(ids);
+      if (next > budget) break;
+      id_bytes = ids;
+      payload += length;
+    } else if (next > budget) {
       break;
     }
     bytes = next;
+    s.ids.push_back(id);
     ++s.next_cursor;
   }
-  s.ids = std::move(ids);
   s.bytes = bytes;
   return s;
 }
