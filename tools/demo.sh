@@ -1,17 +1,24 @@
 #!/usr/bin/env bash
-# The main job: installs dependencies, builds, and runs the meshwave CLI on
-# the shipped sample meshes: describe, subdivide, detect the levels back,
-# encode into an embedded stream, decode it whole and at byte budgets, and
-# compare with the original. (The server and client come next; this script
-# will then start the server and stream the sample mesh with the client.)
+# The main job: installs dependencies, builds, runs the meshwave CLI on the
+# shipped sample meshes (describe, subdivide, encode, decode at budgets,
+# compare), then starts meshwave-server on an embedded default catalog
+# (SQLite, in a temporary directory) holding the sample meshes, and streams
+# one with the client: a fetch at a budget, then two refinements that pull
+# only the next packets.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash deploy/install-deps.sh
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
-cmake --build build -j2 --target meshwave
+cmake --build build -j2 --target meshwave meshwave-server
 cli=build/tools/meshwave/meshwave
+server=build/server/meshwave-server
 out=$(mktemp -d)
-trap 'rm -rf "$out"' EXIT
+server_pid=
+cleanup() {
+  if [[ -n $server_pid ]]; then kill "$server_pid" 2> /dev/null || true; wait "$server_pid" 2> /dev/null || true; fi
+  rm -rf "$out"
+}
+trap cleanup EXIT
 
 echo "== meshwave info data/elephant.off"
 $cli info data/elephant.off
@@ -36,3 +43,30 @@ done
 echo
 echo "== meshwave decode holes.mwv --order resolution --max-level 1 (a smaller mesh)"
 $cli decode "$out/holes.mwv" "$out/holes_level1.ply" --order resolution --max-level 1
+
+echo
+echo "== meshwave-server ingest: the sample meshes into a new catalog (elephant.off is remeshed)"
+$server ingest --catalog "$out/catalog" data/elephant.off data/holes.off | tee "$out/ingest.txt"
+id=$(awk '/elephant.off/ {print $1; exit}' "$out/ingest.txt")
+echo
+echo "== meshwave-server on 127.0.0.1 (a free port)"
+$server --catalog "$out/catalog" --listen 127.0.0.1:0 --port-file "$out/port" > "$out/server.log" 2>&1 &
+server_pid=$!
+for _ in $(seq 100); do [[ -s $out/port ]] && break; sleep 0.1; done
+[[ -s $out/port ]] || { cat "$out/server.log"; echo "server did not start" >&2; exit 1; }
+url=http://127.0.0.1:$(cat "$out/port")
+echo "serving at $url"
+echo
+echo "== meshwave catalog $url"
+$cli catalog "$url"
+echo
+echo "== meshwave fetch: the elephant at a 3000-byte budget, rd order"
+$cli fetch "$url/v1/meshes/$id" --budget 3000 --order rd --state "$out/e.mwv" \
+  --out "$out/e.ply" --reference data/elephant.off
+for more in 2000 4000; do
+  echo
+  echo "== meshwave refine: $more more bytes (only the next packets)"
+  $cli refine "$out/e.mwv" --more "$more" --reference data/elephant.off
+done
+echo
+echo "== done: the server stops, the temporary catalog is removed"
