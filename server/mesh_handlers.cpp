@@ -169,7 +169,7 @@ Response GetStream(ServerContext& ctx, const Request& req, const std::string& id
     r = Binary(l.mesh, etag);
     if (q->from == 0) {
       r.set(http::field::content_type, "application/vnd.meshwave.mwv");
-      r.body().owned = SerializeContainerHead(m.header(), s.ids);
+      r.body().owned = SerializeContainerHead(m.header_bytes(), s.ids);
     }
     for (uint32_t id_k : s.ids) r.body().AddSlice(m.payload(id_k));
   }

@@ -27,6 +27,10 @@ std::string SerializeFullContainer(const EncodedStream& stream);
 // send the payloads from elsewhere (a memory map) after it.
 std::string SerializeContainerHead(const proto::StreamHeader& header,
                                    std::span<const uint32_t> ids);
+// The same from the header's bytes serialized once without `present` (a
+// server keeps them per mesh): no header copy or re-serialization per call.
+std::string SerializeContainerHead(std::string_view header_without_present,
+                                   std::span<const uint32_t> ids);
 
 // Bytes the header's packed `present` field takes when its ids' varints
 // take `id_bytes` bytes (0 when empty): for adding sizes up packet by packet.

@@ -1,6 +1,7 @@
 #include "meshwave/container.h"
 
 #include <google/protobuf/io/coded_stream.h>
+#include <google/protobuf/wire_format_lite.h>
 
 #include <algorithm>
 #include <cmath>
@@ -53,11 +54,37 @@ std::string SerializeContainerHead(const proto::StreamHeader& stream_header,
                                    std::span<const uint32_t> ids) {
   proto::StreamHeader header = stream_header;
   header.clear_present();
-  for (uint32_t id : ids) header.add_present(id);
-  const std::string head = header.SerializeAsString();
+  return SerializeContainerHead(header.SerializeAsString(), ids);
+}
+
+std::string SerializeContainerHead(std::string_view header_without_present,
+                                   std::span<const uint32_t> ids) {
+  // `present` (field 14, packed varints) has the highest field number, so
+  // protobuf's own serializer would write it last: appending it gives the
+  // same bytes as serializing the header with the list set.
+  const auto put_varint = [](std::string& out, uint64_t v) {
+    while (v >= 0x80) {
+      out.push_back(static_cast<char>((v & 0x7f) | 0x80));
+      v >>= 7;
+    }
+    out.push_back(static_cast<char>(v));
+  };
+  std::string present;
+  for (uint32_t id : ids) put_varint(present, id);
+  std::string field;
+  if (!ids.empty()) {
+    put_varint(field, google::protobuf::internal::WireFormatLite::MakeTag(
+                          proto::StreamHeader::kPresentFieldNumber,
+                          google::protobuf::internal::WireFormatLite::WIRETYPE_LENGTH_DELIMITED));
+    put_varint(field, present.size());
+  }
   std::string out(kContainerMagic, 4);
-  PutU32(out, static_cast<uint32_t>(head.size()));
-  out += head;
+  PutU32(out, static_cast<uint32_t>(header_without_present.size() + field.size() +
+                                    present.size()));
+  out.reserve(out.size() + header_without_present.size() + field.size() + present.size());
+  out.append(header_without_present);
+  out += field;
+  out += present;
   return out;
 }
 

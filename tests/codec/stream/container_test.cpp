@@ -61,6 +61,27 @@ TEST(ContainerTest, SizeMatchesSerialization) {
   EXPECT_EQ(ContainerSize(parsed->header, order), SerializeFullContainer(Stream()).size());
 }
 
+TEST(ContainerTest, HeadFromCachedHeaderBytesIsWhatProtobufWrites) {
+  // The head built by appending `present` to bytes serialized once must be
+  // byte for byte protobuf's own serialization (ETags and CRC-free clients
+  // compare bytes).
+  proto::StreamHeader header = Stream().header;
+  header.clear_present();
+  const std::string cached = header.SerializeAsString();
+  const auto order = PacketOrder(header, Progression::kRd);
+  for (size_t n : {size_t{0}, size_t{1}, order.size() / 2, order.size()}) {
+    const std::vector<uint32_t> ids(order.begin(), order.begin() + static_cast<long>(n));
+    proto::StreamHeader with = header;
+    for (uint32_t id : ids) with.add_present(id);
+    const std::string body = with.SerializeAsString();
+    std::string expected = "MWV1";
+    for (int i = 0; i < 4; ++i) expected.push_back(static_cast<char>((body.size() >> (8 * i)) & 0xff));
+    expected += body;
+    EXPECT_EQ(SerializeContainerHead(cached, ids), expected) << n;
+    EXPECT_EQ(SerializeContainerHead(Stream().header, ids), expected) << n;
+  }
+}
+
 TEST(ContainerTest, BudgetSelectsLongestFittingPrefix) {
   const auto& h = Stream().header;
   const auto order = PacketOrder(h, Progression::kQuality);
