@@ -12,11 +12,10 @@ namespace meshwave::cli {
 namespace {
 
 struct FetchArgs {
-  std::string url, budget, rate, deadline, order = "quality", out, lods, state,
-                                           reference;
+  std::string url, budget, rate, deadline, order = "quality", state;
   double psnr = 0;
   int max_level = -1;
-  bool json = false;
+  FetchOutputOptions output;
   ClientArgs client;
 };
 
@@ -63,9 +62,9 @@ Status Run(const FetchArgs& args) {
   options.max_level = args.max_level;
   client::TransportOptions transport;
   MW_RETURN_IF_ERROR(ApplyClientOptions(args.client, transport, options.retry));
-  MW_ASSIGN_OR_RETURN(auto output,
-                      FetchOutput::Create({args.out, args.lods, args.reference,
-                                           args.json, args.max_level}));
+  FetchOutputOptions output_options = args.output;
+  output_options.max_level = args.max_level;
+  MW_ASSIGN_OR_RETURN(auto output, FetchOutput::Create(output_options));
   client::BlockingSession blocking(url, options, transport);
   const Status fetched = blocking.Fetch(budget, output->Handler());
   client::Session& session = blocking.session();
@@ -112,17 +111,12 @@ void AddFetchCommand(CLI::App& app, int& exit_code) {
          "--max-level", args->max_level,
          "Only subbands below this level (a coarser mesh for small devices)")
       ->check(CLI::Range(0, 12));
-  cmd->add_option("--out", args->out, "Output mesh (.ply or .obj)")->required();
-  cmd->add_option("--lods", args->lods,
-                  "Directory for one mesh per refinement (lod_NNNN.ply)");
+  AddFetchOutputOptions(cmd, args->output, "Output mesh (.ply or .obj)",
+                        /*out_required=*/true);
   cmd->add_option("--state", args->state,
                   "Keep the packets received as a partial container FILE (and "
                   "FILE.session) "
                   "for `meshwave refine`");
-  cmd->add_option("--reference", args->reference,
-                  "Original mesh: print the true PSNR at every step");
-  cmd->add_flag("--json", args->json,
-                "Print one JSON object (steps, bytes, PSNR, timings)");
   AddClientOptions(cmd, args->client);
   cmd->callback([args, &exit_code] {
     const Status s = Run(*args);

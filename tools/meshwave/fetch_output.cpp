@@ -10,6 +10,18 @@
 #include "meshwave/metrics.h"
 
 namespace meshwave::cli {
+
+void AddFetchOutputOptions(CLI::App* cmd, FetchOutputOptions& options,
+                           const std::string& out_help, bool out_required) {
+  CLI::Option* out = cmd->add_option("--out", options.out, out_help);
+  if (out_required) out->required();
+  cmd->add_option("--lods", options.lods,
+                  "Directory for one mesh per refinement (lod_NNNN.ply)");
+  cmd->add_option("--reference", options.reference,
+                  "Original mesh: print the true PSNR at every step");
+  cmd->add_flag("--json", options.json,
+                "Print one JSON object (steps, bytes, PSNR, timings)");
+}
 namespace {
 
 double MsSince(std::chrono::steady_clock::time_point t) {

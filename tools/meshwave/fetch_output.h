@@ -10,6 +10,8 @@
 #include <optional>
 #include <string>
 
+#include <CLI/CLI.hpp>
+
 #include "client_state.pb.h"
 #include "meshwave/client/session.h"
 #include "meshwave/mesh.h"
@@ -23,6 +25,11 @@ struct FetchOutputOptions {
   bool json = false;
   int max_level = -1;
 };
+
+// Registers --out (with `out_help`; required when `out_required`), --lods,
+// --reference and --json on a command that refines a mesh.
+void AddFetchOutputOptions(CLI::App* cmd, FetchOutputOptions& options,
+                           const std::string& out_help, bool out_required);
 
 class FetchOutput {
  public:

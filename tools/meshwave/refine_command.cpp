@@ -12,8 +12,8 @@ namespace meshwave::cli {
 namespace {
 
 struct RefineArgs {
-  std::string state, more, out, lods, reference;
-  bool json = false;
+  std::string state, more;
+  FetchOutputOptions output;
   ClientArgs client;
 };
 
@@ -25,13 +25,12 @@ Status Run(const RefineArgs& args) {
   options.max_level = state.max_level;
   client::TransportOptions transport;
   MW_RETURN_IF_ERROR(ApplyClientOptions(args.client, transport, options.retry));
-  const std::string out =
-      args.out.empty()
-          ? std::filesystem::path(args.state).replace_extension(".ply").string()
-          : args.out;
-  MW_ASSIGN_OR_RETURN(auto output,
-                      FetchOutput::Create({out, args.lods, args.reference,
-                                           args.json, state.max_level}));
+  FetchOutputOptions output_options = args.output;
+  if (output_options.out.empty()) {
+    output_options.out = std::filesystem::path(args.state).replace_extension(".ply").string();
+  }
+  output_options.max_level = state.max_level;
+  MW_ASSIGN_OR_RETURN(auto output, FetchOutput::Create(output_options));
   client::BlockingSession blocking(state.url, options, transport);
   client::Session& session = blocking.session();
   Status restored = session.Restore(state.container, state.budget_bytes);
@@ -63,14 +62,9 @@ void AddRefineCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--more", args->more,
                   "Bytes to add to the budget (e.g. 64KiB)")
       ->required();
-  cmd->add_option("--out", args->out,
-                  "Output mesh (.ply or .obj; default: STATE as .ply)");
-  cmd->add_option("--lods", args->lods,
-                  "Directory for one mesh per refinement (lod_NNNN.ply)");
-  cmd->add_option("--reference", args->reference,
-                  "Original mesh: print the true PSNR at every step");
-  cmd->add_flag("--json", args->json,
-                "Print one JSON object (steps, bytes, PSNR, timings)");
+  AddFetchOutputOptions(cmd, args->output,
+                        "Output mesh (.ply or .obj; default: STATE as .ply)",
+                        /*out_required=*/false);
   AddClientOptions(cmd, args->client);
   cmd->callback([args, &exit_code] {
     const Status s = Run(*args);
