@@ -5,6 +5,17 @@ option(MESHWAVE_BENCH "Build the Google Benchmark programs in bench/" OFF)
 option(MESHWAVE_WERROR "Treat compiler warnings as errors" OFF)
 set(MESHWAVE_SANITIZE "" CACHE STRING
     "Semicolon list of sanitizers, e.g. address;undefined or thread")
+option(MESHWAVE_FUZZ
+  "Build the libFuzzer targets of tests/fuzz (clang only; adds address;undefined sanitizers)" OFF)
+if(MESHWAVE_FUZZ)
+  if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
+    message(FATAL_ERROR "MESHWAVE_FUZZ needs clang: -DCMAKE_CXX_COMPILER=clang++")
+  endif()
+  if(NOT MESHWAVE_SANITIZE)
+    set(MESHWAVE_SANITIZE "address;undefined" CACHE STRING
+        "Semicolon list of sanitizers, e.g. address;undefined or thread" FORCE)
+  endif()
+endif()
 # Where the shared development meshes live (tests skip nothing silently: a
 # missing directory fails the tests that need it, with its path).
 set(MESHWAVE_SHARED_MESHES "${PROJECT_SOURCE_DIR}/../shared/data/meshes" CACHE PATH
@@ -22,4 +33,9 @@ if(MESHWAVE_SANITIZE)
   target_compile_options(meshwave_options INTERFACE
     -fsanitize=${_mw_sanitizers} -fno-omit-frame-pointer -fno-sanitize-recover=all)
   target_link_options(meshwave_options INTERFACE -fsanitize=${_mw_sanitizers})
+endif()
+if(MESHWAVE_FUZZ)
+  # Coverage for libFuzzer in every library; only the fuzz targets link the
+  # fuzzer's main (-fsanitize=fuzzer, tests/fuzz/CMakeLists.txt).
+  target_compile_options(meshwave_options INTERFACE -fsanitize=fuzzer-no-link)
 endif()

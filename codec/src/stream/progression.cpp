@@ -163,11 +163,15 @@ std::vector<uint32_t> PacketOrder(const proto::StreamHeader& h,
           if (!ready) continue;
           const double value = h.packets().distortion_reduction(static_cast<int>(id)) /
                                (h.packets().length(static_cast<int>(id)) + 4.0);
-          if (value > best_value || (value == best_value && static_cast<int>(id) < best)) {
+          // The first ready packet is taken whatever its value: an untrusted
+          // header may give reductions below -1 or NaN (fuzz_replay_container_fuzz).
+          if (best < 0 || value > best_value ||
+              (value == best_value && static_cast<int>(id) < best)) {
             best = static_cast<int>(id);
             best_value = value;
           }
         }
+        if (best < 0) break;  // nothing ready: cannot happen on a validated header
         sent[best] = 1;
         order.push_back(static_cast<uint32_t>(best));
       }

@@ -1,0 +1,77 @@
+// A small real container (an octahedron subdivided three times, 34 packets)
+// loaded once per fuzzing process: the fixed header and payloads the packet
+// and decoder-order targets mutate around.
+#ifndef MESHWAVE_TESTS_FUZZ_FUZZ_FIXTURE_TESTONLY_H_
+#define MESHWAVE_TESTS_FUZZ_FUZZ_FIXTURE_TESTONLY_H_
+
+#include <google/protobuf/stubs/logging.h>
+
+#include <cstdlib>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "meshwave/container.h"
+#include "meshwave/progressive_decoder.h"
+
+namespace meshwave::fuzz {
+
+struct Fixture {
+  std::string bytes;                  // the whole container
+  proto::StreamHeader header;         // present cleared
+  std::vector<std::string> payloads;  // by packet id
+  std::vector<Vec3> full;             // positions with every packet decoded
+};
+
+// Protobuf logs every string field that is not UTF-8: noise at fuzzing
+// speed, and the parse fails cleanly anyway.
+inline const bool kQuietProtobuf = [] {
+  google::protobuf::SetLogHandler(nullptr);
+  return true;
+}();
+
+// Aborts (a harness error, not a finding) when the fixture is unusable.
+inline const Fixture& GetFixture() {
+  static const Fixture fixture = [] {
+    Fixture f;
+    std::ifstream in(MESHWAVE_FUZZ_CONTAINER, std::ios::binary);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    f.bytes = ss.str();
+    auto parsed = ParseContainer(f.bytes);
+    if (!parsed.ok()) {
+      std::fprintf(stderr, "fuzz fixture %s: %s\n", MESHWAVE_FUZZ_CONTAINER,
+                   parsed.status().message().c_str());
+      std::abort();
+    }
+    f.header = parsed->header;
+    f.header.clear_present();
+    f.payloads.resize(static_cast<size_t>(f.header.packets().length_size()));
+    for (size_t i = 0; i < parsed->ids.size(); ++i) {
+      f.payloads[parsed->ids[i]] = std::string(parsed->payloads[i]);
+    }
+    auto dec = ProgressiveDecoder::Create(f.header);
+    if (!dec.ok()) std::abort();
+    for (uint32_t id = 0; id < f.payloads.size(); ++id) {
+      if (!(*dec)->AddPacket(id, f.payloads[id]).ok()) std::abort();
+    }
+    f.full = (*dec)->Positions();
+    return f;
+  }();
+  return fixture;
+}
+
+// A check whose failure is a bug in the code under test: abort, so that
+// libFuzzer (and the replay driver) report the input.
+inline void Require(bool ok, const char* what) {
+  if (!ok) {
+    std::fprintf(stderr, "fuzz invariant violated: %s\n", what);
+    std::abort();
+  }
+}
+
+}  // namespace meshwave::fuzz
+
+#endif  // MESHWAVE_TESTS_FUZZ_FUZZ_FIXTURE_TESTONLY_H_

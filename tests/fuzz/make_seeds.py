@@ -1,0 +1,115 @@
+#!/usr/bin/env python3
+"""Regenerates tests/fuzz/seeds/ from real files: the test meshes of
+tests/data, the sample meshes of data/ and the shared development meshes
+(cut to their first lines: small seeds fuzz faster), and the fixture
+container data/octahedron_sr3.mwv (packets split out with protoc).
+
+Usage: python3 tests/fuzz/make_seeds.py [SHARED_MESHES_DIR]
+"""
+import hashlib
+import os
+import random
+import re
+import shutil
+import struct
+import subprocess
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
+SHARED = sys.argv[1] if len(sys.argv) > 1 else os.path.join(ROOT, "..", "shared", "data", "meshes")
+SEEDS = os.path.join(HERE, "seeds")
+
+
+def put(target, name, data):
+    d = os.path.join(SEEDS, target)
+    os.makedirs(d, exist_ok=True)
+    with open(os.path.join(d, name), "wb") as f:
+        f.write(data)
+
+
+def head_lines(path, lines):
+    with open(path, "rb") as f:
+        return b"".join(f.readline() for _ in range(lines))
+
+
+def mesh_seeds():
+    for sub in ("wellformed", "malformed"):
+        d = os.path.join(ROOT, "tests", "data", sub)
+        for name in sorted(os.listdir(d)):
+            ext = name.rsplit(".", 1)[-1]
+            put(ext + "_reader_fuzz", sub + "_" + name, open(os.path.join(d, name), "rb").read())
+    put("off_reader_fuzz", "sample_elephant_head.off", head_lines(os.path.join(ROOT, "data", "elephant.off"), 60))
+    for name in sorted(os.listdir(SHARED)):
+        ext = name.rsplit(".", 1)[-1]
+        if ext not in ("ply", "obj", "off"):
+            continue
+        path = os.path.join(SHARED, name)
+        if ext == "ply":
+            with open(path, "rb") as f:
+                data = f.read(4096)
+            put("ply_reader_fuzz", "shared_" + name, data)  # header and first elements
+        else:
+            put(ext + "_reader_fuzz", "shared_" + name, head_lines(path, 80))
+
+
+def container_seeds():
+    path = os.path.join(HERE, "data", "octahedron_sr3.mwv")
+    data = open(path, "rb").read()
+    put("container_fuzz", "octahedron_sr3.mwv", data)
+    for cut in (0, 4, 8, 100, 700, 900, len(data) - 1):
+        put("container_fuzz", "octahedron_sr3_cut%d.mwv" % cut, data[:cut])
+    n = struct.unpack("<I", data[4:8])[0]
+    header = data[8:8 + n]
+    text = subprocess.run(["protoc", "--decode=meshwave.proto.StreamHeader", "-I" + os.path.join(ROOT, "proto"),
+                           "stream.proto"], input=header, capture_output=True, check=True).stdout.decode()
+    lengths = [int(x) for x in re.findall(r"^\s+length: (\d+)$", text, re.M)]
+    payloads, pos = [], 8 + n
+    for length in lengths:
+        payloads.append(data[pos:pos + length])
+        pos += length
+    assert pos == len(data), (pos, len(data))
+    for i, p in enumerate(payloads):
+        if i % 3 == 0 or i == len(payloads) - 1:
+            put("packet_fuzz", "packet%02d" % i, bytes([i]) + p)
+    count = len(payloads)
+    put("decoder_order_fuzz", "canonical", bytes(range(count)))
+    put("decoder_order_fuzz", "reversed", bytes(reversed(range(count))))
+    rng = random.Random(7)
+    order = list(range(count))
+    rng.shuffle(order)
+    put("decoder_order_fuzz", "shuffled_twice", bytes(order + order))
+    put("decoder_order_fuzz", "damaged", bytes([0x80, 0, 0x81, 1, 2, 0x83, 3, count + 1]))
+    return hashlib.sha256(data).hexdigest()[:12]
+
+
+def http_seeds(mesh_id):
+    targets = [
+        "/healthz", "/metrics", "/v1/meshes", "/v1/meshes?limit=10&offset=0",
+        "/v1/meshes/%s" % mesh_id, "/v1/meshes/%s/header" % mesh_id,
+        "/v1/meshes/%s/stream?order=rd&budget=800" % mesh_id,
+        "/v1/meshes/%s/stream?order=quality&budget=300&from=3&max_level=2" % mesh_id,
+        "/v1/meshes/%s/stream?order=resolution" % mesh_id,
+        "/v1/meshes/%s/packets/7" % mesh_id, "/v1/meshes/%s/container" % mesh_id,
+        "/v1/meshes/%2e%2e/container", "/v1/meshes/../x", "/v1/meshes/%s%%2fheader" % mesh_id,
+    ]
+    for i, t in enumerate(targets):
+        put("http_request_fuzz", "get%02d" % i,
+            ("GET %s HTTP/1.1\r\nHost: localhost\r\n\r\n" % t).encode())
+    c = "/v1/meshes/%s/container" % mesh_id
+    put("http_request_fuzz", "range", ("GET %s HTTP/1.1\r\nHost: x\r\nRange: bytes=10-99\r\n\r\n" % c).encode())
+    put("http_request_fuzz", "range_suffix", ("GET %s HTTP/1.1\r\nRange: bytes=-5\r\n\r\n" % c).encode())
+    put("http_request_fuzz", "etag", ("HEAD %s HTTP/1.1\r\nIf-None-Match: W/\"x\", *\r\n\r\n" % c).encode())
+    put("http_request_fuzz", "protobuf", ("GET /v1/meshes/%s HTTP/1.1\r\nAccept: application/x-protobuf\r\n\r\n"
+                                          % mesh_id).encode())
+    put("http_request_fuzz", "post", b"POST /v1/meshes?name=a HTTP/1.1\r\nAuthorization: Bearer x\r\n"
+                                     b"Content-Length: 3\r\n\r\nply")
+    put("http_request_fuzz", "chunked", ("GET /v1/meshes HTTP/1.1\r\nTransfer-Encoding: chunked\r\n\r\n"
+                                         "3\r\nabc\r\n0\r\n\r\n").encode())
+
+
+if __name__ == "__main__":
+    if os.path.isdir(SEEDS):
+        shutil.rmtree(SEEDS)
+    mesh_seeds()
+    http_seeds(container_seeds())

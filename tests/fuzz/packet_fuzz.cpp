@@ -1,0 +1,40 @@
+// Fuzz target: the packet decoder on arbitrary payload bytes. The header is
+// the fixture's, with the chosen packet's length and CRC32C rewritten to
+// match the input so that the bytes reach the bitplane decoder (a corrupt
+// payload with a valid CRC: what a malicious server can send). Byte 0 picks
+// the packet; the packets before it in index order (a dependency-closed
+// prefix) are the real ones, and the real packets after it are added
+// afterwards: each must be decoded or refused, never crash.
+#include <cstddef>
+#include <cstdint>
+#include <string_view>
+
+#include "fuzz_fixture_testonly.h"
+#include "meshwave/progressive_decoder.h"
+#include "stream/stream_format.h"
+
+using namespace meshwave;
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  if (size < 1) return 0;
+  const fuzz::Fixture& f = fuzz::GetFixture();
+  const uint32_t n = static_cast<uint32_t>(f.payloads.size());
+  const uint32_t id = data[0] % n;
+  const std::string_view payload(reinterpret_cast<const char*>(data + 1), size - 1);
+  proto::StreamHeader h = f.header;
+  h.mutable_packets()->set_length(static_cast<int>(id), static_cast<uint32_t>(payload.size()));
+  h.mutable_packets()->set_crc32c(static_cast<int>(id), Crc32c(payload));
+  auto dec = ProgressiveDecoder::Create(h);
+  fuzz::Require(dec.ok(), "the fixture header is valid");
+  for (uint32_t k = 0; k < id; ++k) {
+    fuzz::Require((*dec)->AddPacket(k, f.payloads[k]).ok(), "a real prefix decodes");
+  }
+  const Status s = (*dec)->AddPacket(id, payload);
+  fuzz::Require(s.ok() == (*dec)->HasPacket(id), "HasPacket follows AddPacket");
+  for (uint32_t k = id + 1; k < n; ++k) (void)(*dec)->AddPacket(k, f.payloads[k]);
+  (void)(*dec)->EstimatedPsnr();
+  (void)(*dec)->CompleteLevels();
+  const TriMesh mesh = (*dec)->Mesh();
+  fuzz::Require(mesh.positions.size() == f.full.size(), "the mesh keeps its vertex count");
+  return 0;
+}
