@@ -1,9 +1,13 @@
 #!/usr/bin/env bash
-# Installs every Debian 12 package meshwave needs to build, test and run.
-# Safe to run again: it only calls apt-get when something is missing.
+# Installs the Debian 12 packages meshwave needs. Safe to run again: it only
+# calls apt-get when something is missing.
+#
+#   bash deploy/install-deps.sh          everything: build, tests, deployment tests
+#   bash deploy/install-deps.sh build    only what building the programs needs
+#                                        (the Dockerfile's build stage)
 set -euo pipefail
 
-packages=(
+build=(
   build-essential cmake ninja-build pkg-config
   libboost1.81-all-dev         # Asio, Beast, CRC
   libprotobuf-dev protobuf-compiler
@@ -11,9 +15,28 @@ packages=(
   libspdlog-dev
   libcli11-dev
   libsqlite3-dev
-  libssl-dev                   # SHA-256 (content hashes), later TLS
-  libgtest-dev libgmock-dev libbenchmark-dev
+  libpq-dev                    # PostgreSQL catalog backend (libpq)
+  libssl-dev                   # SHA-256 (content hashes), TLS
 )
+test=(
+  libgtest-dev libgmock-dev libbenchmark-dev
+  postgresql                   # catalog tests and the replica test start their own server
+  nginx-light                  # the replica test's load balancer and cache
+  docker-compose               # `docker-compose config`: compose file validation, no engine
+)
+
+case "${1:-all}" in
+  build) packages=("${build[@]}") ;;
+  all) packages=("${build[@]}" "${test[@]}") ;;
+  *) echo "usage: install-deps.sh [build|all]" >&2; exit 2 ;;
+esac
+
+# Kubernetes manifest validation (tests/deploy/validate_manifests.sh) runs
+# on Node.js. One from elsewhere (NodeSource's bundles npm) serves as well as
+# Debian's, and Debian's npm would not install beside it.
+if [[ ${1:-all} = all ]] && ! { command -v node && command -v npm; } > /dev/null; then
+  packages+=(nodejs npm)
+fi
 
 missing=()
 for p in "${packages[@]}"; do
@@ -22,7 +45,7 @@ for p in "${packages[@]}"; do
   fi
 done
 if ((${#missing[@]} == 0)); then
-  echo "install-deps: all ${#packages[@]} packages present"
+  echo "install-deps: all packages present"
   exit 0
 fi
 
@@ -30,4 +53,7 @@ sudo=""
 if [[ $(id -u) -ne 0 ]]; then sudo="sudo"; fi
 echo "install-deps: installing ${missing[*]}"
 $sudo apt-get update -qq
+# Debian's postgresql and nginx packages start their services on install
+# where an init system runs; the tests start their own on free ports, so a
+# system one is harmless, and in containers policy-rc.d keeps them off.
 DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"

@@ -1,18 +1,18 @@
-// The catalog: an SQLite database (WAL mode) of the meshes a server offers,
-// next to their content-addressed containers in DIR/containers/. A row is
-// only inserted after its container file is durable, and removed before the
+// The catalog: the list of meshes a server offers, next to their
+// content-addressed containers in STORE/containers/. Two backends share
+// this interface: SQLite in a local directory (sqlite_catalog.h, the
+// embedded default) and PostgreSQL (postgres_catalog.h) for several
+// replicas sharing one catalog and one container store. A row is only
+// inserted after its container file is durable, and removed before the
 // file is, so an entry is never visible without its file (see ingest.h).
-// Thread-safe: one connection behind a mutex; other processes (the ingest
-// command) may use the same directory at the same time.
+// Implementations are thread-safe; other processes (the ingest command,
+// other replicas) may use the same catalog at the same time.
 #ifndef MESHWAVE_SERVER_CATALOG_H_
 #define MESHWAVE_SERVER_CATALOG_H_
-
-#include <sqlite3.h>
 
 #include <cstdint>
 #include <filesystem>
 #include <memory>
-#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -30,48 +30,66 @@ struct CatalogEntry {
   uint32_t levels = 0;
   uint32_t packets = 0;
   uint64_t bytes = 0;  // container size
-  std::string container;  // path relative to the catalog directory
+  std::string container;  // path relative to the store directory
   std::string sha256;     // of the container
   int64_t created_unix = 0;
 };
 
+// Held while a container is written and its row inserted, and while
+// orphans are removed: every process sharing the store excludes the others.
+class IngestGuard {
+ public:
+  virtual ~IngestGuard() = default;
+};
+
 class Catalog {
  public:
-  // Opens (creating when missing or empty) the catalog in `dir`: the
-  // directory, DIR/containers/ and DIR/catalog.db in WAL mode.
-  static Result<std::unique_ptr<Catalog>> Open(const std::filesystem::path& dir);
-  ~Catalog();
+  // True for "postgres://..." and "postgresql://..." (PostgreSQL URIs).
+  static bool IsPostgresUri(const std::string& location);
+
+  // Opens the catalog `location` names, creating what is missing:
+  // - a directory: SQLite (DIR/catalog.db) with containers in
+  //   DIR/containers/; `store` must be empty;
+  // - a postgres:// URI: PostgreSQL, schema migrated to the newest version
+  //   at open; containers in `store`/containers/ (`store` required, shared
+  //   by every replica).
+  static Result<std::unique_ptr<Catalog>> Open(const std::string& location,
+                                               const std::filesystem::path& store = {});
+
+  virtual ~Catalog() = default;
   Catalog(const Catalog&) = delete;
   Catalog& operator=(const Catalog&) = delete;
 
-  const std::filesystem::path& dir() const { return dir_; }
-  std::filesystem::path containers_dir() const { return dir_ / "containers"; }
+  // The directory entries' container paths are relative to.
+  const std::filesystem::path& store_dir() const { return store_dir_; }
+  std::filesystem::path containers_dir() const { return store_dir_ / "containers"; }
   // Absolute path of an entry's container.
   std::filesystem::path ContainerPath(const CatalogEntry& entry) const {
-    return dir_ / entry.container;
+    return store_dir_ / entry.container;
   }
+  // Backend and location for logs (never a password).
+  virtual std::string Describe() const = 0;
+
+  // Blocks until this process holds the store's ingest lock.
+  virtual Result<std::unique_ptr<IngestGuard>> LockIngest() = 0;
 
   // Inserts in one transaction. kInvalidArgument when the id exists.
-  Status Insert(const CatalogEntry& entry);
+  virtual Status Insert(const CatalogEntry& entry) = 0;
   // The entry, or nullopt. `id` must be valid (checked: kInvalidArgument).
-  Result<std::optional<CatalogEntry>> Find(const std::string& id);
+  virtual Result<std::optional<CatalogEntry>> Find(const std::string& id) = 0;
   // Entries by creation time then id.
-  Result<std::vector<CatalogEntry>> List(uint64_t limit, uint64_t offset);
-  Result<uint64_t> Count();
-  // Deletes the row; true when it existed.
-  Result<bool> Remove(const std::string& id);
+  virtual Result<std::vector<CatalogEntry>> List(uint64_t limit, uint64_t offset) = 0;
+  virtual Result<uint64_t> Count() = 0;
+  // Deletes the row; true when it existed. `id` must be valid.
+  virtual Result<bool> Remove(const std::string& id) = 0;
   // Container paths (relative) of every row.
-  Result<std::vector<std::string>> ContainerPaths();
-  // "wal" once open.
-  Result<std::string> JournalMode();
+  virtual Result<std::vector<std::string>> ContainerPaths() = 0;
+
+ protected:
+  explicit Catalog(std::filesystem::path store_dir) : store_dir_(std::move(store_dir)) {}
 
  private:
-  Catalog(std::filesystem::path dir, sqlite3* db) : dir_(std::move(dir)), db_(db) {}
-  Status Exec(const char* sql);
-
-  std::filesystem::path dir_;
-  sqlite3* db_;
-  std::mutex mutex_;
+  const std::filesystem::path store_dir_;
 };
 
 }  // namespace meshwave::server

@@ -40,9 +40,12 @@ Status SyncDirectory(const std::filesystem::path& dir) {
 
 Status WriteFileDurably(const std::filesystem::path& path, std::string_view bytes) {
   static std::atomic<uint64_t> counter{0};
+  // The host name too: replicas in containers share a store and often a pid.
+  char host[64] = {};
+  ::gethostname(host, sizeof host - 1);
   const std::filesystem::path dir = path.parent_path();
   const std::filesystem::path temp =
-      dir / (std::string(kTempPrefix) + std::to_string(::getpid()) + "-" +
+      dir / (std::string(kTempPrefix) + host + "-" + std::to_string(::getpid()) + "-" +
              std::to_string(counter++) + "-" + path.filename().string());
   const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
   if (fd < 0) return Errno("cannot create", temp);

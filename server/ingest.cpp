@@ -9,7 +9,6 @@
 #include <utility>
 
 #include "durable_file.h"
-#include "ingest_lock.h"
 #include "mesh_id.h"
 #include "meshwave/container.h"
 #include "meshwave/encoder.h"
@@ -42,8 +41,7 @@ Result<IngestResult> Store(Catalog& catalog, const std::string& container,
   e.container = "containers/" + e.sha256 + ".mwv";
   e.created_unix = NowUnix();
 
-  IngestLock lock(catalog.dir());
-  MW_RETURN_IF_ERROR(lock.status());
+  MW_ASSIGN_OR_RETURN(auto lock, catalog.LockIngest());
   MW_ASSIGN_OR_RETURN(auto existing, catalog.Find(e.id));
   if (existing) {
     if (existing->sha256 != e.sha256) {
@@ -101,11 +99,10 @@ Result<IngestResult> IngestMeshFile(Catalog& catalog,
 }
 
 Result<CleanupReport> RemoveOrphans(Catalog& catalog) {
-  IngestLock lock(catalog.dir());
-  MW_RETURN_IF_ERROR(lock.status());
+  MW_ASSIGN_OR_RETURN(auto lock, catalog.LockIngest());
   MW_ASSIGN_OR_RETURN(std::vector<std::string> paths, catalog.ContainerPaths());
   std::set<std::filesystem::path> known;
-  for (const auto& p : paths) known.insert(catalog.dir() / p);
+  for (const auto& p : paths) known.insert(catalog.store_dir() / p);
   CleanupReport report;
   std::error_code ec;
   for (const auto& f : std::filesystem::directory_iterator(catalog.containers_dir(), ec)) {
@@ -124,8 +121,7 @@ Result<CleanupReport> RemoveOrphans(Catalog& catalog) {
 }
 
 Result<bool> RemoveEntry(Catalog& catalog, const std::string& id) {
-  IngestLock lock(catalog.dir());
-  MW_RETURN_IF_ERROR(lock.status());
+  MW_ASSIGN_OR_RETURN(auto lock, catalog.LockIngest());
   MW_ASSIGN_OR_RETURN(auto entry, catalog.Find(id));
   if (!entry) return false;
   MW_ASSIGN_OR_RETURN(bool removed, catalog.Remove(id));

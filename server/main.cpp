@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "bulk_ingest.h"
 #include "ingest.h"
 #include "server.h"
 #include "server_config.h"
@@ -19,10 +20,11 @@ int Fail(const std::string& what, const Status& s) {
   return 1;
 }
 
-int Serve(const std::string& catalog, const std::string& listen, const std::string& config_path,
-          unsigned threads, const std::string& port_file) {
+int Serve(const std::string& catalog, const std::string& store, const std::string& listen,
+          const std::string& config_path, unsigned threads, const std::string& port_file) {
   ServeOptions options;
-  options.catalog_dir = catalog;
+  options.catalog = catalog;
+  options.store = store;
   options.port_file = port_file;
   if (!config_path.empty()) {
     auto config = LoadServerConfig(config_path);
@@ -36,30 +38,45 @@ int Serve(const std::string& catalog, const std::string& listen, const std::stri
   return 0;
 }
 
-int Ingest(const std::string& catalog_dir, const std::vector<std::string>& files,
-           const std::string& name) {
-  if (!name.empty() && files.size() != 1) {
+struct IngestOptions {
+  std::string catalog, store, name, list, shard = "0/1";
+  std::vector<std::string> inputs;
+  unsigned jobs = 1;
+};
+
+int Ingest(const IngestOptions& o) {
+  auto shard = ParseShard(o.shard);
+  if (!shard.ok()) return Fail(" ingest", shard.status());
+  auto all = CollectMeshFiles(o.inputs, o.list);
+  if (!all.ok()) return Fail(" ingest", all.status());
+  const std::vector<std::filesystem::path> files = FilesOfShard(*all, *shard);
+  if (!o.name.empty() && files.size() != 1) {
     return Fail(" ingest", InvalidArgument("--name needs exactly one file"));
   }
-  auto catalog = Catalog::Open(catalog_dir);
+  auto catalog = Catalog::Open(o.catalog, o.store);
   if (!catalog.ok()) return Fail(" ingest", catalog.status());
   auto cleanup = RemoveOrphans(**catalog);
   if (!cleanup.ok()) return Fail(" ingest", cleanup.status());
-  int exit_code = 0;
-  for (const auto& file : files) {
-    auto result = IngestMeshFile(**catalog, file, name);
-    if (!result.ok()) {
-      exit_code = Fail(" ingest", result.status().WithContext(file));
-      continue;
-    }
-    const CatalogEntry& e = result->entry;
-    std::printf("%s %s: %s (%llu vertices, %u levels, %u packets, %llu bytes)%s\n",
-                e.id.c_str(), file.c_str(), result->already_present ? "already present" : "ingested",
-                static_cast<unsigned long long>(e.vertices), e.levels, e.packets,
-                static_cast<unsigned long long>(e.bytes), result->remeshed ? ", remeshed" : "");
-    std::fflush(stdout);
+  if (shard->count > 1) {
+    std::fprintf(stderr, "meshwave-server ingest: shard %u/%u: %zu of %zu files\n", shard->index,
+                 shard->count, files.size(), all->size());
   }
-  return exit_code;
+  const size_t failed = IngestFiles(
+      **catalog, files, o.jobs, o.name,
+      [](const std::filesystem::path& file, const Result<IngestResult>& result) {
+        if (!result.ok()) {
+          Fail(" ingest", result.status().WithContext(file.string()));
+          return;
+        }
+        const CatalogEntry& e = result->entry;
+        std::printf("%s %s: %s (%llu vertices, %u levels, %u packets, %llu bytes)%s\n",
+                    e.id.c_str(), file.c_str(),
+                    result->already_present ? "already present" : "ingested",
+                    static_cast<unsigned long long>(e.vertices), e.levels, e.packets,
+                    static_cast<unsigned long long>(e.bytes), result->remeshed ? ", remeshed" : "");
+        std::fflush(stdout);
+      });
+  return failed == 0 ? 0 : 1;
 }
 
 }  // namespace
@@ -68,9 +85,14 @@ int Ingest(const std::string& catalog_dir, const std::vector<std::string>& files
 int main(int argc, char** argv) {
   using namespace meshwave::server;
   CLI::App app{"meshwave-server: streams progressive meshes over HTTP from a catalog"};
-  std::string catalog, listen, config, port_file, log_level = "info";
+  std::string catalog, store, listen, config, port_file, log_level = "info";
   unsigned threads = 0;
-  app.add_option("--catalog", catalog, "Catalog directory (created when missing)");
+  app.add_option("--catalog", catalog, "Catalog: a directory (SQLite, created when missing) or "
+                                       "postgres://USER@HOST:PORT/DB (password from PGPASSWORD)")
+      ->envname("MESHWAVE_CATALOG");
+  app.add_option("--store", store, "Container store shared by the replicas (postgres:// "
+                                   "catalogs only)")
+      ->envname("MESHWAVE_STORE");
   app.add_option("--listen", listen, "host:port to listen on; port 0 picks a free port "
                                      "(default 127.0.0.1:8080)");
   app.add_option("--config", config, "Configuration file (protobuf text format, docs/API.md)");
@@ -80,23 +102,39 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error"}))
       ->capture_default_str();
 
-  std::string ingest_catalog, ingest_name;
-  std::vector<std::string> files;
+  IngestOptions ingest_options;
   CLI::App* ingest = app.add_subcommand(
       "ingest", "Encode mesh files into the catalog (irregular meshes are remeshed first)");
-  ingest->add_option("--catalog", ingest_catalog, "Catalog directory (created when missing)")
+  ingest->add_option("--catalog", ingest_options.catalog, "Catalog directory or postgres:// URI")
+      ->envname("MESHWAVE_CATALOG")
       ->required();
-  ingest->add_option("files", files, "Mesh files (.ply, .obj, .off)")->required();
-  ingest->add_option("--name", ingest_name, "Name of the entry (one file only; default: "
-                                            "the file's stem)");
+  ingest->add_option("--store", ingest_options.store, "Container store (postgres:// only)")
+      ->envname("MESHWAVE_STORE");
+  ingest->add_option("inputs", ingest_options.inputs,
+                     "Mesh files (.ply, .obj, .off) or folders searched recursively");
+  ingest->add_option("--list", ingest_options.list, "File listing mesh files, one per line");
+  ingest->add_option("--jobs", ingest_options.jobs, "Meshes encoded in parallel")
+      ->check(CLI::Range(1, 256))
+      ->capture_default_str();
+  ingest->add_option("--shard", ingest_options.shard,
+                     "I/N: only the files of shard I of N (one per worker of a Job)")
+      ->capture_default_str();
+  ingest->add_option("--name", ingest_options.name, "Name of the entry (one file only; default: "
+                                                    "the file's stem)");
   app.require_subcommand(0, 1);
   CLI11_PARSE(app, argc, argv);
   spdlog::set_level(spdlog::level::from_str(log_level));
 
-  if (*ingest) return Ingest(ingest_catalog, files, ingest_name);
+  if (*ingest) {
+    if (ingest_options.inputs.empty() && ingest_options.list.empty()) {
+      std::fprintf(stderr, "meshwave-server ingest: give mesh files, folders or --list\n");
+      return 2;
+    }
+    return Ingest(ingest_options);
+  }
   if (catalog.empty()) {
     std::fprintf(stderr, "meshwave-server: --catalog is required (see --help)\n");
     return 2;
   }
-  return Serve(catalog, listen, config, threads, port_file);
+  return Serve(catalog, store, listen, config, threads, port_file);
 }

@@ -17,11 +17,12 @@ namespace meshwave::server {
 
 Status RunServer(const ServeOptions& options) {
   const proto::ServerConfig& config = options.config;
-  MW_ASSIGN_OR_RETURN(std::unique_ptr<Catalog> catalog, Catalog::Open(options.catalog_dir));
+  MW_ASSIGN_OR_RETURN(std::unique_ptr<Catalog> catalog,
+                      Catalog::Open(options.catalog, options.store));
   MW_ASSIGN_OR_RETURN(CleanupReport cleanup, RemoveOrphans(*catalog));
   if (cleanup.orphan_files + cleanup.temp_files > 0) {
-    spdlog::warn("catalog {}: removed {} orphan and {} temporary files",
-                 options.catalog_dir.string(), cleanup.orphan_files, cleanup.temp_files);
+    spdlog::warn("catalog {}: removed {} orphan and {} temporary files", catalog->Describe(),
+                 cleanup.orphan_files, cleanup.temp_files);
   }
   MW_ASSIGN_OR_RETURN(ListenAddress address, ParseListenAddress(config.listen()));
   beast::error_code ec;
@@ -33,7 +34,7 @@ Status RunServer(const ServeOptions& options) {
   net::io_context ioc(threads);
   MW_ASSIGN_OR_RETURN(auto listener, Listener::Create(ioc, tcp::endpoint(ip, address.port), ctx));
   spdlog::info("meshwave-server listening on {}:{} ({} threads, catalog {})", address.host,
-               listener->port(), threads, options.catalog_dir.string());
+               listener->port(), threads, ctx.catalog().Describe());
   if (!options.port_file.empty()) {
     MW_RETURN_IF_ERROR(WriteFileDurably(std::filesystem::absolute(options.port_file),
                                         std::to_string(listener->port()) + "\n"));

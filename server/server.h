@@ -3,6 +3,7 @@
 #define MESHWAVE_SERVER_SERVER_H_
 
 #include <filesystem>
+#include <string>
 
 #include "meshwave/status.h"
 #include "server_config.pb.h"
@@ -10,7 +11,8 @@
 namespace meshwave::server {
 
 struct ServeOptions {
-  std::filesystem::path catalog_dir;
+  std::string catalog;              // directory (SQLite) or postgres:// URI
+  std::filesystem::path store;      // container store of a PostgreSQL catalog
   proto::ServerConfig config;      // finished (FinishServerConfig)
   std::filesystem::path port_file;  // empty: none
 };

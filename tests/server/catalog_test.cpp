@@ -1,13 +1,22 @@
-// The SQLite catalog: creation in WAL mode, insert/find/list/remove, ids.
+// The catalog, against both backends (SQLite and PostgreSQL): insert, find,
+// list, remove, ids, persistence, several connections; then what is
+// particular to each: SQLite's WAL mode, PostgreSQL's schema migrations,
+// the choice of backend by location.
 #include "catalog.h"
 
 #include <gtest/gtest.h>
 
-#include "e2e/cli_runner.h"
+#include "postgres_connection.h"
+#include "postgres_migrations.h"
+#include "server/catalog_backends_testonly.h"
+#include "sqlite_catalog.h"
 
 namespace meshwave::server {
 namespace {
 
+using meshwave::testing::CatalogBackend;
+using meshwave::testing::CatalogBackendTest;
+using meshwave::testing::PostgresInstance;
 using meshwave::testing::TempDir;
 
 CatalogEntry Entry(const std::string& id, int64_t created) {
@@ -26,19 +35,22 @@ CatalogEntry Entry(const std::string& id, int64_t created) {
   return e;
 }
 
-TEST(CatalogTest, CreatesMissingDirectoryInWalMode) {
-  TempDir tmp;
-  auto catalog = Catalog::Open(tmp / "new/catalog");
-  ASSERT_TRUE(catalog.ok()) << catalog.status().ToString();
-  EXPECT_TRUE(std::filesystem::is_directory(tmp / "new/catalog/containers"));
-  EXPECT_TRUE(std::filesystem::exists(tmp / "new/catalog/catalog.db"));
-  EXPECT_EQ(*(*catalog)->JournalMode(), "wal");
-  EXPECT_EQ(*(*catalog)->Count(), 0u);
+using CatalogTest = CatalogBackendTest;
+
+TEST_P(CatalogTest, CreatesItsContainerStore) {
+  auto catalog = OpenCatalog();
+  ASSERT_TRUE(catalog);
+  EXPECT_TRUE(std::filesystem::is_directory(catalog->containers_dir()));
+  EXPECT_EQ(catalog->ContainerPath(Entry("00000000000a", 1)),
+            catalog->store_dir() / "containers/00000000000a.mwv");
+  EXPECT_EQ(*catalog->Count(), 0u);
+  EXPECT_NE(catalog->Describe().find(GetParam() == CatalogBackend::kSqlite ? "sqlite" : "postgres"),
+            std::string::npos);
 }
 
-TEST(CatalogTest, InsertsFindsListsAndRemoves) {
-  TempDir tmp;
-  auto catalog = Catalog::Open(tmp / "c").value();
+TEST_P(CatalogTest, InsertsFindsListsAndRemoves) {
+  auto catalog = OpenCatalog();
+  ASSERT_TRUE(catalog);
   ASSERT_TRUE(catalog->Insert(Entry("00000000000b", 2)).ok());
   ASSERT_TRUE(catalog->Insert(Entry("00000000000a", 1)).ok());
   ASSERT_TRUE(catalog->Insert(Entry("00000000000c", 3)).ok());
@@ -48,8 +60,15 @@ TEST(CatalogTest, InsertsFindsListsAndRemoves) {
   ASSERT_TRUE(found.ok());
   ASSERT_TRUE(found->has_value());
   EXPECT_EQ((*found)->name, "mesh 00000000000b");
+  EXPECT_EQ((*found)->source, "00000000000b.ply");
+  EXPECT_EQ((*found)->vertices, 10u);
+  EXPECT_EQ((*found)->faces, 16u);
+  EXPECT_EQ((*found)->levels, 2u);
+  EXPECT_EQ((*found)->packets, 5u);
   EXPECT_EQ((*found)->bytes, 1234u);
   EXPECT_EQ((*found)->container, "containers/00000000000b.mwv");
+  EXPECT_EQ((*found)->sha256, "00000000000b" + std::string(52, '0'));
+  EXPECT_EQ((*found)->created_unix, 2);
   EXPECT_FALSE(catalog->Find("ffffffffffff")->has_value());
 
   auto all = *catalog->List(10, 0);
@@ -60,6 +79,7 @@ TEST(CatalogTest, InsertsFindsListsAndRemoves) {
   ASSERT_EQ(page.size(), 1u);
   EXPECT_EQ(page[0].id, "00000000000b");
   EXPECT_TRUE(catalog->List(10, 5)->empty());
+  EXPECT_EQ(catalog->List(UINT64_MAX, 0)->size(), 3u);
   EXPECT_EQ(catalog->ContainerPaths()->size(), 3u);
 
   EXPECT_TRUE(*catalog->Remove("00000000000b"));
@@ -67,9 +87,19 @@ TEST(CatalogTest, InsertsFindsListsAndRemoves) {
   EXPECT_EQ(*catalog->Count(), 2u);
 }
 
-TEST(CatalogTest, RejectsDuplicateAndInvalidIds) {
-  TempDir tmp;
-  auto catalog = Catalog::Open(tmp / "c").value();
+TEST_P(CatalogTest, KeepsTextAsItIs) {
+  auto catalog = OpenCatalog();
+  ASSERT_TRUE(catalog);
+  CatalogEntry e = Entry("00000000000a", 1);
+  e.name = "l'éléphant \"quoted\" ; DROP TABLE meshes; --";
+  ASSERT_TRUE(catalog->Insert(e).ok());
+  EXPECT_EQ((*catalog->Find(e.id))->name, e.name);
+  EXPECT_EQ(*catalog->Count(), 1u);
+}
+
+TEST_P(CatalogTest, RejectsDuplicateAndInvalidIds) {
+  auto catalog = OpenCatalog();
+  ASSERT_TRUE(catalog);
   ASSERT_TRUE(catalog->Insert(Entry("00000000000a", 1)).ok());
   EXPECT_EQ(catalog->Insert(Entry("00000000000a", 2)).code(), StatusCode::kInvalidArgument);
   EXPECT_FALSE(catalog->Insert(Entry("../../etc/pa", 1)).ok());
@@ -78,23 +108,195 @@ TEST(CatalogTest, RejectsDuplicateAndInvalidIds) {
   EXPECT_EQ(*catalog->Count(), 1u);
 }
 
-TEST(CatalogTest, KeepsEntriesAcrossReopening) {
-  TempDir tmp;
+TEST_P(CatalogTest, KeepsEntriesAcrossReopening) {
   {
-    auto catalog = Catalog::Open(tmp / "c").value();
+    auto catalog = OpenCatalog();
+    ASSERT_TRUE(catalog);
     ASSERT_TRUE(catalog->Insert(Entry("00000000000a", 1)).ok());
   }
-  auto catalog = Catalog::Open(tmp / "c").value();
+  auto catalog = OpenCatalog();
+  ASSERT_TRUE(catalog);
   EXPECT_EQ(*catalog->Count(), 1u);
-  EXPECT_EQ(*catalog->JournalMode(), "wal");
 }
 
-TEST(CatalogTest, SecondConnectionSeesCommittedRows) {
-  TempDir tmp;
-  auto writer = Catalog::Open(tmp / "c").value();
-  auto reader = Catalog::Open(tmp / "c").value();  // as the ingest command and a server
+TEST_P(CatalogTest, SecondConnectionSeesCommittedRows) {
+  auto writer = OpenCatalog();
+  auto reader = OpenCatalog();  // as the ingest command and a server, or two replicas
+  ASSERT_TRUE(writer && reader);
   ASSERT_TRUE(writer->Insert(Entry("00000000000a", 1)).ok());
   EXPECT_TRUE(reader->Find("00000000000a")->has_value());
+  EXPECT_EQ(reader->Insert(Entry("00000000000a", 1)).code(), StatusCode::kInvalidArgument);
+  EXPECT_TRUE(*reader->Remove("00000000000a"));
+  EXPECT_FALSE(writer->Find("00000000000a")->has_value());
+}
+
+TEST_P(CatalogTest, IngestLockExcludesOtherHandles) {
+  auto a = OpenCatalog();
+  auto b = OpenCatalog();
+  ASSERT_TRUE(a && b);
+  auto held = a->LockIngest();
+  ASSERT_TRUE(held.ok()) << held.status().ToString();
+  std::atomic<bool> acquired{false};
+  std::thread other([&] {
+    auto lock = b->LockIngest();
+    EXPECT_TRUE(lock.ok());
+    acquired = true;
+  });
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  EXPECT_FALSE(acquired);  // waits for the first
+  held->reset();
+  other.join();
+  EXPECT_TRUE(acquired);
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, CatalogTest,
+                         ::testing::Values(CatalogBackend::kSqlite, CatalogBackend::kPostgres),
+                         meshwave::testing::CatalogBackendName);
+
+// --- SQLite only --------------------------------------------------------
+
+TEST(SqliteCatalogTest, CreatesMissingDirectoryInWalMode) {
+  TempDir tmp;
+  auto catalog = SqliteCatalog::Open(tmp / "new/catalog");
+  ASSERT_TRUE(catalog.ok()) << catalog.status().ToString();
+  EXPECT_TRUE(std::filesystem::is_directory(tmp / "new/catalog/containers"));
+  EXPECT_TRUE(std::filesystem::exists(tmp / "new/catalog/catalog.db"));
+  EXPECT_EQ(*(*catalog)->JournalMode(), "wal");
+  auto again = SqliteCatalog::Open(tmp / "new/catalog");
+  EXPECT_EQ(*(*again)->JournalMode(), "wal");
+}
+
+// --- choosing the backend ---------------------------------------------
+
+TEST(CatalogOpenTest, ChoosesTheBackendByLocation) {
+  EXPECT_TRUE(Catalog::IsPostgresUri("postgres://u@h:5432/db"));
+  EXPECT_TRUE(Catalog::IsPostgresUri("postgresql://h/db"));
+  EXPECT_FALSE(Catalog::IsPostgresUri("/var/lib/meshwave"));
+  EXPECT_FALSE(Catalog::IsPostgresUri("postgres"));  // a directory of that name
+  TempDir tmp;
+  auto no_store = Catalog::Open("postgres://u@127.0.0.1:1/db");
+  ASSERT_FALSE(no_store.ok());
+  EXPECT_NE(no_store.status().message().find("--store"), std::string::npos);
+  auto store_with_sqlite = Catalog::Open((tmp / "c").string(), tmp / "store");
+  ASSERT_FALSE(store_with_sqlite.ok());
+  EXPECT_NE(store_with_sqlite.status().message().find("only for a postgres"), std::string::npos);
+  EXPECT_FALSE(Catalog::Open("").ok());
+}
+
+TEST(CatalogOpenTest, UnreachablePostgresIsAClearError) {
+  TempDir tmp;
+  const uint16_t port = meshwave::testing::FreeLoopbackPort();  // nothing listens
+  auto catalog = Catalog::Open("postgres://meshwave:secret@127.0.0.1:" + std::to_string(port) +
+                                   "/db?connect_timeout=2",
+                               tmp / "store");
+  ASSERT_FALSE(catalog.ok());
+  const std::string m = catalog.status().message();
+  EXPECT_NE(m.find("cannot connect to postgres://meshwave@127.0.0.1:" + std::to_string(port) +
+                   "/db"),
+            std::string::npos)
+      << m;
+  EXPECT_EQ(m.find("secret"), std::string::npos) << m;  // never the password
+}
+
+// --- PostgreSQL schema migrations ---------------------------------------
+
+class PostgresMigrationTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (const std::string why = meshwave::testing::PostgresUnavailableReason(); !why.empty()) {
+      if (std::getenv("CI") != nullptr) FAIL() << why << " (CI must run the PostgreSQL tests)";
+      GTEST_SKIP() << why;
+    }
+    ASSERT_TRUE(pg_.ok()) << pg_.error();
+    auto conn = PostgresConnection::Connect(pg_.Uri());
+    ASSERT_TRUE(conn.ok()) << conn.status().ToString();
+    conn_ = std::move(*conn);
+  }
+  PostgresInstance pg_;
+  std::unique_ptr<PostgresConnection> conn_;
+};
+
+TEST_F(PostgresMigrationTest, RepositoryMigrationsAreNumberedFromOne) {
+  const auto& all = PostgresMigrations();
+  ASSERT_FALSE(all.empty());
+  for (size_t i = 0; i < all.size(); ++i) {
+    EXPECT_EQ(all[i].version, static_cast<int>(i) + 1) << all[i].name;
+    EXPECT_FALSE(all[i].sql.empty());
+  }
+  EXPECT_EQ(all[0].name, "0001_init.sql");
+}
+
+TEST_F(PostgresMigrationTest, AppliesEachMigrationOnceAndRecordsIt) {
+  ASSERT_TRUE(MigrateSchema(*conn_, PostgresMigrations()).ok());
+  ASSERT_TRUE(MigrateSchema(*conn_, PostgresMigrations()).ok());  // nothing left to do
+  EXPECT_EQ(*SchemaVersion(*conn_), static_cast<int>(PostgresMigrations().size()));
+  auto rows = conn_->Exec("SELECT count(*) FROM schema_version");
+  ASSERT_TRUE(rows.ok());
+  EXPECT_EQ(rows->Text(0, 0), std::to_string(PostgresMigrations().size()));
+
+  // A later migration applies on top, in order.
+  std::vector<Migration> more = PostgresMigrations();
+  more.push_back({static_cast<int>(more.size()) + 1, "9999_test.sql",
+                  "ALTER TABLE meshes ADD COLUMN note text; CREATE INDEX by_note ON meshes (note);"});
+  ASSERT_TRUE(MigrateSchema(*conn_, more).ok());
+  EXPECT_EQ(*SchemaVersion(*conn_), static_cast<int>(more.size()));
+  EXPECT_TRUE(conn_->Exec("SELECT note FROM meshes").ok());
+}
+
+TEST_F(PostgresMigrationTest, AFailingMigrationChangesNothing) {
+  std::vector<Migration> broken = PostgresMigrations();
+  broken.push_back({static_cast<int>(broken.size()) + 1, "0099_broken.sql",
+                    "CREATE TABLE half (x int); SELECT no_such_function();"});
+  const Status s = MigrateSchema(*conn_, broken);
+  ASSERT_FALSE(s.ok());
+  EXPECT_NE(s.message().find("0099_broken.sql"), std::string::npos) << s.message();
+  EXPECT_NE(s.message().find("no_such_function"), std::string::npos) << s.message();
+  // Not even the earlier migrations of the same run: one transaction.
+  EXPECT_FALSE(conn_->Exec("SELECT 1 FROM meshes").ok());
+  EXPECT_FALSE(conn_->Exec("SELECT 1 FROM half").ok());
+}
+
+TEST_F(PostgresMigrationTest, RefusesADatabaseNewerThanTheBinary) {
+  ASSERT_TRUE(MigrateSchema(*conn_, PostgresMigrations()).ok());
+  ASSERT_TRUE(conn_->Exec("INSERT INTO schema_version (version, name) VALUES (999, 'future')").ok());
+  TempDir tmp;
+  auto catalog = Catalog::Open(pg_.Uri(), tmp / "store");
+  ASSERT_FALSE(catalog.ok());
+  EXPECT_EQ(catalog.status().code(), StatusCode::kUnsupported);
+  EXPECT_NE(catalog.status().message().find("version 999"), std::string::npos);
+}
+
+TEST_F(PostgresMigrationTest, RejectsMigrationsOutOfSequence) {
+  std::vector<Migration> gap = {{1, "0001_a.sql", "SELECT 1"}, {3, "0003_c.sql", "SELECT 1"}};
+  const Status s = MigrateSchema(*conn_, gap);
+  EXPECT_EQ(s.code(), StatusCode::kInternal);
+  EXPECT_NE(s.message().find("0003_c.sql"), std::string::npos);
+}
+
+TEST_F(PostgresMigrationTest, ConstraintsGuardTheTable) {
+  ASSERT_TRUE(MigrateSchema(*conn_, PostgresMigrations()).ok());
+  // What the code checks, the schema checks too: a bad id or digest
+  // inserted by hand is refused.
+  EXPECT_FALSE(conn_->Exec("INSERT INTO meshes VALUES ('../x', 'n', 's', 1, 1, 1, 1, 1, "
+                           "'c', repeat('0', 64), 0)")
+                   .ok());
+  EXPECT_FALSE(conn_->Exec("INSERT INTO meshes VALUES ('00000000000a', 'n', 's', 1, 1, 1, 1, "
+                           "1, 'c', 'nothex', 0)")
+                   .ok());
+}
+
+TEST_F(PostgresMigrationTest, ReconnectsAfterTheConnectionIsKilled) {
+  TempDir tmp;
+  auto catalog = Catalog::Open(pg_.Uri(), tmp / "store");
+  ASSERT_TRUE(catalog.ok()) << catalog.status().ToString();
+  ASSERT_TRUE((*catalog)->Insert(Entry("00000000000a", 1)).ok());
+  // Ends every other session, as a database restart or failover would.
+  ASSERT_TRUE(conn_->Exec("SELECT pg_terminate_backend(pid) FROM pg_stat_activity "
+                          "WHERE pid <> pg_backend_pid() AND datname = current_database()")
+                  .ok());
+  auto found = (*catalog)->Find("00000000000a");
+  ASSERT_TRUE(found.ok()) << found.status().ToString();
+  EXPECT_TRUE(found->has_value());
 }
 
 }  // namespace

@@ -1,13 +1,17 @@
-// Atomic ingest: content-addressed containers, idempotence, orphan and
-// temporary file cleanup, deletion, and refusals that leave nothing behind.
+// Atomic ingest, against both catalog backends: content-addressed
+// containers, idempotence (also between two handles racing, as two
+// replicas would), orphan and temporary file cleanup, deletion, and
+// refusals that leave nothing behind.
 #include "ingest.h"
 
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <thread>
 
 #include "durable_file.h"
 #include "e2e/cli_runner.h"
+#include "server/catalog_backends_testonly.h"
 #include "meshwave/container.h"
 #include "sha256.h"
 #include "test_data.h"
@@ -15,6 +19,8 @@
 namespace meshwave::server {
 namespace {
 
+using meshwave::testing::CatalogBackend;
+using meshwave::testing::CatalogBackendTest;
 using meshwave::testing::ReadBytes;
 using meshwave::testing::SharedMesh;
 using meshwave::testing::TempDir;
@@ -25,9 +31,11 @@ size_t FilesIn(const std::filesystem::path& dir) {
   return n;
 }
 
-TEST(IngestTest, StoresAContentAddressedContainer) {
-  TempDir tmp;
-  auto catalog = Catalog::Open(tmp / "c").value();
+using IngestTest = CatalogBackendTest;
+
+TEST_P(IngestTest, StoresAContentAddressedContainer) {
+  auto catalog = OpenCatalog();
+  ASSERT_TRUE(catalog);
   auto r = IngestMeshFile(*catalog, SharedMesh("holes_patch_sr2.ply"));
   ASSERT_TRUE(r.ok()) << r.status().ToString();
   EXPECT_FALSE(r->already_present);
@@ -47,9 +55,9 @@ TEST(IngestTest, StoresAContentAddressedContainer) {
   EXPECT_TRUE(catalog->Find(e.id)->has_value());
 }
 
-TEST(IngestTest, SameFileTwiceGivesTheSameEntry) {
-  TempDir tmp;
-  auto catalog = Catalog::Open(tmp / "c").value();
+TEST_P(IngestTest, SameFileTwiceGivesTheSameEntry) {
+  auto catalog = OpenCatalog();
+  ASSERT_TRUE(catalog);
   auto a = IngestMeshFile(*catalog, SharedMesh("holes_patch_sr2.ply"));
   auto b = IngestMeshFile(*catalog, SharedMesh("holes_patch_sr2.ply"));
   ASSERT_TRUE(a.ok() && b.ok());
@@ -59,7 +67,25 @@ TEST(IngestTest, SameFileTwiceGivesTheSameEntry) {
   EXPECT_EQ(FilesIn(catalog->containers_dir()), 1u);
 }
 
-TEST(IngestTest, RemeshesIrregularInput) {
+TEST_P(IngestTest, TwoHandlesIngestingTheSameMeshAtOnceMakeOneEntry) {
+  auto a = OpenCatalog();
+  auto b = OpenCatalog();
+  ASSERT_TRUE(a && b);
+  const std::string bytes = ReadBytes(SharedMesh("holes_patch_sr2.ply"));
+  Result<IngestResult> ra = Status(StatusCode::kInternal, "not run");
+  Result<IngestResult> rb = ra;
+  std::thread t([&] { ra = IngestMeshBytes(*a, bytes, MeshFormat::kPly, "h", "h.ply"); });
+  rb = IngestMeshBytes(*b, bytes, MeshFormat::kPly, "h", "h.ply");
+  t.join();
+  ASSERT_TRUE(ra.ok()) << ra.status().ToString();
+  ASSERT_TRUE(rb.ok()) << rb.status().ToString();
+  EXPECT_EQ(ra->entry.id, rb->entry.id);
+  EXPECT_NE(ra->already_present, rb->already_present);  // exactly one wrote it
+  EXPECT_EQ(*a->Count(), 1u);
+  EXPECT_EQ(FilesIn(a->containers_dir()), 1u);
+}
+
+TEST(IngestSqliteTest, RemeshesIrregularInput) {
   TempDir tmp;
   auto catalog = Catalog::Open(tmp / "c").value();
   auto r = IngestMeshFile(*catalog, meshwave::testing::SampleMesh("elephant.off"));
@@ -68,9 +94,9 @@ TEST(IngestTest, RemeshesIrregularInput) {
   EXPECT_GE(r->entry.levels, 1u);
 }
 
-TEST(IngestTest, RejectsMalformedMeshLeavingNothing) {
-  TempDir tmp;
-  auto catalog = Catalog::Open(tmp / "c").value();
+TEST_P(IngestTest, RejectsMalformedMeshLeavingNothing) {
+  auto catalog = OpenCatalog();
+  ASSERT_TRUE(catalog);
   auto r = IngestMeshBytes(*catalog, "ply\nformat ascii 1.0\nelement vertex 99999999\n",
                            MeshFormat::kPly, "bad", "bad.ply");
   EXPECT_FALSE(r.ok());
@@ -80,9 +106,9 @@ TEST(IngestTest, RejectsMalformedMeshLeavingNothing) {
   EXPECT_EQ(FilesIn(catalog->containers_dir()), 0u);
 }
 
-TEST(IngestTest, RemovesOrphanAndTemporaryFiles) {
-  TempDir tmp;
-  auto catalog = Catalog::Open(tmp / "c").value();
+TEST_P(IngestTest, RemovesOrphanAndTemporaryFiles) {
+  auto catalog = OpenCatalog();
+  ASSERT_TRUE(catalog);
   auto r = IngestMeshFile(*catalog, SharedMesh("holes_patch_sr2.ply"));
   ASSERT_TRUE(r.ok());
   // A container renamed into place but never committed, and a half write.
@@ -99,9 +125,9 @@ TEST(IngestTest, RemovesOrphanAndTemporaryFiles) {
   EXPECT_TRUE(std::filesystem::exists(catalog->ContainerPath(r->entry)));
 }
 
-TEST(IngestTest, RemoveEntryDeletesRowThenFile) {
-  TempDir tmp;
-  auto catalog = Catalog::Open(tmp / "c").value();
+TEST_P(IngestTest, RemoveEntryDeletesRowThenFile) {
+  auto catalog = OpenCatalog();
+  ASSERT_TRUE(catalog);
   auto r = IngestMeshFile(*catalog, SharedMesh("holes_patch_sr2.ply"));
   ASSERT_TRUE(r.ok());
   EXPECT_TRUE(*RemoveEntry(*catalog, r->entry.id));
@@ -109,6 +135,10 @@ TEST(IngestTest, RemoveEntryDeletesRowThenFile) {
   EXPECT_FALSE(std::filesystem::exists(catalog->ContainerPath(r->entry)));
   EXPECT_FALSE(*RemoveEntry(*catalog, r->entry.id));
 }
+
+INSTANTIATE_TEST_SUITE_P(Backends, IngestTest,
+                         ::testing::Values(CatalogBackend::kSqlite, CatalogBackend::kPostgres),
+                         meshwave::testing::CatalogBackendName);
 
 TEST(DurableFileTest, WritesWholeFileWithoutTemporaries) {
   TempDir tmp;
