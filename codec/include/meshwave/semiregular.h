@@ -73,7 +73,9 @@ class SemiRegularHierarchy {
 
  private:
   SemiRegularHierarchy() = default;
-  void AddLevel();  // splits the finest level once
+  // Splits the finest level once; without `split_edges` only its faces are
+  // built (the last level, whose edges nothing reads).
+  void AddLevel(bool split_edges);
 
   std::vector<uint32_t> vertex_counts_;
   std::vector<std::vector<Face>> faces_;

@@ -66,9 +66,9 @@ Result<std::shared_ptr<const SemiRegularHierarchy>> SemiRegularHierarchy::Build(
   h->faces_.push_back(std::move(base_faces));
   h->edges_.push_back(std::move(edges));
   h->face_edges_.push_back(std::move(face_edges));
-  for (int j = 0; j < levels; ++j) h->AddLevel();
-  h->edges_.pop_back();  // the finest level is not split: no d^J
-  h->face_edges_.pop_back();
+  // The finest level is not split (no d^J): its edge tables, the largest of
+  // all, are never built.
+  for (int j = 0; j < levels; ++j) h->AddLevel(/*split_edges=*/j + 1 < levels);
 
   // Faces adjacent to each split edge, for stencils and frames.
   for (int j = 0; j < levels; ++j) {
@@ -86,7 +86,7 @@ Result<std::shared_ptr<const SemiRegularHierarchy>> SemiRegularHierarchy::Build(
   return std::shared_ptr<const SemiRegularHierarchy>(std::move(h));
 }
 
-void SemiRegularHierarchy::AddLevel() {
+void SemiRegularHierarchy::AddLevel(bool split_edges) {
   const int j = static_cast<int>(faces_.size()) - 1;
   const uint32_t vj = vertex_counts_[j];
   const auto& faces = faces_[j];
@@ -95,19 +95,27 @@ void SemiRegularHierarchy::AddLevel() {
   const uint32_t num_edges = static_cast<uint32_t>(edges.size());
   vertex_counts_.push_back(vj + num_edges);
 
-  std::vector<Edge> child_edges(2 * size_t{num_edges} + 3 * faces.size());
-  for (uint32_t e = 0; e < num_edges; ++e) {
-    const uint32_t m = vj + e;
-    child_edges[2 * e] = {edges[e][0], m};
-    child_edges[2 * e + 1] = {m, edges[e][1]};
-  }
   std::vector<Face> child_faces(4 * faces.size());
-  std::vector<std::array<uint32_t, 3>> child_face_edges(4 * faces.size());
+  std::vector<Edge> child_edges;
+  std::vector<std::array<uint32_t, 3>> child_face_edges;
+  if (split_edges) {
+    child_edges.resize(2 * size_t{num_edges} + 3 * faces.size());
+    child_face_edges.resize(4 * faces.size());
+    for (uint32_t e = 0; e < num_edges; ++e) {
+      const uint32_t m = vj + e;
+      child_edges[2 * e] = {edges[e][0], m};
+      child_edges[2 * e + 1] = {m, edges[e][1]};
+    }
+  }
   for (uint32_t f = 0; f < faces.size(); ++f) {
     const Face& t = faces[f];
     const auto& fe = face_edges[f];
     uint32_t mid[3];  // mid[i] splits edge i (corner i -> i+1)
     for (int i = 0; i < 3; ++i) mid[i] = vj + fe[i];
+    // Corner faces (t[i], mid[i], mid[i+2]) and the central face.
+    for (int i = 0; i < 3; ++i) child_faces[4 * f + i] = {t[i], mid[i], mid[(i + 2) % 3]};
+    child_faces[4 * f + 3] = {mid[0], mid[1], mid[2]};
+    if (!split_edges) continue;
     // Half of edge i that touches corner c (c is i or i+1).
     auto half = [&](int i, uint32_t corner) {
       return 2 * fe[i] + (edges[fe[i]][0] == corner ? 0u : 1u);
@@ -119,19 +127,16 @@ void SemiRegularHierarchy::AddLevel() {
       const uint32_t from = mid[(i + 2) % 3], to = mid[(i + 1) % 3];
       const bool same = edges[fe[i]][0] == t[i];
       child_edges[inner + i] = same ? Edge{from, to} : Edge{to, from};
-    }
-    // Corner faces (t[i], mid[i], mid[i+2]) and the central face.
-    for (int i = 0; i < 3; ++i) {
-      child_faces[4 * f + i] = {t[i], mid[i], mid[(i + 2) % 3]};
       child_face_edges[4 * f + i] = {half(i, t[i]), inner + (i + 1) % 3,
                                      half((i + 2) % 3, t[i])};
     }
-    child_faces[4 * f + 3] = {mid[0], mid[1], mid[2]};
     child_face_edges[4 * f + 3] = {inner + 2, inner + 0, inner + 1};
   }
   faces_.push_back(std::move(child_faces));
-  edges_.push_back(std::move(child_edges));
-  face_edges_.push_back(std::move(child_face_edges));
+  if (split_edges) {
+    edges_.push_back(std::move(child_edges));
+    face_edges_.push_back(std::move(child_face_edges));
+  }
 }
 
 uint32_t SemiRegularHierarchy::Parent(int j, uint32_t k) const {

@@ -33,6 +33,17 @@ class StencilBuilder {
     table.weight_start.push_back(FindOrAddRun(table, hash));
     terms_.clear();
   }
+  // The run of the gathered weights, without writing a stencil: for rows
+  // that are written directly (the regular fast path below).
+  uint32_t InternRun(StencilTable& table) {
+    uint64_t hash = terms_.size();
+    for (const auto& [v, x] : terms_) {
+      hash = (hash ^ std::bit_cast<uint64_t>(x)) * 0x9E3779B97F4A7C15ull;
+    }
+    const uint32_t start = FindOrAddHashedRun(table, hash);
+    terms_.clear();
+    return start;
+  }
 
  private:
   // Start of an identical weight run already in the table, or of a new one.
@@ -168,6 +179,45 @@ void AddExtraordinary(const LevelView& view, StencilBuilder& s, uint32_t v,
   }
 }
 
+// The eight-point stencil of an interior edge whose endpoints are regular
+// and whose four wings exist and are distinct from the other stencil
+// vertices: the common case, written without the builder's merging and
+// hashing. Same vertices and weights in the same order as AddButterfly
+// gives, so the transform is bit-identical. False when it does not apply.
+bool TryRegularButterfly(const LevelView& view, uint32_t e, uint32_t regular_run,
+                         StencilTable& table) {
+  const uint32_t fa = view.edge_faces_[e][0], fb = view.edge_faces_[e][1];
+  if (fb == kNone) return false;
+  const uint32_t c1 = view.edges_[e][0], c2 = view.edges_[e][1];
+  if (view.Extraordinary(c1) || view.Extraordinary(c2)) return false;
+  uint32_t v[8];
+  v[0] = c1;
+  v[1] = c2;
+  int n = 4;
+  for (int side = 0; side < 2; ++side) {
+    const uint32_t f = side == 0 ? fa : fb;
+    int i = 0;
+    while (view.face_edges_[f][i] != e) ++i;
+    v[2 + side] = view.faces_[f][(i + 2) % 3];
+    for (int k = 1; k <= 2; ++k) {
+      const uint32_t g = view.face_edges_[f][(i + k) % 3];
+      const auto& ef = view.edge_faces_[g];
+      const uint32_t other = ef[0] == f ? ef[1] : ef[0];
+      if (other == kNone) return false;  // reflected wing: the general path
+      v[n++] = view.Opposite(other, g);
+    }
+  }
+  for (int a = 1; a < 8; ++a) {
+    for (int b = 0; b < a; ++b) {
+      if (v[a] == v[b]) return false;  // tiny meshes: wings coincide
+    }
+  }
+  table.indices.insert(table.indices.end(), v, v + 8);
+  table.offsets.push_back(static_cast<uint32_t>(table.indices.size()));
+  table.weight_start.push_back(regular_run);
+  return true;
+}
+
 void AddButterfly(const LevelView& view, StencilBuilder& s, uint32_t e) {
   const uint32_t c1 = view.edges_[e][0], c2 = view.edges_[e][1];
   const uint32_t fa = view.edge_faces_[e][0], fb = view.edge_faces_[e][1];
@@ -208,6 +258,14 @@ StencilTable BuildPredictionStencils(const SemiRegularHierarchy& hierarchy,
   table.indices.reserve(num_edges * (predictor == Predictor::kLinear ? 2 : 8));
   table.weight_start.reserve(num_edges);
   StencilBuilder s;
+  uint32_t regular_run = 0;
+  if (predictor == Predictor::kButterfly) {
+    // Weights of TryRegularButterfly's rows, in its vertex order (distinct
+    // placeholder vertices: only the weights are kept).
+    const double w[8] = {0.5, 0.5, 0.125, 0.125, -1.0 / 16, -1.0 / 16, -1.0 / 16, -1.0 / 16};
+    for (uint32_t i = 0; i < 8; ++i) s.Add(i, w[i]);
+    regular_run = s.InternRun(table);
+  }
   for (uint32_t e = 0; e < num_edges; ++e) {
     const uint32_t c1 = view.edges_[e][0], c2 = view.edges_[e][1];
     const uint32_t fb = view.edge_faces_[e][1];
@@ -228,6 +286,7 @@ StencilTable BuildPredictionStencils(const SemiRegularHierarchy& hierarchy,
         }
         break;
       case Predictor::kButterfly:
+        if (TryRegularButterfly(view, e, regular_run, table)) continue;
         AddButterfly(view, s, e);
         break;
     }
