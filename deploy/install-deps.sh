@@ -15,6 +15,7 @@ build=(
   libspdlog-dev
   libcli11-dev
   libsqlite3-dev
+  zlib1g-dev                   # PNG output of meshwave render
   libpq-dev                    # PostgreSQL catalog backend (libpq)
   libssl-dev                   # SHA-256 (content hashes), TLS
 )

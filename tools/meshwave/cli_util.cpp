@@ -95,6 +95,25 @@ Status ApplyTransformOptions(const std::string& predictor,
   return Status::Ok();
 }
 
+void AddQuantizerOption(CLI::App* cmd, std::string& quantizer) {
+  cmd->add_option("--quantizer", quantizer,
+                  "Deadzone: saq (z = 2), ueq (z = 1), z1.5, z2.5, or auto (per subband "
+                  "and component from the fitted Laplacian mixture, seed 3.5)")
+      ->check(CLI::IsMember({"saq", "ueq", "z1.5", "z2.5", "auto"}))
+      ->capture_default_str();
+}
+
+Status ApplyQuantizerOption(const std::string& quantizer, EncodeOptions& options) {
+  // Codes of quant/deadzone_quantizer.h.
+  if (quantizer == "saq") options.deadzone = 0;
+  else if (quantizer == "ueq") options.deadzone = 1;
+  else if (quantizer == "z1.5") options.deadzone = 2;
+  else if (quantizer == "z2.5") options.deadzone = 3;
+  else if (quantizer == "auto") options.auto_deadzone = true;
+  else return InvalidArgument("unknown quantizer \"" + quantizer + "\"");
+  return Status::Ok();
+}
+
 Result<std::string> ReadFileBytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) return Status(StatusCode::kNotFound, path + ": cannot open");

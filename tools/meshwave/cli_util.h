@@ -35,6 +35,12 @@ Status ApplyTransformOptions(const std::string& predictor,
                              const std::string& update, int precision,
                              EncodeOptions& options);
 
+// --quantizer saq|ueq|z1.5|z2.5|auto: the deadzone of every (subband,
+// component), or `auto`, chosen per (subband, component) from the fitted
+// Laplacian mixture (seed 3.5).
+void AddQuantizerOption(CLI::App* cmd, std::string& quantizer);
+Status ApplyQuantizerOption(const std::string& quantizer, EncodeOptions& options);
+
 // Reads a whole file; IoError naming the path when it cannot.
 Result<std::string> ReadFileBytes(const std::string& path);
 // Writes bytes to `path` through a temporary file and a rename.

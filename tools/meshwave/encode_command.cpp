@@ -19,7 +19,7 @@ namespace {
 
 struct EncodeArgs {
   std::string in, out, predictor = "butterfly", update = "constant",
-                        coder = "3xc";
+                        coder = "3xc", quantizer = "saq";
   int levels = -1;
   int precision = 16;
   bool force_remesh = false;
@@ -52,6 +52,7 @@ Status Run(const EncodeArgs& args) {
   MW_RETURN_IF_ERROR(
       ApplyTransformOptions(args.predictor, args.update, args.precision, options));
   MW_ASSIGN_OR_RETURN(options.coder, ParseCoderKind(args.coder));
+  MW_RETURN_IF_ERROR(ApplyQuantizerOption(args.quantizer, options));
   options.name = std::filesystem::path(args.in).stem().string();
   MW_ASSIGN_OR_RETURN(SemiRegularMesh mesh, LoadSemiRegular(args));
   MW_ASSIGN_OR_RETURN(EncodedStream stream, EncodeMesh(mesh, options));
@@ -87,6 +88,7 @@ void AddEncodeCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--coder", args->coder, "Bitplane coder: 3xc or sim")
       ->check(CLI::IsMember({"3xc", "sim"}))
       ->capture_default_str();
+  AddQuantizerOption(cmd, args->quantizer);
   cmd->add_flag("--remesh", args->force_remesh,
                 "Remesh even when the input is already semi-regular");
   cmd->callback([args, &exit_code] {

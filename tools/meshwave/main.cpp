@@ -27,6 +27,8 @@ int main(int argc, char** argv) {
   meshwave::cli::AddFetchCommand(app, exit_code);
   meshwave::cli::AddRefineCommand(app, exit_code);
   meshwave::cli::AddCatalogCommand(app, exit_code);
+  meshwave::cli::AddAnalyzeCommand(app, exit_code);
+  meshwave::cli::AddRenderCommand(app, exit_code);
 
   CLI11_PARSE(app, argc, argv);
   return exit_code;

@@ -24,7 +24,7 @@ namespace {
 
 struct RdArgs {
   std::string in, csv, coders = "3xc,sim,pgc", predictor = "butterfly",
-                       update = "constant";
+                       update = "constant", quantizer = "saq";
   int levels = -1;
   int precision = 16;
   uint32_t leaf_size = EncodeOptions{}.octree_leaf_size;
@@ -173,8 +173,13 @@ Status Run(const RdArgs& args) {
   MW_RETURN_IF_ERROR(
       ApplyTransformOptions(args.predictor, args.update, args.precision, options));
   options.octree_leaf_size = args.leaf_size;
+  MW_RETURN_IF_ERROR(ApplyQuantizerOption(args.quantizer, options));
   options.name = std::filesystem::path(args.in).stem().string();
   MW_ASSIGN_OR_RETURN(std::vector<RdCoder> coders, ParseCoders(args.coders));
+  if (options.auto_deadzone &&
+      std::find(coders.begin(), coders.end(), RdCoder::kPgc) != coders.end()) {
+    return InvalidArgument("--quantizer auto applies to 3xc and sim; PGC keeps one deadzone");
+  }
   MW_ASSIGN_OR_RETURN(LoadedMesh loaded, Load(args));
   std::vector<RdCurve> curves;
   for (RdCoder coder : coders) {
@@ -212,6 +217,7 @@ void AddRdCommand(CLI::App& app, int& exit_code) {
                   "below it)")
       ->check(CLI::Range(1, 1 << 20))
       ->capture_default_str();
+  AddQuantizerOption(cmd, args->quantizer);
   cmd->add_flag("--json", args->json, "Print the curves as JSON instead of a table");
   cmd->callback([args, &exit_code] {
     const Status s = Run(*args);

@@ -7,6 +7,7 @@
 #include "bitplane/bitplane_passes.h"
 #include "bitplane/subband_layout.h"
 #include "meshwave/encoder.h"
+#include "quant/deadzone_choice.h"
 #include "quant/deadzone_quantizer.h"
 #include "quant/subband_gains.h"
 #include "stream/base_mesh_codec.h"
@@ -73,13 +74,16 @@ Result<EncodedStream> EncodeMesh(const SemiRegularMesh& input,
     for (int c = 0; c < 3; ++c) {
       QuantizedComponent& q = quantized[j][c];
       q.step = step0 / std::sqrt(gains.subband[j]);
-      q.xi0 = DeadzoneXi(options.deadzone);
       q.value.resize(band.size());
+      for (size_t k = 0; k < band.size(); ++k) q.value[k] = band[k][c];
+      const int deadzone = options.auto_deadzone
+                               ? ChooseDeadzoneCode(q.value, options.deadzone)
+                               : options.deadzone;
+      q.xi0 = DeadzoneXi(deadzone);
       q.q0.resize(band.size());
       q.negative.resize(band.size());
       uint32_t max_q = 0;
       for (size_t k = 0; k < band.size(); ++k) {
-        q.value[k] = band[k][c];
         q.q0[k] = QuantizeMagnitude(q.value[k], q.step, q.xi0);
         q.negative[k] = q.value[k] < 0;
         max_q = std::max(max_q, q.q0[k]);
@@ -88,7 +92,7 @@ Result<EncodedStream> EncodeMesh(const SemiRegularMesh& input,
       q.top = TopBitplane(max_q);
       proto::Quantizer* pq = header.add_quantizers();
       pq->set_step(q.step);
-      pq->set_deadzone(static_cast<uint32_t>(options.deadzone));
+      pq->set_deadzone(static_cast<uint32_t>(deadzone));
       pq->set_top_bitplane(q.top);
     }
   }
