@@ -17,6 +17,10 @@ Response MethodNotAllowed(std::string_view allow) {
   return r;
 }
 
+bool IsWebSocketEndpoint(const RequestTarget& t) {
+  return t.segments.size() == 2 && t.segments[0] == "v1" && t.segments[1] == "ws";
+}
+
 bool IsMeshesRoot(const RequestTarget& t) {
   return t.segments.size() == 2 && t.segments[0] == "v1" && t.segments[1] == "meshes";
 }
@@ -38,6 +42,9 @@ Response Route(ServerContext& ctx, const Request& req, const RequestTarget& t) {
                       "text/plain; version=0.0.4");
     r.set(http::field::cache_control, "no-store");
     return r;
+  }
+  if (IsWebSocketEndpoint(t)) {
+    return JsonError(http::status::upgrade_required, "GET /v1/ws needs a WebSocket upgrade");
   }
   if (seg.size() < 2 || seg[0] != "v1" || seg[1] != "meshes") {
     return JsonError(http::status::not_found, "no such endpoint");
@@ -114,8 +121,23 @@ void HandleRequest(ServerContext& ctx, Request req, std::function<void(Response)
   }
 }
 
-Response RefuseWebSocketUpgrade(const http::request_header<>& /*header*/) {
-  return JsonError(http::status::not_implemented, "WebSocket streaming is not available yet");
+std::optional<Response> CheckWebSocketUpgrade(ServerContext& ctx,
+                                              const http::request_header<>& header) {
+  auto target = ParseRequestTarget(header.target());
+  if (!target.ok()) return StatusError(target.status());
+  if (!IsWebSocketEndpoint(*target)) {
+    return JsonError(http::status::not_found, "WebSocket upgrades go to /v1/ws only");
+  }
+  if (!target->query.empty()) return JsonError(http::status::bad_request, "/v1/ws takes no query");
+  const bool full = ctx.metrics().websocket_connections() >=
+                    static_cast<int64_t>(ctx.config().max_websocket_sessions());
+  if (ctx.stopping() || full) {
+    Response r = JsonError(http::status::service_unavailable,
+                           full ? "too many WebSocket sessions" : "the server is stopping");
+    r.set(http::field::retry_after, "1");
+    return r;
+  }
+  return std::nullopt;
 }
 
 }  // namespace meshwave::server

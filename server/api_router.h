@@ -26,8 +26,11 @@ HeaderDecision InspectHeader(const ServerContext& ctx, const http::request_heade
 // requests or later on the ingest worker for uploads.
 void HandleRequest(ServerContext& ctx, Request req, std::function<void(Response)> done);
 
-// The hook for WebSocket upgrades (GET /v1/ws): 501 until WebSockets land.
-Response RefuseWebSocketUpgrade(const http::request_header<>& header);
+// Whether a WebSocket upgrade may go ahead: the refusal to send instead
+// (404 for a target other than /v1/ws, 503 while the server stops or when
+// max_websocket_sessions are open), or nothing.
+std::optional<Response> CheckWebSocketUpgrade(ServerContext& ctx,
+                                              const http::request_header<>& header);
 
 }  // namespace meshwave::server
 

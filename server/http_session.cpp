@@ -6,6 +6,7 @@
 
 #include "api_router.h"
 #include "response.h"
+#include "ws_session.h"
 
 namespace meshwave::server {
 namespace {
@@ -88,7 +89,13 @@ void HttpSession::OnHeader(beast::error_code ec, size_t /*bytes*/) {
     return DoWrite(std::move(r), true);
   }
   if (beast::websocket::is_upgrade(header)) {
-    return DoWrite(RefuseWebSocketUpgrade(header), true);
+    if (auto refusal = CheckWebSocketUpgrade(ctx_, header)) return DoWrite(std::move(*refusal), true);
+    // The socket moves to a WebSocket session; this one ends here.
+    stream_.expires_never();
+    auto ws = std::make_shared<WsSession>(stream_.release_socket(), ctx_);
+    ctx_.Register(ws);
+    ws->Run(parser_->release());
+    return;
   }
   HeaderDecision d = InspectHeader(ctx_, header);
   if (d.reject) return DoWrite(std::move(*d.reject), true);

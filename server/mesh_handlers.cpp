@@ -4,6 +4,7 @@
 #include "etag.h"
 #include "meshwave/container.h"
 #include "response.h"
+#include "stream_plan.h"
 #include "stream_query.h"
 
 namespace meshwave::server {
@@ -141,24 +142,9 @@ Response GetStream(ServerContext& ctx, const Request& req, const std::string& id
   Lookup l = Find(ctx, id);
   if (!l.mesh) return std::move(l.error);
   const ServedMesh& m = *l.mesh;
-  if (q->max_level > static_cast<int>(m.levels())) {
-    return JsonError(http::status::bad_request,
-                     "max_level " + std::to_string(q->max_level) + " exceeds the " +
-                         std::to_string(m.levels()) + " levels of mesh " + id);
-  }
-  const auto& order = m.Order(q->order, q->max_level);
-  if (q->from > order.size()) {
-    return JsonError(http::status::bad_request,
-                     "from " + std::to_string(q->from) + " is past the end of the order (" +
-                         std::to_string(order.size()) + " packets)");
-  }
-  const Selection s = SelectPackets(m.header(), order, q->budget, q->from);
-  if (q->from == 0 && s.bytes == 0) {
-    return JsonError(http::status::bad_request,
-                     "budget " + std::to_string(q->budget) +
-                         " is smaller than the stream header (" +
-                         std::to_string(ContainerSize(m.header(), {})) + " bytes)");
-  }
+  auto plan = PlanStream(m, q->order, q->max_level, q->from, q->budget, q->from == 0);
+  if (!plan.ok()) return StatusError(plan.status());
+  const Selection& s = plan->selection;
   // The response bytes depend only on these four numbers.
   const std::string variant = std::string("s-") + ProgressionName(q->order) + "-" +
                               (q->max_level < 0 ? std::string("all") : std::to_string(q->max_level)) + "-" + std::to_string(q->from) +
@@ -175,7 +161,7 @@ Response GetStream(ServerContext& ctx, const Request& req, const std::string& id
   }
   r.set("X-Meshwave-Packets", std::to_string(s.ids.size()));
   r.set("X-Meshwave-Next-Cursor", std::to_string(s.next_cursor));
-  r.set("X-Meshwave-Complete", s.next_cursor == order.size() ? "true" : "false");
+  r.set("X-Meshwave-Complete", plan->complete() ? "true" : "false");
   return r;
 }
 

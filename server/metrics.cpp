@@ -66,8 +66,15 @@ std::string Metrics::Render(uint64_t catalog_meshes, uint64_t open_containers) c
                 static_cast<long long>(connections_.load()));
   add(line);
   add("# HELP meshwave_websocket_connections Open WebSocket sessions.\n"
-      "# TYPE meshwave_websocket_connections gauge\n"
-      "meshwave_websocket_connections 0\n");
+      "# TYPE meshwave_websocket_connections gauge\n");
+  std::snprintf(line, sizeof line, "meshwave_websocket_connections %lld\n",
+                static_cast<long long>(websocket_connections_.load()));
+  add(line);
+  add("# HELP meshwave_websocket_sent_bytes_total Bytes of WebSocket messages sent.\n"
+      "# TYPE meshwave_websocket_sent_bytes_total counter\n");
+  std::snprintf(line, sizeof line, "meshwave_websocket_sent_bytes_total %llu\n",
+                static_cast<unsigned long long>(websocket_bytes_sent_.load()));
+  add(line);
   return out;
 }
 

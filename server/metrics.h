@@ -18,6 +18,10 @@ class Metrics {
   void ConnectionOpened() { ++connections_; }
   void ConnectionClosed() { --connections_; }
   int64_t connections() const { return connections_.load(); }
+  void WebSocketOpened() { ++websocket_connections_; }
+  void WebSocketClosed() { --websocket_connections_; }
+  int64_t websocket_connections() const { return websocket_connections_.load(); }
+  void AddWebSocketBytes(uint64_t bytes) { websocket_bytes_sent_ += bytes; }
 
   // The exposition text; gauges read elsewhere are passed in.
   std::string Render(uint64_t catalog_meshes, uint64_t open_containers) const;
@@ -32,6 +36,8 @@ class Metrics {
   std::atomic<uint64_t> micros_sum_{0};
   std::atomic<uint64_t> bytes_sent_{0};
   std::atomic<int64_t> connections_{0};
+  std::atomic<int64_t> websocket_connections_{0};
+  std::atomic<uint64_t> websocket_bytes_sent_{0};
 };
 
 }  // namespace meshwave::server

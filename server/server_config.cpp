@@ -51,6 +51,9 @@ Status FinishServerConfig(proto::ServerConfig& c) {
   if (c.write_timeout_seconds() == 0) c.set_write_timeout_seconds(120);
   if (c.open_containers() == 0) c.set_open_containers(64);
   if (c.shutdown_grace_seconds() == 0) c.set_shutdown_grace_seconds(10);
+  if (c.max_websocket_sessions() == 0) c.set_max_websocket_sessions(10000);
+  if (c.websocket_message_limit_bytes() == 0) c.set_websocket_message_limit_bytes(64 * 1024);
+  if (c.websocket_ping_seconds() == 0) c.set_websocket_ping_seconds(15);
   if (const char* token = std::getenv("MESHWAVE_UPLOAD_TOKEN"); token && *token) {
     c.set_upload_token(token);
   }

@@ -431,8 +431,9 @@ TEST_F(ServerHttpTest, BadRequestsGetJsonErrorsAndServerStaysUp) {
       {"GET /healthz HTTP/1.1\r\nX-Big: " + std::string(64 * 1024, 'a'), 431},
       {"HELLO", 400},
       {"GET /v1/meshes HTTP/9.9", 400},
-      {"GET /v1/ws HTTP/1.1\r\nConnection: Upgrade\r\nUpgrade: websocket\r\n"
-       "Sec-WebSocket-Version: 13\r\nSec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==", 501},
+      {"GET /v1/meshes HTTP/1.1\r\nConnection: Upgrade\r\nUpgrade: websocket\r\n"
+       "Sec-WebSocket-Version: 13\r\nSec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==", 404},
+      {"GET /v1/ws HTTP/1.1", 426},
   };
   for (const auto& [request, expected] : corpus) {
     HttpConnection c(port_);

@@ -44,6 +44,12 @@ Selection SelectPackets(const proto::StreamHeader& header,
                         const std::vector<uint32_t>& order, uint64_t budget,
                         size_t cursor = 0);
 
+// The longest run of `order` starting at `cursor` (0 included) whose
+// payloads fit `budget` bytes: for a client that already holds the header.
+Selection SelectPayloads(const proto::StreamHeader& header,
+                         const std::vector<uint32_t>& order, uint64_t budget,
+                         size_t cursor);
+
 // The payload length in bytes of packet `id` (an id of the header's index;
 // the header must have passed validation). Lets a client split a stream of
 // concatenated payloads without reading the packet index itself.

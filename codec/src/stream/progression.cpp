@@ -185,37 +185,47 @@ uint64_t PacketLength(const proto::StreamHeader& h, uint32_t id) {
   return h.packets().length(static_cast<int>(id));
 }
 
-Selection SelectPackets(const proto::StreamHeader& h,
-                        const std::vector<uint32_t>& order, uint64_t budget,
-                        size_t cursor) {
+Selection SelectPayloads(const proto::StreamHeader& h,
+                         const std::vector<uint32_t>& order, uint64_t budget,
+                         size_t cursor) {
   Selection s;
   s.next_cursor = std::min(cursor, order.size());
-  // From cursor 0 the container's size is the header's plus, per packet,
-  // its payload and its id in `present`: sizes are added, not recomputed
-  // (ContainerSize walks the whole header; calling it per packet made
-  // fitting a budget quadratic in the packet count).
-  const uint64_t empty = cursor == 0 ? ContainerSize(h, {}) : 0;
-  uint64_t bytes = empty;
-  if (bytes > budget) return s;  // not even the header fits
-  uint64_t payload = 0, id_bytes = 0;
   while (s.next_cursor < order.size()) {
     const uint32_t id = order[s.next_cursor];
-    const uint64_t length = h.packets().length(static_cast<int>(id));
-    uint64_t next = bytes + length;
-    if (cursor == 0) {
-      const uint64_t ids = id_bytes + google::protobuf::io::CodedOutputStream::VarintSize32(id);
-      next = empty + payload + length + PresentFieldSize(ids);
-      if (next > budget) break;
-      id_bytes = ids;
-      payload += length;
-    } else if (next > budget) {
-      break;
-    }
-    bytes = next;
+    const uint64_t next = s.bytes + h.packets().length(static_cast<int>(id));
+    if (next > budget) break;
+    s.bytes = next;
     s.ids.push_back(id);
     ++s.next_cursor;
   }
-  s.bytes = bytes;
+  return s;
+}
+
+Selection SelectPackets(const proto::StreamHeader& h,
+                        const std::vector<uint32_t>& order, uint64_t budget,
+                        size_t cursor) {
+  if (cursor > 0) return SelectPayloads(h, order, budget, cursor);
+  Selection s;
+  // The container's size is the header's plus, per packet, its payload and
+  // its id in `present`: sizes are added, not recomputed (ContainerSize
+  // walks the whole header; calling it per packet made fitting a budget
+  // quadratic in the packet count).
+  const uint64_t empty = ContainerSize(h, {});
+  if (empty > budget) return s;  // not even the header fits
+  uint64_t payload = 0, id_bytes = 0;
+  s.bytes = empty;
+  while (s.next_cursor < order.size()) {
+    const uint32_t id = order[s.next_cursor];
+    const uint64_t length = h.packets().length(static_cast<int>(id));
+    const uint64_t ids = id_bytes + google::protobuf::io::CodedOutputStream::VarintSize32(id);
+    const uint64_t next = empty + payload + length + PresentFieldSize(ids);
+    if (next > budget) break;
+    id_bytes = ids;
+    payload += length;
+    s.bytes = next;
+    s.ids.push_back(id);
+    ++s.next_cursor;
+  }
   return s;
 }
 

@@ -1,0 +1,169 @@
+#include "ws_protocol.h"
+
+#include "mesh_id.h"
+#include "stream_query.h"
+
+namespace meshwave::server {
+namespace {
+
+Status Bad(const std::string& what) { return InvalidArgument(what); }
+
+Result<Progression> ParseOrder(const std::string& name) {
+  if (name.empty()) return Progression::kQuality;
+  auto p = ParseProgression(name);
+  if (!p.ok()) {
+    // The name comes from the client: quote a bounded, printable part.
+    std::string shown = name.substr(0, 32);
+    for (char& c : shown) {
+      if (static_cast<unsigned char>(c) < 0x20 ||
+          static_cast<unsigned char>(c) > 0x7e)
+        c = '?';
+    }
+    return Bad("unknown order '" + shown + "' (quality, resolution, rd)");
+  }
+  return *p;
+}
+
+Status CheckMeshId(const std::string& id) {
+  if (!IsValidMeshId(id))
+    return Bad("invalid mesh id (12 lowercase hex digits)");
+  return Status::Ok();
+}
+
+Result<int> ParseMaxLevel(bool has, uint32_t level) {
+  if (!has) return -1;
+  if (level > static_cast<uint32_t>(kMaxLevelLimit)) {
+    return Bad("max_level " + std::to_string(level) + " is above " +
+               std::to_string(kMaxLevelLimit));
+  }
+  return static_cast<int>(level);
+}
+
+Result<std::optional<uint64_t>> ParseBudget(bool has, uint64_t budget) {
+  if (!has) return std::optional<uint64_t>();
+  if (budget > kMaxBudget) return Bad("budget is above 2^50 bytes");
+  return std::optional<uint64_t>(budget);
+}
+
+Status CheckRate(uint64_t rate) {
+  if (rate > kMaxRate) return Bad("rate is above 2^40 bytes per second");
+  return Status::Ok();
+}
+
+void AppendVarint(std::string& out, uint64_t v) {
+  while (v >= 0x80) {
+    out.push_back(static_cast<char>((v & 0x7f) | 0x80));
+    v >>= 7;
+  }
+  out.push_back(static_cast<char>(v));
+}
+
+size_t VarintSize(uint64_t v) {
+  size_t n = 1;
+  while (v >= 0x80) {
+    v >>= 7;
+    ++n;
+  }
+  return n;
+}
+
+}  // namespace
+
+Result<ClientRequest> ParseClientMessage(std::string_view bytes,
+                                         const WsLimits& limits) {
+  if (bytes.size() > limits.max_message_bytes) {
+    return Bad("message of " + std::to_string(bytes.size()) +
+               " bytes, the limit is " +
+               std::to_string(limits.max_message_bytes));
+  }
+  proto::ClientMessage m;
+  if (!m.ParseFromArray(bytes.data(), static_cast<int>(bytes.size()))) {
+    return Bad("the message is not a ClientMessage (proto/websocket.proto)");
+  }
+  ClientRequest r;
+  switch (m.message_case()) {
+    case proto::ClientMessage::kStart: {
+      const auto& s = m.start();
+      r.kind = ClientRequest::Kind::kStart;
+      MW_RETURN_IF_ERROR(CheckMeshId(s.mesh_id()));
+      r.mesh_id = s.mesh_id();
+      MW_ASSIGN_OR_RETURN(r.order, ParseOrder(s.order()));
+      MW_ASSIGN_OR_RETURN(r.max_level,
+                          ParseMaxLevel(s.has_max_level(), s.max_level()));
+      MW_ASSIGN_OR_RETURN(r.budget, ParseBudget(s.has_budget(), s.budget()));
+      MW_RETURN_IF_ERROR(CheckRate(s.rate()));
+      r.rate = s.rate();
+      r.header_only = s.header_only();
+      if (r.header_only && r.budget) return Bad("header_only takes no budget");
+      return r;
+    }
+    case proto::ClientMessage::kRefine: {
+      r.kind = ClientRequest::Kind::kRefine;
+      r.extra_bytes = m.refine().extra_bytes();
+      if (r.extra_bytes == 0)
+        return Bad("refine needs extra_bytes of at least 1");
+      if (r.extra_bytes > kMaxBudget)
+        return Bad("extra_bytes is above 2^50 bytes");
+      return r;
+    }
+    case proto::ClientMessage::kResume: {
+      const auto& s = m.resume();
+      r.kind = ClientRequest::Kind::kResume;
+      MW_RETURN_IF_ERROR(CheckMeshId(s.mesh_id()));
+      r.mesh_id = s.mesh_id();
+      MW_ASSIGN_OR_RETURN(r.order, ParseOrder(s.order()));
+      MW_ASSIGN_OR_RETURN(r.max_level,
+                          ParseMaxLevel(s.has_max_level(), s.max_level()));
+      MW_ASSIGN_OR_RETURN(r.budget, ParseBudget(s.has_budget(), s.budget()));
+      MW_RETURN_IF_ERROR(CheckRate(s.rate()));
+      r.rate = s.rate();
+      r.cursor = s.cursor();
+      return r;
+    }
+    case proto::ClientMessage::MESSAGE_NOT_SET:
+      break;
+  }
+  return Bad("the message holds no request (start, refine or resume)");
+}
+
+std::string ErrorMessage(proto::Error::Code code, std::string_view message) {
+  proto::ServerMessage m;
+  m.mutable_error()->set_code(code);
+  m.mutable_error()->set_message(std::string(message));
+  return m.SerializeAsString();
+}
+
+std::string PacketMessagePrefix(uint32_t cursor, uint32_t id,
+                                uint64_t payload_size) {
+  // Wire format, fields in number order as protobuf writes them; proto3
+  // leaves zero numbers and empty bytes out.
+  constexpr char kPacketField =
+      (3 << 3) | 2;  // ServerMessage.packet, length-delimited
+  constexpr char kCursorField = (1 << 3) | 0;  // Packet.cursor, varint
+  constexpr char kIdField = (2 << 3) | 0;      // Packet.id, varint
+  constexpr char kPayloadField =
+      (3 << 3) | 2;  // Packet.payload, length-delimited
+  uint64_t inner = 0;
+  if (cursor != 0) inner += 1 + VarintSize(cursor);
+  if (id != 0) inner += 1 + VarintSize(id);
+  if (payload_size != 0) inner += 1 + VarintSize(payload_size) + payload_size;
+  std::string out;
+  out.reserve(24);
+  out.push_back(kPacketField);
+  AppendVarint(out, inner);
+  if (cursor != 0) {
+    out.push_back(kCursorField);
+    AppendVarint(out, cursor);
+  }
+  if (id != 0) {
+    out.push_back(kIdField);
+    AppendVarint(out, id);
+  }
+  if (payload_size != 0) {
+    out.push_back(kPayloadField);
+    AppendVarint(out, payload_size);
+  }
+  return out;
+}
+
+}  // namespace meshwave::server

@@ -1,0 +1,62 @@
+// The wire protocol of GET /v1/ws (proto/websocket.proto): client messages
+// parsed and checked into a ClientRequest without any socket (a fuzz target
+// calls ParseClientMessage directly), and server messages serialized,
+// packets without copying their payload.
+#ifndef MESHWAVE_SERVER_WS_PROTOCOL_H_
+#define MESHWAVE_SERVER_WS_PROTOCOL_H_
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "meshwave/progression.h"
+#include "meshwave/status.h"
+#include "websocket.pb.h"
+
+namespace meshwave::server {
+
+// Pacing above this is refused: 2^40 bytes/s is no pacing at all, and the
+// bound keeps the token arithmetic far from overflow.
+inline constexpr uint64_t kMaxRate = uint64_t{1} << 40;
+
+struct WsLimits {
+  size_t max_message_bytes = 64 * 1024;
+};
+
+struct ClientRequest {
+  enum class Kind { kStart, kRefine, kResume };
+  Kind kind = Kind::kStart;
+  // kStart and kResume.
+  std::string mesh_id;
+  Progression order = Progression::kQuality;
+  int max_level = -1;              // -1: all levels
+  std::optional<uint64_t> budget;  // absent: the whole order
+  uint64_t rate = 0;               // bytes/s, 0: unpaced
+  bool header_only = false;        // kStart
+  uint32_t cursor = 0;             // kResume
+  uint64_t extra_bytes = 0;        // kRefine, >= 1
+};
+
+// Parses one binary message from a client. Safe on any bytes: kInvalidArgument
+// with a message for the client when the message is larger than the limit,
+// does not parse, holds no request, names a malformed mesh id or an unknown
+// order, or has a number out of range (max_level > kMaxLevelLimit, budgets
+// and extra_bytes > kMaxBudget, rate > kMaxRate, extra_bytes 0, header_only
+// with a budget). Limits that depend on the mesh (levels, order length) are
+// the session's to check.
+Result<ClientRequest> ParseClientMessage(std::string_view bytes,
+                                         const WsLimits& limits);
+
+// A serialized ServerMessage holding `error`.
+std::string ErrorMessage(proto::Error::Code code, std::string_view message);
+
+// The bytes of a ServerMessage holding Packet{cursor, id, payload} that come
+// before the payload: the frame is this prefix followed by the payload
+// itself, byte for byte what SerializeAsString would give.
+std::string PacketMessagePrefix(uint32_t cursor, uint32_t id,
+                                uint64_t payload_size);
+
+}  // namespace meshwave::server
+
+#endif  // MESHWAVE_SERVER_WS_PROTOCOL_H_

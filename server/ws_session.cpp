@@ -1,0 +1,316 @@
+#include "ws_session.h"
+
+#include <spdlog/spdlog.h>
+
+#include <array>
+
+#include "meshwave/container.h"
+#include "stream_plan.h"
+#include "stream_query.h"
+
+namespace meshwave::server {
+namespace {
+
+// Small messages (selections, errors) waiting behind the write in flight.
+// Each client message adds at most one, so past this many the session stops
+// reading until the queue drains: a client flooding requests is slowed down
+// instead of growing the queue.
+constexpr size_t kMaxQueued = 16;
+
+std::string RemoteName(const tcp::socket& socket) {
+  beast::error_code ec;
+  const auto ep = socket.remote_endpoint(ec);
+  if (ec) return "?";
+  return ep.address().to_string() + ":" + std::to_string(ep.port());
+}
+
+proto::Selection ToProto(const StreamPlan& plan, size_t from) {
+  proto::Selection s;
+  s.set_from_cursor(static_cast<uint32_t>(from));
+  s.set_next_cursor(static_cast<uint32_t>(plan.selection.next_cursor));
+  s.set_order_packets(static_cast<uint32_t>(plan.order->size()));
+  s.set_bytes(plan.selection.bytes);
+  return s;
+}
+
+}  // namespace
+
+WsSession::WsSession(tcp::socket&& socket, ServerContext& ctx)
+    : ws_(std::move(socket)),
+      ctx_(ctx),
+      pacing_timer_(ws_.get_executor()),
+      remote_(RemoteName(beast::get_lowest_layer(ws_).socket())),
+      opened_(std::chrono::steady_clock::now()) {
+  ctx_.metrics().WebSocketOpened();
+}
+
+WsSession::~WsSession() {
+  ctx_.metrics().WebSocketClosed();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - opened_)
+          .count();
+  spdlog::info("ws {} closed after {:.1f} s: {} requests, {} packets, {} bytes",
+               remote_, seconds, requests_, packets_sent_, bytes_sent_);
+}
+
+void WsSession::Run(const http::request<http::string_body>& upgrade) {
+  const auto& config = ctx_.config();
+  websocket::stream_base::timeout timeout{};
+  timeout.handshake_timeout =
+      std::chrono::seconds(config.idle_timeout_seconds());
+  // Beast pings after half the idle time without a frame from the client and
+  // closes after the whole without one (a pong counts).
+  timeout.idle_timeout =
+      std::chrono::seconds(2 * config.websocket_ping_seconds());
+  timeout.keep_alive_pings = true;
+  ws_.set_option(timeout);
+  ws_.set_option(
+      websocket::stream_base::decorator([](websocket::response_type& res) {
+        res.set(http::field::server, "meshwave");
+      }));
+  ws_.read_message_max(config.websocket_message_limit_bytes());
+  ws_.binary(true);
+  // One frame per message: payloads go out without being copied in pieces.
+  ws_.auto_fragment(false);
+  ws_.async_accept(upgrade, beast::bind_front_handler(&WsSession::OnAccept,
+                                                      shared_from_this()));
+}
+
+void WsSession::Shutdown() {
+  net::post(ws_.get_executor(), [self = shared_from_this()] {
+    if (self->closing_) return;
+    if (!self->writing_)
+      return self->DoClose(websocket::close_code::going_away);
+    self->close_after_write_ = true;
+  });
+}
+
+void WsSession::OnAccept(beast::error_code ec) {
+  if (ec) return Fail(ec, "accept");
+  spdlog::info("ws {} open", remote_);
+  DoRead();
+}
+
+void WsSession::DoRead() {
+  if (reading_ || closing_) return;
+  reading_ = true;
+  ws_.async_read(read_buffer_, beast::bind_front_handler(&WsSession::OnRead,
+                                                         shared_from_this()));
+}
+
+void WsSession::OnRead(beast::error_code ec, size_t /*bytes*/) {
+  reading_ = false;
+  if (ec) {
+    // The client closed, the connection broke or stayed silent past the
+    // idle time, or a message was too large (Beast has sent close 1009).
+    closing_ = true;
+    pacing_timer_.cancel();
+    return Fail(ec, "read");
+  }
+  if (!ws_.got_binary()) {
+    read_buffer_.clear();
+    return DoClose(websocket::close_code::unknown_data);
+  }
+  const auto data = read_buffer_.cdata();
+  auto request = ParseClientMessage(
+      std::string_view(static_cast<const char*>(data.data()), data.size()),
+      WsLimits{ctx_.config().websocket_message_limit_bytes()});
+  read_buffer_.clear();
+  ++requests_;
+  if (!request.ok()) {
+    SendError(proto::Error::BAD_REQUEST, request.status().message());
+  } else {
+    try {
+      Handle(*request);
+    } catch (const std::exception& e) {
+      spdlog::error("ws {}: {}", remote_, e.what());
+      SendError(proto::Error::UNAVAILABLE, "internal error");
+    }
+  }
+  if (queue_.size() < kMaxQueued) DoRead();  // else Pump resumes reading
+  Pump();
+}
+
+void WsSession::Handle(const ClientRequest& request) {
+  if (ctx_.stopping()) {
+    return SendError(proto::Error::UNAVAILABLE, "the server is stopping");
+  }
+  if (request.kind == ClientRequest::Kind::kRefine)
+    return RefineStream(request.extra_bytes);
+  if (streaming()) {
+    return SendError(proto::Error::BAD_REQUEST,
+                     "a stream is in progress: wait for Done, or send refine");
+  }
+  StartStream(request);
+}
+
+void WsSession::StartStream(const ClientRequest& r) {
+  auto found = ctx_.cache().Get(r.mesh_id);
+  if (!found.ok()) {
+    return SendError(
+        proto::Error::UNAVAILABLE,
+        "mesh " + r.mesh_id + " cannot be served: " + found.status().message());
+  }
+  if (!*found)
+    return SendError(proto::Error::NOT_FOUND, "no mesh with id " + r.mesh_id);
+  std::shared_ptr<const ServedMesh> mesh = std::move(*found);
+  const bool start = r.kind == ClientRequest::Kind::kStart;
+  uint64_t budget = r.budget.value_or(kMaxBudget);
+  // Exactly the header's container: no packet fits beside it.
+  if (r.header_only) budget = ContainerSize(mesh->header(), {});
+  const uint64_t from = start ? 0 : r.cursor;
+  auto plan = PlanStream(*mesh, r.order, r.max_level, from, budget, start);
+  if (!plan.ok())
+    return SendError(proto::Error::BAD_REQUEST, plan.status().message());
+
+  mesh_ = std::move(mesh);
+  order_ = plan->order;
+  cursor_ = from;
+  end_ = plan->selection.next_cursor;
+  done_owed_ = true;
+  const auto now = TokenBucket::Clock::now();
+  if (r.rate == 0) {
+    pacer_.reset();
+  } else if (pacer_ && pacer_->rate() == r.rate) {
+    pacer_->DropCredit(now);
+  } else {
+    pacer_.emplace(r.rate, now);
+  }
+  spdlog::info(
+      "ws {}: {} mesh {} order {} max_level {} from {} to {} ({} bytes) rate "
+      "{} B/s",
+      remote_, start ? "start" : "resume", mesh_->entry().id,
+      ProgressionName(r.order), r.max_level, from, end_, plan->selection.bytes,
+      r.rate);
+  proto::ServerMessage m;
+  if (start) {
+    m.mutable_start()->set_header(mesh_->header_bytes());
+    *m.mutable_start()->mutable_selection() = ToProto(*plan, from);
+  } else {
+    *m.mutable_selection() = ToProto(*plan, from);
+  }
+  Queue(m, start);
+}
+
+void WsSession::RefineStream(uint64_t extra_bytes) {
+  if (!mesh_) {
+    return SendError(proto::Error::BAD_REQUEST,
+                     "nothing to refine: send start or resume first");
+  }
+  StreamPlan plan;
+  plan.order = order_;
+  plan.selection = SelectPayloads(mesh_->header(), *order_, extra_bytes, end_);
+  proto::ServerMessage m;
+  *m.mutable_selection() = ToProto(plan, end_);
+  spdlog::debug("ws {}: refine {} bytes, to {}", remote_, extra_bytes,
+                plan.selection.next_cursor);
+  end_ = plan.selection.next_cursor;
+  if (!streaming() && pacer_) pacer_->DropCredit(TokenBucket::Clock::now());
+  done_owed_ = true;
+  Queue(m, false);
+}
+
+void WsSession::SendError(proto::Error::Code code, const std::string& message) {
+  queue_.push_back({ErrorMessage(code, message), false});
+}
+
+void WsSession::Queue(const proto::ServerMessage& message, bool paced) {
+  queue_.push_back({message.SerializeAsString(), paced});
+}
+
+void WsSession::Pump() {
+  if (writing_ || closing_) return;
+  auto write = [this](auto buffers) {
+    writing_ = true;
+    ws_.async_write(buffers, beast::bind_front_handler(&WsSession::OnWrite,
+                                                       shared_from_this()));
+  };
+  if (!queue_.empty()) {
+    if (queue_.front().paced && !MayWriteNow(queue_.front().bytes.size()))
+      return;
+    in_flight_ = std::move(queue_.front().bytes);
+    queue_.pop_front();
+    if (queue_.size() < kMaxQueued / 2) DoRead();
+    return write(net::buffer(in_flight_));
+  }
+  if (mesh_ && cursor_ < end_) {
+    const auto id = (*order_)[cursor_];
+    const std::string_view payload = mesh_->payload(id);
+    std::string prefix =
+        PacketMessagePrefix(static_cast<uint32_t>(cursor_), id, payload.size());
+    if (!MayWriteNow(prefix.size() + payload.size())) return;
+    in_flight_ = std::move(prefix);
+    in_flight_mesh_ = mesh_;
+    ++cursor_;
+    ++packets_sent_;
+    return write(std::array<net::const_buffer, 2>{
+        net::buffer(in_flight_), net::buffer(payload.data(), payload.size())});
+  }
+  if (done_owed_) {
+    done_owed_ = false;
+    proto::ServerMessage m;
+    m.mutable_done()->set_next_cursor(static_cast<uint32_t>(end_));
+    m.mutable_done()->set_complete(end_ == order_->size());
+    in_flight_ = m.SerializeAsString();
+    return write(net::buffer(in_flight_));
+  }
+}
+
+bool WsSession::MayWriteNow(uint64_t bytes) {
+  if (!pacer_) return true;
+  const auto wait = pacer_->Take(bytes, TokenBucket::Clock::now());
+  if (wait == TokenBucket::Clock::duration::zero()) return true;
+  if (!timer_armed_) {
+    timer_armed_ = true;
+    pacing_timer_.expires_after(wait);
+    pacing_timer_.async_wait(beast::bind_front_handler(
+        &WsSession::OnPacingTimer, shared_from_this()));
+  }
+  return false;
+}
+
+void WsSession::OnPacingTimer(beast::error_code ec) {
+  timer_armed_ = false;
+  if (ec) return;  // cancelled: the session ends
+  Pump();
+}
+
+void WsSession::OnWrite(beast::error_code ec, size_t bytes) {
+  writing_ = false;
+  in_flight_mesh_.reset();
+  bytes_sent_ += bytes;
+  ctx_.metrics().AddWebSocketBytes(bytes);
+  if (ec) {
+    closing_ = true;
+    pacing_timer_.cancel();
+    return Fail(ec, "write");
+  }
+  if (close_after_write_) return DoClose(websocket::close_code::going_away);
+  Pump();
+}
+
+void WsSession::DoClose(websocket::close_code code) {
+  if (closing_) return;
+  closing_ = true;
+  pacing_timer_.cancel();
+  // The pending read completes when the client answers the close.
+  ws_.async_close(code, [self = shared_from_this()](beast::error_code ec) {
+    if (ec) self->Fail(ec, "close");
+  });
+}
+
+void WsSession::Fail(beast::error_code ec, const char* what) {
+  // Expected ends of a connection are not worth a log line.
+  if (ec == websocket::error::closed || ec == net::error::operation_aborted ||
+      ec == net::error::eof || ec == net::error::connection_reset ||
+      ec == net::error::broken_pipe) {
+    return;
+  }
+  if (ec == beast::error::timeout) {
+    spdlog::info("ws {}: no answer to keep-alive pings, closed", remote_);
+    return;
+  }
+  spdlog::info("ws {}: {}: {}", remote_, what, ec.message());
+}
+
+}  // namespace meshwave::server

@@ -1,0 +1,100 @@
+// One WebSocket connection on GET /v1/ws (docs/API.md, WebSocket): reads
+// client messages (ParseClientMessage) and streams the packets they select
+// as binary messages, paced by a token bucket on a steady_timer. One write
+// in flight at a time and a short queue of small messages; when the queue is
+// full the session stops reading, so nothing grows without bound. Lives by
+// shared_from_this on the strand of the connection it was upgraded from.
+#ifndef MESHWAVE_SERVER_WS_SESSION_H_
+#define MESHWAVE_SERVER_WS_SESSION_H_
+
+#include <chrono>
+#include <deque>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "net.h"
+#include "served_mesh.h"
+#include "server_context.h"
+#include "token_bucket.h"
+#include "ws_protocol.h"
+
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wnull-dereference"
+#include <boost/beast/websocket.hpp>
+#pragma GCC diagnostic pop
+
+namespace meshwave::server {
+
+namespace websocket = boost::beast::websocket;
+
+class WsSession : public Closable,
+                  public std::enable_shared_from_this<WsSession> {
+ public:
+  WsSession(tcp::socket&& socket, ServerContext& ctx);
+  ~WsSession() override;
+
+  // Answers the upgrade request (101) and starts reading.
+  void Run(const http::request<http::string_body>& upgrade);
+  // Ends the session with close code 1001 after the write in flight.
+  void Shutdown() override;
+
+ private:
+  struct Outgoing {
+    std::string bytes;  // a serialized ServerMessage
+    bool paced;         // counts against the rate (the header does)
+  };
+
+  void OnAccept(beast::error_code ec);
+  void DoRead();
+  void OnRead(beast::error_code ec, size_t bytes);
+  void Handle(const ClientRequest& request);
+  void StartStream(const ClientRequest& request);
+  void RefineStream(uint64_t extra_bytes);
+  void SendError(proto::Error::Code code, const std::string& message);
+  void Queue(const proto::ServerMessage& message, bool paced);
+  bool streaming() const { return done_owed_; }
+
+  // Writes the next message if there is one and the rate allows it.
+  void Pump();
+  // True when `bytes` may go now; otherwise arms the pacing timer.
+  bool MayWriteNow(uint64_t bytes);
+  void OnPacingTimer(beast::error_code ec);
+  void OnWrite(beast::error_code ec, size_t bytes);
+  void DoClose(websocket::close_code code);
+  void Fail(beast::error_code ec, const char* what);
+
+  websocket::stream<beast::tcp_stream> ws_;
+  ServerContext& ctx_;
+  net::steady_timer pacing_timer_;
+  beast::flat_buffer read_buffer_;
+  std::deque<Outgoing> queue_;
+  // The message being written: a queued one, or a packet's prefix with its
+  // payload read from the mesh's memory map (kept alive by in_flight_mesh_).
+  std::string in_flight_;
+  std::shared_ptr<const ServedMesh> in_flight_mesh_;
+  bool writing_ = false;
+  bool timer_armed_ = false;
+  bool reading_ = false;
+  bool closing_ = false;            // no more reads or writes
+  bool close_after_write_ = false;  // Shutdown during a write
+
+  // The current stream: order[cursor_ .. end_) is still to send.
+  std::shared_ptr<const ServedMesh> mesh_;
+  const std::vector<uint32_t>* order_ = nullptr;
+  size_t cursor_ = 0;
+  size_t end_ = 0;
+  bool done_owed_ = false;  // a Done follows the last selected packet
+  std::optional<TokenBucket> pacer_;
+
+  std::string remote_;
+  std::chrono::steady_clock::time_point opened_;
+  uint64_t bytes_sent_ = 0;
+  uint64_t packets_sent_ = 0;
+  uint64_t requests_ = 0;
+};
+
+}  // namespace meshwave::server
+
+#endif  // MESHWAVE_SERVER_WS_SESSION_H_

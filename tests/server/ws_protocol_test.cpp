@@ -1,0 +1,161 @@
+// ParseClientMessage on good and bad bytes, and the packet message prefix
+// the server writes in front of a payload without copying it.
+#include "ws_protocol.h"
+
+#include <gtest/gtest.h>
+
+#include "stream_query.h"
+
+namespace meshwave::server {
+namespace {
+
+constexpr char kId[] = "0123456789ab";
+
+std::string Serialize(const proto::ClientMessage& m) {
+  return m.SerializeAsString();
+}
+
+proto::ClientMessage Start() {
+  proto::ClientMessage m;
+  m.mutable_start()->set_mesh_id(kId);
+  return m;
+}
+
+std::string ErrorOf(const std::string& bytes, WsLimits limits = {}) {
+  auto r = ParseClientMessage(bytes, limits);
+  EXPECT_FALSE(r.ok());
+  if (r.ok()) return {};
+  EXPECT_EQ(r.status().code(), StatusCode::kInvalidArgument);
+  return r.status().message();
+}
+
+TEST(WsProtocolTest, ParsesAStartWithDefaults) {
+  auto r = ParseClientMessage(Serialize(Start()), {});
+  ASSERT_TRUE(r.ok()) << r.status().ToString();
+  EXPECT_EQ(r->kind, ClientRequest::Kind::kStart);
+  EXPECT_EQ(r->mesh_id, kId);
+  EXPECT_EQ(r->order, Progression::kQuality);
+  EXPECT_EQ(r->max_level, -1);
+  EXPECT_FALSE(r->budget.has_value());
+  EXPECT_EQ(r->rate, 0u);
+  EXPECT_FALSE(r->header_only);
+}
+
+TEST(WsProtocolTest, ParsesEveryField) {
+  proto::ClientMessage m = Start();
+  m.mutable_start()->set_order("rd");
+  m.mutable_start()->set_max_level(0);  // present: level 0, not "all"
+  m.mutable_start()->set_budget(5000);
+  m.mutable_start()->set_rate(200000);
+  auto r = ParseClientMessage(Serialize(m), {});
+  ASSERT_TRUE(r.ok()) << r.status().ToString();
+  EXPECT_EQ(r->order, Progression::kRd);
+  EXPECT_EQ(r->max_level, 0);
+  EXPECT_EQ(r->budget, 5000u);
+  EXPECT_EQ(r->rate, 200000u);
+
+  proto::ClientMessage resume;
+  resume.mutable_resume()->set_mesh_id(kId);
+  resume.mutable_resume()->set_order("resolution");
+  resume.mutable_resume()->set_cursor(12);
+  resume.mutable_resume()->set_budget(0);
+  r = ParseClientMessage(Serialize(resume), {});
+  ASSERT_TRUE(r.ok()) << r.status().ToString();
+  EXPECT_EQ(r->kind, ClientRequest::Kind::kResume);
+  EXPECT_EQ(r->order, Progression::kResolution);
+  EXPECT_EQ(r->cursor, 12u);
+  EXPECT_EQ(r->budget, 0u);
+
+  proto::ClientMessage refine;
+  refine.mutable_refine()->set_extra_bytes(4096);
+  r = ParseClientMessage(Serialize(refine), {});
+  ASSERT_TRUE(r.ok()) << r.status().ToString();
+  EXPECT_EQ(r->kind, ClientRequest::Kind::kRefine);
+  EXPECT_EQ(r->extra_bytes, 4096u);
+}
+
+TEST(WsProtocolTest, RejectsMalformedBytes) {
+  EXPECT_NE(ErrorOf("\xff\xff\xff").find("not a ClientMessage"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf("").find("holds no request"), std::string::npos);
+  // A length prefix running past the end.
+  EXPECT_NE(ErrorOf(std::string("\x0a\x40", 2)).find("not a ClientMessage"),
+            std::string::npos);
+}
+
+TEST(WsProtocolTest, RejectsMessagesOverTheLimit) {
+  proto::ClientMessage m = Start();
+  m.mutable_start()->set_order(std::string(200, 'q'));
+  EXPECT_NE(ErrorOf(Serialize(m), WsLimits{100}).find("the limit is 100"),
+            std::string::npos);
+}
+
+TEST(WsProtocolTest, RejectsBadIdsOrdersAndNumbers) {
+  proto::ClientMessage m = Start();
+  m.mutable_start()->set_mesh_id("../etc/passwd");
+  EXPECT_NE(ErrorOf(Serialize(m)).find("invalid mesh id"), std::string::npos);
+
+  m = Start();
+  m.mutable_start()->set_order("best\x01");
+  EXPECT_NE(ErrorOf(Serialize(m)).find("unknown order 'best?'"),
+            std::string::npos);
+
+  m = Start();
+  m.mutable_start()->set_max_level(kMaxLevelLimit + 1);
+  EXPECT_NE(ErrorOf(Serialize(m)).find("max_level"), std::string::npos);
+
+  m = Start();
+  m.mutable_start()->set_budget(kMaxBudget + 1);
+  EXPECT_NE(ErrorOf(Serialize(m)).find("budget"), std::string::npos);
+
+  m = Start();
+  m.mutable_start()->set_rate(kMaxRate + 1);
+  EXPECT_NE(ErrorOf(Serialize(m)).find("rate"), std::string::npos);
+
+  m = Start();
+  m.mutable_start()->set_header_only(true);
+  m.mutable_start()->set_budget(100);
+  EXPECT_NE(ErrorOf(Serialize(m)).find("header_only takes no budget"),
+            std::string::npos);
+
+  proto::ClientMessage refine;
+  refine.mutable_refine();
+  EXPECT_NE(ErrorOf(Serialize(refine)).find("at least 1"), std::string::npos);
+  refine.mutable_refine()->set_extra_bytes(kMaxBudget + 1);
+  EXPECT_NE(ErrorOf(Serialize(refine)).find("extra_bytes"), std::string::npos);
+
+  proto::ClientMessage resume;
+  resume.mutable_resume()->set_mesh_id("ABCDEF012345");
+  EXPECT_NE(ErrorOf(Serialize(resume)).find("invalid mesh id"),
+            std::string::npos);
+}
+
+TEST(WsProtocolTest, PacketPrefixPlusPayloadIsTheSerializedMessage) {
+  for (uint32_t cursor : {0u, 1u, 127u, 128u, 70000u}) {
+    for (uint32_t id : {0u, 5u, 300u}) {
+      for (size_t size :
+           {size_t{0}, size_t{1}, size_t{127}, size_t{128}, size_t{20000}}) {
+        const std::string payload(size, 'x');
+        proto::ServerMessage m;
+        m.mutable_packet()->set_cursor(cursor);
+        m.mutable_packet()->set_id(id);
+        m.mutable_packet()->set_payload(payload);
+        EXPECT_EQ(PacketMessagePrefix(cursor, id, size) + payload,
+                  m.SerializeAsString())
+            << cursor << " " << id << " " << size;
+      }
+    }
+  }
+}
+
+TEST(WsProtocolTest, ErrorMessageParsesBack) {
+  proto::ServerMessage m;
+  ASSERT_TRUE(
+      m.ParseFromString(ErrorMessage(proto::Error::NOT_FOUND, "no mesh")));
+  ASSERT_TRUE(m.has_error());
+  EXPECT_EQ(m.error().code(), proto::Error::NOT_FOUND);
+  EXPECT_EQ(m.error().message(), "no mesh");
+}
+
+}  // namespace
+}  // namespace meshwave::server
