@@ -23,6 +23,9 @@ bool IsMalformedRequest(beast::error_code ec) {
 HttpSession::HttpSession(tcp::socket&& socket, ServerContext& ctx, bool over_capacity)
     : stream_(std::move(socket)), ctx_(ctx), over_capacity_(over_capacity) {
   ctx_.metrics().ConnectionOpened();
+  beast::error_code ec;
+  const auto peer = stream_.socket().remote_endpoint(ec);
+  if (!ec) client_ = peer.address().to_string();
 }
 
 HttpSession::~HttpSession() { ctx_.metrics().ConnectionClosed(); }
@@ -56,6 +59,25 @@ void HttpSession::DoRead() {
   parser_->body_limit(std::max(config.body_limit_bytes(), config.upload_limit_bytes()));
   stream_.expires_after(std::chrono::seconds(config.idle_timeout_seconds()));
   waiting_for_request_ = true;
+  if (buffer_.size() > 0) return DoReadHeader();  // a pipelined request is here
+  stream_.async_read_some(buffer_.prepare(4096),
+                          beast::bind_front_handler(&HttpSession::OnFirstBytes, shared_from_this()));
+}
+
+void HttpSession::OnFirstBytes(beast::error_code ec, size_t bytes) {
+  if (ec) {
+    waiting_for_request_ = false;
+    return Fail(ec, "read");  // closed or idle too long
+  }
+  buffer_.commit(bytes);
+  DoReadHeader();
+}
+
+void HttpSession::DoReadHeader() {
+  // The idle timeout covers the wait for a request; once it has begun, its
+  // header must be complete in header_timeout_seconds, so that clients
+  // trickling headers byte by byte (slowloris) cannot hold connections.
+  stream_.expires_after(std::chrono::seconds(ctx_.config().header_timeout_seconds()));
   http::async_read_header(stream_, buffer_, *parser_,
                           beast::bind_front_handler(&HttpSession::OnHeader, shared_from_this()));
 }
@@ -85,6 +107,11 @@ void HttpSession::OnHeader(beast::error_code ec, size_t /*bytes*/) {
   head_ = header.method() == http::verb::head;
   if (over_capacity_) {
     Response r = JsonError(http::status::service_unavailable, "too many connections");
+    r.set(http::field::retry_after, "1");
+    return DoWrite(std::move(r), true);
+  }
+  if (!ctx_.rate_limiter().Allow(client_)) {
+    Response r = JsonError(http::status::too_many_requests, "too many requests from this client");
     r.set(http::field::retry_after, "1");
     return DoWrite(std::move(r), true);
   }

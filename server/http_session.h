@@ -9,6 +9,7 @@
 #include <chrono>
 #include <memory>
 #include <optional>
+#include <string>
 
 #include "net.h"
 #include "server_context.h"
@@ -27,6 +28,8 @@ class HttpSession : public Closable, public std::enable_shared_from_this<HttpSes
 
  private:
   void DoRead();
+  void OnFirstBytes(beast::error_code ec, size_t bytes);
+  void DoReadHeader();
   void OnHeader(beast::error_code ec, size_t bytes);
   void OnContinueSent(beast::error_code ec, size_t bytes);
   void DoReadBody();
@@ -44,6 +47,7 @@ class HttpSession : public Closable, public std::enable_shared_from_this<HttpSes
   beast::flat_buffer buffer_;
   ServerContext& ctx_;
   const bool over_capacity_;
+  std::string client_;  // the peer's address, for per-client rate limits
   std::optional<http::request_parser<http::string_body>> parser_;
   std::shared_ptr<Response> response_;  // the one being written
   std::shared_ptr<http::response<http::empty_body>> continue_;

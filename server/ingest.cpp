@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <chrono>
+#include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -51,7 +52,14 @@ Result<IngestResult> Store(Catalog& catalog, const std::string& container,
     return IngestResult{*existing, true, false};
   }
   MW_RETURN_IF_ERROR(WriteFileDurably(catalog.ContainerPath(e), container));
-  MW_RETURN_IF_ERROR(catalog.Insert(e));
+  if (Status s = catalog.Insert(e); !s.ok()) {
+    // No row names the file (under the ingest lock, nobody else wrote it):
+    // remove it, or a full disk would keep the space and leave an orphan
+    // (found by FaultTest.DiskFullDuringIngest...).
+    std::error_code ec;
+    std::filesystem::remove(catalog.ContainerPath(e), ec);
+    return s;
+  }
   return IngestResult{e, false, false};
 }
 

@@ -3,6 +3,7 @@
 #include <utility>
 
 #include "meshwave/container.h"
+#include "sha256.h"
 
 namespace meshwave::server {
 
@@ -10,6 +11,12 @@ Result<std::shared_ptr<const ServedMesh>> ServedMesh::Load(
     CatalogEntry entry, const std::filesystem::path& file) {
   std::shared_ptr<ServedMesh> m(new ServedMesh());
   MW_ASSIGN_OR_RETURN(m->map_, MappedFile::Open(file));
+  // A container damaged on disk (a flipped bit, a bad copy) is refused by
+  // its content hash, which the row recorded at ingest, rather than served
+  // as garbage: most damage lands in payloads, which parse fine.
+  if (Sha256Hex(m->map_->bytes()) != entry.sha256) {
+    return IoError(file.string() + ": SHA-256 differs from the catalog's (corrupt container)");
+  }
   MW_ASSIGN_OR_RETURN(ParsedContainer parsed, ParseContainer(m->map_->bytes()));
   MW_RETURN_IF_ERROR(ValidateStreamHeader(parsed.header));
   const size_t count = static_cast<size_t>(parsed.header.packets().length_size());

@@ -26,9 +26,9 @@ struct RdTablePoint {
 
 class ServedMesh {
  public:
-  // Maps and checks the container of `entry` (ParseContainer,
-  // ValidateStreamHeader, all packets present): a corrupt file is an
-  // error, not a crash.
+  // Maps and checks the container of `entry` (SHA-256 against the entry's,
+  // ParseContainer, ValidateStreamHeader, all packets present): a corrupt
+  // file is an error, not a crash and not garbage sent to clients.
   static Result<std::shared_ptr<const ServedMesh>> Load(CatalogEntry entry,
                                                         const std::filesystem::path& file);
 

@@ -51,6 +51,8 @@ Status FinishServerConfig(proto::ServerConfig& c) {
   if (c.write_timeout_seconds() == 0) c.set_write_timeout_seconds(120);
   if (c.open_containers() == 0) c.set_open_containers(64);
   if (c.shutdown_grace_seconds() == 0) c.set_shutdown_grace_seconds(10);
+  if (c.header_timeout_seconds() == 0) c.set_header_timeout_seconds(10);
+  if (c.rate_limit_burst() == 0) c.set_rate_limit_burst(2 * c.rate_limit_requests_per_second());
   if (c.max_websocket_sessions() == 0) c.set_max_websocket_sessions(10000);
   if (c.websocket_message_limit_bytes() == 0) c.set_websocket_message_limit_bytes(64 * 1024);
   if (c.websocket_ping_seconds() == 0) c.set_websocket_ping_seconds(15);

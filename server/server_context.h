@@ -14,6 +14,7 @@
 #include "mesh_cache.h"
 #include "metrics.h"
 #include "net.h"
+#include "request_rate_limiter.h"
 #include "server_config.pb.h"
 
 namespace meshwave::server {
@@ -30,12 +31,14 @@ class ServerContext {
   ServerContext(proto::ServerConfig config, std::unique_ptr<Catalog> catalog)
       : config_(std::move(config)),
         catalog_(std::move(catalog)),
-        cache_(*catalog_, config_.open_containers()) {}
+        cache_(*catalog_, config_.open_containers()),
+        rate_limiter_(config_.rate_limit_requests_per_second(), config_.rate_limit_burst()) {}
 
   const proto::ServerConfig& config() const { return config_; }
   Catalog& catalog() { return *catalog_; }
   MeshCache& cache() { return cache_; }
   Metrics& metrics() { return metrics_; }
+  RequestRateLimiter& rate_limiter() { return rate_limiter_; }
   // Runs uploads (parse, remesh, encode, write) off the io threads: one at
   // a time, as remeshing already uses both cores.
   net::thread_pool& ingest_pool() { return ingest_pool_; }
@@ -50,6 +53,7 @@ class ServerContext {
   std::unique_ptr<Catalog> catalog_;
   MeshCache cache_;
   Metrics metrics_;
+  RequestRateLimiter rate_limiter_;
   net::thread_pool ingest_pool_{1};
   std::atomic<bool> stopping_{false};
   std::mutex sessions_mutex_;
