@@ -9,7 +9,7 @@ BlockingSession::BlockingSession(const MeshUrl& url,
                                  const TransportOptions& transport_options)
     : io_(std::make_unique<net::io_context>(1)) {
   session_ = std::make_unique<Session>(
-      MakeHttpTransport(io_->get_executor(), url, transport_options), options);
+      MakeTransport(io_->get_executor(), url, transport_options), options);
 }
 
 BlockingSession::~BlockingSession() {
@@ -19,10 +19,16 @@ BlockingSession::~BlockingSession() {
 Status BlockingSession::Fetch(const Budget& budget,
                               const ProgressHandler& on_progress) {
   Status result(StatusCode::kInternal, "the fetch did not finish");
-  session_->AsyncFetch(budget, on_progress,
-                       [&result](Status s) { result = std::move(s); });
+  bool finished = false;
+  session_->AsyncFetch(budget, on_progress, [&](Status s) {
+    result = std::move(s);
+    finished = true;
+  });
   io_->restart();
-  io_->run();
+  // Until the fetch ends, not until the io_context runs dry: a WebSocket
+  // kept open for the next Fetch has its idle timer pending.
+  while (!finished && io_->run_one() > 0) {
+  }
   return result;
 }
 

@@ -66,6 +66,10 @@ class HttpTransport final : public Transport {
 
   net::awaitable<Status> Stream(const StreamRequest& request,
                                 StreamSink& sink) override {
+    if (request.header_held && request.from == 0) {
+      co_return InvalidArgument(
+          "HTTP cannot stream payloads from cursor 0 without the header");
+    }
     std::string target =
         url_.Path() + "/stream?order=" + ProgressionName(request.order);
     if (request.max_level >= 0)
@@ -90,6 +94,15 @@ class HttpTransport final : public Transport {
 };
 
 }  // namespace
+
+std::unique_ptr<Transport> MakeTransport(net::any_io_executor executor,
+                                         const MeshUrl& url,
+                                         const TransportOptions& options) {
+  if (url.server.websocket) {
+    return MakeWebSocketTransport(std::move(executor), url, options);
+  }
+  return MakeHttpTransport(std::move(executor), url, options);
+}
 
 std::unique_ptr<Transport> MakeHttpTransport(net::any_io_executor executor,
                                              const MeshUrl& url,

@@ -125,8 +125,39 @@ class Session::Impl::ResponseSink final : public StreamSink,
     return s_.AddPacket(payload, true);
   }
 
+  // A message transport: the header and packets come whole, each packet
+  // with its position and id, which must be the ones the client expects.
+  Status OnHeaderMessage(std::string_view bytes) override {
+    messages_ = true;
+    if (s_.header) return ParseError("the server sent the header again");
+    s_.received_bytes += bytes.size();
+    proto::StreamHeader header;
+    if (!header.ParseFromArray(bytes.data(), static_cast<int>(bytes.size()))) {
+      return ParseError("the server's stream header does not parse");
+    }
+    return OnHeader(header);
+  }
+  Status OnPacketMessage(size_t cursor, uint32_t id,
+                         std::string_view payload) override {
+    messages_ = true;
+    s_.received_bytes += payload.size();
+    if (!s_.header) return ParseError("a packet before the stream header");
+    if (!target_ || s_.cursor() >= *target_) {
+      return ParseError("a packet beyond the end of the selection");
+    }
+    if (cursor != s_.cursor() || id != s_.order[s_.cursor()]) {
+      return ParseError("the server sent packet " + std::to_string(id) +
+                        " at cursor " + std::to_string(cursor) +
+                        ", expected packet " +
+                        std::to_string(s_.order[s_.cursor()]) + " at cursor " +
+                        std::to_string(s_.cursor()));
+    }
+    return s_.AddPacket(payload, true);
+  }
+
   Status Finish() const {
-    MW_RETURN_IF_ERROR(splitter_.Finish());
+    if (!messages_) MW_RETURN_IF_ERROR(splitter_.Finish());
+    if (!target_) return ParseError("the stream ended before its header");
     if (s_.cursor() != *target_) {
       return ParseError("the response ended at cursor " +
                         std::to_string(s_.cursor()) + ", expected " +
@@ -147,9 +178,8 @@ class Session::Impl::ResponseSink final : public StreamSink,
     }
     const size_t from = std::min(first_cursor_, *target_);
     const uint64_t expected =
-        first_cursor_ == 0
-            ? ContainerSize(*s_.header, {s_.order.data(), *target_})
-            : s_.PayloadBytes(from, *target_);
+        with_header_ ? ContainerSize(*s_.header, {s_.order.data(), *target_})
+                     : s_.PayloadBytes(from, *target_);
     if (head_.content_length && *head_.content_length != expected) {
       return ParseError("the response holds " +
                         std::to_string(*head_.content_length) +
@@ -162,8 +192,10 @@ class Session::Impl::ResponseSink final : public StreamSink,
   Budget budget_;
   std::optional<size_t> target_;
   size_t first_cursor_ = s_.header ? s_.cursor() : 0;
+  bool with_header_ = !s_.header;  // the response starts with the header
   StreamHead head_;
   StreamSplitter splitter_;
+  bool messages_ = false;  // fed by OnHeaderMessage/OnPacketMessage
 };
 
 net::awaitable<Status> Session::Impl::StreamFrom(const Budget& budget,
@@ -172,6 +204,7 @@ net::awaitable<Status> Session::Impl::StreamFrom(const Budget& budget,
   request.order = options.order;
   request.max_level = options.max_level;
   request.from = header ? cursor() : 0;
+  request.header_held = header.has_value();
   if (header) {
     // Exactly the payloads of order[cursor .. target): the server's budget
     // from a cursor counts payloads only.
@@ -205,7 +238,7 @@ net::awaitable<Result<bool>> Session::Impl::Step(const Budget& budget) {
   }
   const size_t target = TargetCursor(*header, order, budget);
   if (cursor() >= target) co_return true;
-  if (cursor() == 0) {
+  if (cursor() == 0 && !transport->CanStreamPayloadsFromStart()) {
     // /stream?from=0 would send the header again: the first packet by id.
     auto payload = co_await transport->GetPacket(order[0]);
     if (!payload.ok()) co_return payload.status();

@@ -32,14 +32,14 @@ Result<ServerUrl> ParseAuthority(std::string_view url, std::string_view& path) {
     rest = url.substr(8);
   } else if (StartsWithNoCase(url, "http://")) {
     rest = url.substr(7);
-  } else if (StartsWithNoCase(url, "ws://") ||
-             StartsWithNoCase(url, "wss://")) {
-    return Status(StatusCode::kUnsupported,
-                  "URL \"" + std::string(url) +
-                      "\": WebSocket transport is not supported yet (use "
-                      "http:// or https://)");
+  } else if (StartsWithNoCase(url, "wss://")) {
+    s.tls = s.websocket = true;
+    rest = url.substr(6);
+  } else if (StartsWithNoCase(url, "ws://")) {
+    s.websocket = true;
+    rest = url.substr(5);
   } else {
-    return Bad(url, "expected http:// or https://");
+    return Bad(url, "expected http://, https://, ws:// or wss://");
   }
   if (rest.find_first_of("?#") != std::string_view::npos) {
     return Bad(url, "a query or fragment is not allowed");
@@ -109,8 +109,10 @@ bool IsMeshId(std::string_view id) {
 
 std::string ServerUrl::ToString() const {
   const bool v6 = host.find(':') != std::string::npos;
-  return std::string(tls ? "https://" : "http://") +
-         (v6 ? "[" + host + "]" : host) + ":" + std::to_string(port);
+  const char* scheme =
+      websocket ? (tls ? "wss://" : "ws://") : (tls ? "https://" : "http://");
+  return std::string(scheme) + (v6 ? "[" + host + "]" : host) + ":" +
+         std::to_string(port);
 }
 
 std::string MeshUrl::Path() const { return "/v1/meshes/" + mesh_id; }

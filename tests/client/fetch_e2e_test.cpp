@@ -13,10 +13,12 @@
 #include "catalog_api.pb.h"
 #include "client_state.pb.h"
 #include "e2e/cli_runner.h"
+#include "meshwave/client/blocking_session.h"
 #include "meshwave/container.h"
 #include "server/http_client_testonly.h"
 #include "server/server_process_testonly.h"
 #include "tcp_proxy_testonly.h"
+#include "websocket.pb.h"
 
 namespace meshwave {
 namespace {
@@ -50,6 +52,63 @@ size_t PacketsAnnounced(const std::string& transcript) {
     total += std::stoul(transcript.substr(pos + key.size(), 12));
   }
   return total;
+}
+
+// The ServerMessages a WebSocket connection carried back, from a proxy
+// transcript: the HTTP 101 head, then unmasked server frames. A message cut
+// by a dropped connection is left out.
+std::vector<proto::ServerMessage> WebSocketMessages(const std::string& t) {
+  std::vector<proto::ServerMessage> out;
+  size_t pos = t.find("\r\n\r\n");
+  if (t.rfind("HTTP/1.1 101", 0) != 0 || pos == std::string::npos) return out;
+  pos += 4;
+  while (pos + 2 <= t.size()) {
+    const uint8_t opcode = static_cast<uint8_t>(t[pos]) & 0x0f;
+    uint64_t length = static_cast<uint8_t>(t[pos + 1]) & 0x7f;
+    pos += 2;
+    const int extra = length == 126 ? 2 : length == 127 ? 8 : 0;
+    if (extra > 0) {
+      if (pos + static_cast<size_t>(extra) > t.size()) break;
+      length = 0;
+      for (int i = 0; i < extra; ++i) {
+        length =
+            length << 8 | static_cast<uint8_t>(t[pos + static_cast<size_t>(i)]);
+      }
+      pos += static_cast<size_t>(extra);
+    }
+    if (pos + length > t.size()) break;
+    if (opcode == 2) {
+      proto::ServerMessage m;
+      EXPECT_TRUE(m.ParseFromArray(t.data() + pos, static_cast<int>(length)));
+      out.push_back(m);
+    }
+    pos += length;
+  }
+  return out;
+}
+
+// What a proxy saw the server send over WebSocket, every connection.
+struct WebSocketTraffic {
+  int headers = 0;                // StreamStart messages
+  std::vector<uint32_t> cursors;  // of every packet, in order
+  uint64_t header_and_payload_bytes = 0;
+};
+
+WebSocketTraffic Traffic(TcpProxy& proxy) {
+  WebSocketTraffic traffic;
+  for (const auto& t : proxy.Transcripts()) {
+    for (const auto& m : WebSocketMessages(t)) {
+      if (m.has_start()) {
+        ++traffic.headers;
+        traffic.header_and_payload_bytes += m.start().header().size();
+      }
+      if (m.has_packet()) {
+        traffic.cursors.push_back(m.packet().cursor());
+        traffic.header_and_payload_bytes += m.packet().payload().size();
+      }
+    }
+  }
+  return traffic;
 }
 
 class ClientE2eTest : public ::testing::Test {
@@ -90,6 +149,12 @@ class ClientE2eTest : public ::testing::Test {
   }
   static std::string Url(const std::string& id) {
     return Url(server_->port(), id);
+  }
+  static std::string WsUrl(uint16_t port, const std::string& id) {
+    return "ws://127.0.0.1:" + std::to_string(port) + "/v1/meshes/" + id;
+  }
+  static std::string WsUrl(const std::string& id) {
+    return WsUrl(server_->port(), id);
   }
 
   // The mesh `meshwave decode` gives for the server's own truncation.
@@ -363,6 +428,199 @@ TEST_F(ClientE2eTest, ServerRefusalsAreClearErrors) {
   r = RunCli({"fetch", Url(holes_), "--budget", "1k", "--psnr", "40", "--out",
               (dir / "x.ply").string()});
   EXPECT_EQ(r.exit_code, 1);
+}
+
+// --- The same over WebSocket (GET /v1/ws) ---------------------------------
+
+TEST_F(ClientE2eTest, WebSocketFetchAtABudgetEqualsDecodeOfTheSameTruncation) {
+  TempDir dir;
+  for (const std::string& id : {holes_, elephant_}) {
+    for (const std::string order : {"quality", "resolution", "rd"}) {
+      for (const std::string budget : {"2500", "6000"}) {
+        const auto r =
+            RunCli({"fetch", WsUrl(id), "--budget", budget, "--order", order,
+                    "--out", (dir / "fetched.ply").string()});
+        ASSERT_EQ(r.exit_code, 0) << r.err;
+        EXPECT_EQ(ReadBytes(dir / "fetched.ply"),
+                  DecodeOfServerTruncation(dir, id, order, "&budget=" + budget))
+            << id << " " << order << " " << budget;
+      }
+    }
+  }
+  // --ws turns an http URL into the WebSocket transport.
+  TcpProxy proxy(server_->port());
+  const auto r =
+      RunCli({"fetch", Url(proxy.port(), elephant_), "--ws", "--budget", "6000",
+              "--out", (dir / "flag.ply").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(Traffic(proxy).headers, 1);
+  EXPECT_EQ(
+      ReadBytes(dir / "flag.ply"),
+      DecodeOfServerTruncation(dir, elephant_, "quality", "&budget=6000"));
+}
+
+TEST_F(ClientE2eTest, WebSocketMaxLevelAndPsnrFetchesEqualHttp) {
+  TempDir dir;
+  auto r =
+      RunCli({"fetch", WsUrl(elephant_), "--order", "resolution", "--max-level",
+              "1", "--out", (dir / "coarse.ply").string(), "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(ParseReport(r.out).complete());
+  EXPECT_EQ(ReadBytes(dir / "coarse.ply"),
+            DecodeOfServerTruncation(dir, elephant_, "resolution",
+                                     "&max_level=1", "1"));
+  // A PSNR goal: the header alone first, then the packets by refine.
+  r = RunCli({"fetch", WsUrl(elephant_), "--psnr", "50", "--order", "rd",
+              "--out", (dir / "ws.ply").string(), "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto ws = ParseReport(r.out);
+  r = RunCli({"fetch", Url(elephant_), "--psnr", "50", "--order", "rd", "--out",
+              (dir / "http.ply").string(), "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(ws.packets(), ParseReport(r.out).packets());
+  EXPECT_GE(ws.estimated_psnr_db(), 50);
+  EXPECT_EQ(ReadBytes(dir / "ws.ply"), ReadBytes(dir / "http.ply"));
+}
+
+TEST_F(ClientE2eTest,
+       WebSocketRefineTwiceEqualsOneLargerFetchAndNoByteIsSentTwice) {
+  TempDir dir;
+  TcpProxy proxy(server_->port());
+  const std::string state = (dir / "e.mwv").string();
+  auto r = RunCli({"fetch", WsUrl(proxy.port(), elephant_), "--budget", "3000",
+                   "--order", "rd", "--state", state, "--out",
+                   (dir / "first.ply").string(), "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  // The state remembers the ws:// URL: refine resumes over WebSocket.
+  for (const char* more : {"2000", "3000"}) {
+    r = RunCli({"refine", state, "--more", more, "--out",
+                (dir / "refined.ply").string(), "--json"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  const auto final_report = ParseReport(r.out);
+  const auto whole =
+      HttpGet(server_->port(),
+              "/v1/meshes/" + elephant_ + "/stream?order=rd&budget=8000");
+  EXPECT_EQ(ReadBytes(state), whole.body);
+  r = RunCli({"fetch", Url(elephant_), "--budget", "8000", "--order", "rd",
+              "--out", (dir / "single.ply").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(ReadBytes(dir / "refined.ply"), ReadBytes(dir / "single.ply"));
+
+  // Counted on the wire: three connections, one header, every packet of
+  // the final state exactly once and nothing else.
+  const WebSocketTraffic traffic = Traffic(proxy);
+  EXPECT_EQ(proxy.connections(), 3);
+  EXPECT_EQ(traffic.headers, 1);
+  ASSERT_EQ(traffic.cursors.size(), final_report.packets());
+  for (size_t i = 0; i < traffic.cursors.size(); ++i) {
+    EXPECT_EQ(traffic.cursors[i], i);
+  }
+  auto parsed = ParseContainer(whole.body);
+  ASSERT_TRUE(parsed.ok());
+  uint64_t payloads = 0;
+  for (const auto& p : parsed->payloads) payloads += p.size();
+  proto::StreamHeader header = parsed->header;
+  header.clear_present();
+  EXPECT_EQ(traffic.header_and_payload_bytes,
+            header.SerializeAsString().size() + payloads);
+}
+
+TEST_F(ClientE2eTest, WebSocketSessionRefinesOnTheSameConnection) {
+  TcpProxy proxy(server_->port());
+  auto url = client::ParseMeshUrl(WsUrl(proxy.port(), elephant_));
+  ASSERT_TRUE(url.ok());
+  client::SessionOptions options;
+  options.order = Progression::kRd;
+  client::BlockingSession blocking(*url, options, client::TransportOptions{});
+  ASSERT_TRUE(blocking.Fetch(client::Budget::Bytes(3000)).ok());
+  const auto first = blocking.session().progress();
+  const Status refined = blocking.Fetch(client::Budget::Bytes(8000));
+  ASSERT_TRUE(refined.ok()) << refined.ToString();
+  const auto p = blocking.session().progress();
+  EXPECT_GT(p.packets, first.packets);
+  EXPECT_EQ(proxy.connections(), 1);  // refine, not a new connection
+  const auto whole =
+      HttpGet(server_->port(),
+              "/v1/meshes/" + elephant_ + "/stream?order=rd&budget=8000");
+  EXPECT_EQ(blocking.session().Container(), whole.body);
+  // Bytes received: the header (without `present`) and each payload once.
+  const WebSocketTraffic traffic = Traffic(proxy);
+  EXPECT_EQ(traffic.headers, 1);
+  EXPECT_EQ(traffic.cursors.size(), p.packets);
+  EXPECT_EQ(p.received_bytes, traffic.header_and_payload_bytes);
+  EXPECT_EQ(p.packets_received, p.packets);
+}
+
+TEST_F(ClientE2eTest, WebSocketResumesAfterTheProxyCutsTheConnection) {
+  TempDir dir;
+  TcpProxy proxy(server_->port());
+  proxy.CutAfter(3000, 2);
+  const auto r =
+      RunCli({"fetch", WsUrl(proxy.port(), elephant_), "--out",
+              (dir / "cut.ply").string(), "--json", "--retry-delay", "20ms"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto report = ParseReport(r.out);
+  EXPECT_EQ(report.retries(), 2u);
+  EXPECT_TRUE(report.complete());
+  EXPECT_EQ(report.packets_received(), report.packets());  // nothing twice
+  EXPECT_EQ(proxy.connections(), 3);
+  // Whole packets on the wire: each cursor once (a packet cut in half is
+  // not counted), the header once.
+  const WebSocketTraffic traffic = Traffic(proxy);
+  EXPECT_EQ(traffic.headers, 1);
+  EXPECT_EQ(traffic.cursors.size(), report.packets());
+  EXPECT_EQ(ReadBytes(dir / "cut.ply"),
+            DecodeOfServerTruncation(dir, elephant_, "quality", ""));
+}
+
+TEST_F(ClientE2eTest, WebSocketReadTimeoutOnAStalledConnectionIsRetried) {
+  TempDir dir;
+  TcpProxy proxy(server_->port());
+  proxy.StallAfter(3000);  // never released
+  const auto r = RunCli({"fetch", WsUrl(proxy.port(), elephant_), "--out",
+                         (dir / "t.ply").string(), "--json", "--timeout",
+                         "300ms", "--retry-delay", "10ms"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(ParseReport(r.out).retries(), 1u);
+  EXPECT_EQ(ReadBytes(dir / "t.ply"),
+            DecodeOfServerTruncation(dir, elephant_, "quality", ""));
+  proxy.DropStalled();
+}
+
+TEST_F(ClientE2eTest, WebSocketPacedFetch) {
+  TempDir dir;
+  // 10838 bytes at 64 kbit/s (8000 B/s): over a second, well under two.
+  const auto start = std::chrono::steady_clock::now();
+  const auto r = RunCli({"fetch", WsUrl(elephant_), "--pace", "64kbit", "--out",
+                         (dir / "paced.ply").string()});
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+          .count();
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_GT(seconds, 1.0);
+  EXPECT_EQ(ReadBytes(dir / "paced.ply"),
+            DecodeOfServerTruncation(dir, elephant_, "quality", ""));
+}
+
+TEST_F(ClientE2eTest, WebSocketServerRefusalsAreClearErrors) {
+  TempDir dir;
+  auto r = RunCli(
+      {"fetch", WsUrl("0123456789ab"), "--out", (dir / "x.ply").string()});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("no mesh with id 0123456789ab"), std::string::npos)
+      << r.err;
+  r = RunCli({"fetch", WsUrl(holes_), "--budget", "10", "--out",
+              (dir / "x.ply").string()});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("smaller than the stream header"), std::string::npos)
+      << r.err;
+  r = RunCli({"fetch", "ws://127.0.0.1:1/v1/meshes/0123456789ab", "--out",
+              (dir / "x.ply").string(), "--retries", "1", "--retry-delay",
+              "1ms"});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("connecting to 127.0.0.1:1"), std::string::npos)
+      << r.err;
 }
 
 }  // namespace

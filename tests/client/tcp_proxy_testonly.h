@@ -81,6 +81,11 @@ class TcpProxy {
   void CorruptAt(int64_t offset) { corrupt_at_ = offset; }
 
   int connections() const { return connections_.load(); }
+  // What was sent back on each connection, in the order they were opened.
+  std::vector<std::string> Transcripts() {
+    std::lock_guard<std::mutex> lock(mu_);
+    return transcripts_;
+  }
   // Everything sent back to clients, all connections in order.
   std::string Transcript() {
     std::lock_guard<std::mutex> lock(mu_);

@@ -1,6 +1,7 @@
-// https: a local TLS listener with a certificate made in the test. Without
-// trusting it the client refuses it (clear message, no retry); trusting it
-// with a CA file works; a certificate for another host name is refused.
+// https and wss: a local TLS listener with a certificate made in the test.
+// Without trusting it the client refuses it (clear message, no retry);
+// trusting it with a CA file works; a certificate for another host name is
+// refused. The same for a WebSocket session over wss://.
 #include <gtest/gtest.h>
 #include <openssl/evp.h>
 #include <openssl/pem.h>
@@ -12,8 +13,16 @@
 #include <thread>
 
 #include "e2e/cli_runner.h"
+#include "meshwave/client/blocking_session.h"
 #include "meshwave/client/catalog.h"
 #include "net.h"
+#include "websocket.pb.h"
+
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wnull-dereference"
+#include <boost/beast/websocket.hpp>
+#include <boost/beast/websocket/ssl.hpp>
+#pragma GCC diagnostic pop
 
 namespace meshwave::client {
 namespace {
@@ -62,12 +71,15 @@ bool MakeCertificate(const std::string& san, const std::filesystem::path& cert,
 }
 
 // Answers every GET with a one-mesh MeshList over TLS, one connection at a
-// time.
+// time; with `websocket`, accepts a WebSocket upgrade instead and answers
+// the first message with a NOT_FOUND error (enough to show that the
+// client's messages cross TLS).
 class TlsListener {
  public:
   TlsListener(const std::filesystem::path& cert,
-              const std::filesystem::path& key)
-      : ctx_(ssl::context::tls_server),
+              const std::filesystem::path& key, bool websocket = false)
+      : websocket_(websocket),
+        ctx_(ssl::context::tls_server),
         acceptor_(io_, {net::ip::make_address("127.0.0.1"), 0}) {
     ctx_.use_certificate_chain_file(cert.string());
     ctx_.use_private_key_file(key.string(), ssl::context::pem);
@@ -94,6 +106,10 @@ class TlsListener {
       beast::error_code ec;
       acceptor_.accept(socket, ec);
       if (ec || stop_) break;
+      if (websocket_) {
+        ServeWebSocket(std::move(socket));
+        continue;
+      }
       ssl::stream<tcp::socket> stream(std::move(socket), ctx_);
       stream.handshake(ssl::stream_base::server, ec);
       if (ec) continue;  // the client refused our certificate
@@ -110,6 +126,32 @@ class TlsListener {
     }
   }
 
+  void ServeWebSocket(tcp::socket socket) {
+    namespace websocket = beast::websocket;
+    websocket::stream<ssl::stream<tcp::socket>> ws(std::move(socket), ctx_);
+    beast::error_code ec;
+    ws.next_layer().handshake(ssl::stream_base::server, ec);
+    if (ec) return;  // the client refused our certificate
+    ws.accept(ec);
+    if (ec) return;
+    beast::flat_buffer buffer;
+    ws.read(buffer, ec);
+    proto::ClientMessage request;
+    const auto data = buffer.cdata();
+    if (ec ||
+        !request.ParseFromArray(data.data(), static_cast<int>(data.size()))) {
+      return;
+    }
+    proto::ServerMessage reply;
+    reply.mutable_error()->set_code(proto::Error::NOT_FOUND);
+    reply.mutable_error()->set_message("no mesh " + request.start().mesh_id() +
+                                       " over wss");
+    ws.binary(true);
+    ws.write(net::buffer(reply.SerializeAsString()), ec);
+    ws.close(websocket::close_code::normal, ec);
+  }
+
+  const bool websocket_;
   net::io_context io_;
   ssl::context ctx_;
   tcp::acceptor acceptor_;
@@ -172,6 +214,50 @@ TEST(TlsTest, AMissingCaFileIsAClearError) {
   ASSERT_FALSE(list.ok());
   EXPECT_NE(list.status().message().find("/nonexistent/ca.pem"),
             std::string::npos);
+}
+
+// A WebSocket session over wss://127.0.0.1:port.
+Status FetchOverWss(uint16_t port, const TransportOptions& options) {
+  auto url = ParseMeshUrl("wss://127.0.0.1:" + std::to_string(port) +
+                          "/v1/meshes/0123456789ab");
+  EXPECT_TRUE(url.ok());
+  SessionOptions session;
+  session.retry.max_attempts = 1;
+  BlockingSession blocking(*url, session, options);
+  return blocking.Fetch(Budget::Bytes(4000));
+}
+
+TEST(TlsTest, WssVerifiesTheCertificateLikeHttps) {
+  TempDir dir;
+  ASSERT_TRUE(
+      MakeCertificate("IP:127.0.0.1", dir / "cert.pem", dir / "key.pem"));
+  TlsListener listener(dir / "cert.pem", dir / "key.pem", /*websocket=*/true);
+  Status s = FetchOverWss(listener.port(), TransportOptions{});
+  EXPECT_EQ(s.code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(s.message().find("does not verify"), std::string::npos)
+      << s.message();
+
+  // Trusted: the handshake, the upgrade and our start message go through,
+  // and the listener's answer comes back.
+  TransportOptions trusted;
+  trusted.ca_file = (dir / "cert.pem").string();
+  s = FetchOverWss(listener.port(), trusted);
+  EXPECT_EQ(s.code(), StatusCode::kNotFound) << s.ToString();
+  EXPECT_NE(s.message().find("no mesh 0123456789ab over wss"),
+            std::string::npos)
+      << s.message();
+}
+
+TEST(TlsTest, WssRefusesACertificateForAnotherHost) {
+  TempDir dir;
+  ASSERT_TRUE(
+      MakeCertificate("DNS:other.example", dir / "cert.pem", dir / "key.pem"));
+  TlsListener listener(dir / "cert.pem", dir / "key.pem", /*websocket=*/true);
+  TransportOptions options;
+  options.ca_file = (dir / "cert.pem").string();
+  const Status s = FetchOverWss(listener.port(), options);
+  EXPECT_EQ(s.code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(s.message().find("mismatch"), std::string::npos) << s.message();
 }
 
 }  // namespace

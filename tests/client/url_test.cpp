@@ -59,11 +59,24 @@ TEST(UrlTest, RejectsMalformedUrls) {
   EXPECT_FALSE(ParseServerUrl("http://h:80/v1/meshes").ok());
 }
 
-TEST(UrlTest, NamesWebSocketAsNotSupportedYet) {
-  auto u = ParseMeshUrl("ws://h/v1/meshes/0123456789ab");
-  ASSERT_FALSE(u.ok());
-  EXPECT_EQ(u.status().code(), StatusCode::kUnsupported);
-  EXPECT_NE(u.status().message().find("WebSocket"), std::string::npos);
+TEST(UrlTest, WebSocketSchemesChooseTheWebSocketTransport) {
+  auto ws = ParseMeshUrl("ws://h/v1/meshes/0123456789ab");
+  ASSERT_TRUE(ws.ok()) << ws.status().ToString();
+  EXPECT_TRUE(ws->server.websocket);
+  EXPECT_FALSE(ws->server.tls);
+  EXPECT_EQ(ws->server.port, 80);
+  EXPECT_EQ(ws->ToString(), "ws://h:80/v1/meshes/0123456789ab");
+  auto wss = ParseMeshUrl("WSS://[::1]:8443/v1/meshes/0123456789ab/");
+  ASSERT_TRUE(wss.ok()) << wss.status().ToString();
+  EXPECT_TRUE(wss->server.websocket);
+  EXPECT_TRUE(wss->server.tls);
+  EXPECT_EQ(wss->ToString(), "wss://[::1]:8443/v1/meshes/0123456789ab");
+  EXPECT_EQ(ParseMeshUrl(wss->ToString())->ToString(), wss->ToString());
+  auto http = ParseMeshUrl("http://h/v1/meshes/0123456789ab");
+  ASSERT_TRUE(http.ok());
+  EXPECT_FALSE(http->server.websocket);
+  EXPECT_FALSE(ParseMeshUrl("wss:/h/v1/meshes/0123456789ab").ok());
+  EXPECT_FALSE(ParseMeshUrl("ftp://h/v1/meshes/0123456789ab").ok());
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "client_options.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "meshwave/client/budget.h"
@@ -32,7 +33,10 @@ void AddClientOptions(CLI::App* cmd, ClientArgs& args) {
       ->capture_default_str();
   cmd->add_option(
       "--ca-file", args.ca_file,
-      "PEM certificates to trust for https (default: the system's)");
+      "PEM certificates to trust for https and wss (default: the system's)");
+  cmd->add_option("--pace", args.pace,
+                  "WebSocket only: have the server send at this rate (e.g. "
+                  "2Mbit, 500kbit, 1MB/s)");
 }
 
 Status ApplyClientOptions(const ClientArgs& args,
@@ -42,6 +46,11 @@ Status ApplyClientOptions(const ClientArgs& args,
   MW_ASSIGN_OR_RETURN(transport.read_timeout, Millis(args.timeout));
   MW_ASSIGN_OR_RETURN(retry.initial_delay, Millis(args.retry_delay));
   transport.ca_file = args.ca_file;
+  if (!args.pace.empty()) {
+    MW_ASSIGN_OR_RETURN(double bits, client::ParseRate(args.pace));
+    transport.pace_bytes_per_second =
+        std::max<uint64_t>(1, static_cast<uint64_t>(bits / 8));
+  }
   retry.max_attempts = args.retries + 1;
   return Status::Ok();
 }

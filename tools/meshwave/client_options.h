@@ -18,6 +18,7 @@ struct ClientArgs {
   int retries = 5;
   std::string retry_delay = "100ms";
   std::string ca_file;
+  std::string pace;  // WebSocket: the rate the server sends at
 };
 
 void AddClientOptions(CLI::App* cmd, ClientArgs& args);

@@ -15,6 +15,7 @@ struct FetchArgs {
   std::string url, budget, rate, deadline, order = "quality", state;
   double psnr = 0;
   int max_level = -1;
+  bool websocket = false;
   FetchOutputOptions output;
   ClientArgs client;
 };
@@ -56,6 +57,7 @@ Status SaveSessionState(const std::string& path, const client::MeshUrl& url,
 
 Status Run(const FetchArgs& args) {
   MW_ASSIGN_OR_RETURN(client::MeshUrl url, client::ParseMeshUrl(args.url));
+  if (args.websocket) url.server.websocket = true;  // http -> ws, https -> wss
   MW_ASSIGN_OR_RETURN(client::Budget budget, BudgetFrom(args));
   client::SessionOptions options;
   MW_ASSIGN_OR_RETURN(options.order, ParseProgression(args.order));
@@ -91,8 +93,11 @@ void AddFetchCommand(CLI::App& app, int& exit_code) {
                                      "Fetch a mesh from a meshwave-server at a "
                                      "budget, decoding as packets arrive");
   cmd->add_option("url", args->url,
-                  "Mesh URL: http(s)://host:port/v1/meshes/{id}")
+                  "Mesh URL: http(s)://host:port/v1/meshes/{id}, or ws(s):// "
+                  "for WebSocket")
       ->required();
+  cmd->add_flag("--ws", args->websocket,
+                "Stream over WebSocket (GET /v1/ws) even with an http(s) URL");
   cmd->add_option("--budget", args->budget,
                   "Bytes of the stream, header included (e.g. 20000, 64KiB)");
   cmd->add_option("--rate", args->rate,

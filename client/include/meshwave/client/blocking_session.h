@@ -17,7 +17,8 @@ namespace meshwave::client {
 
 class BlockingSession {
  public:
-  // An HTTP(S) session for the mesh at `url`; nothing is sent yet.
+  // A session for the mesh at `url` over the transport its scheme names
+  // (MakeTransport); nothing is sent yet.
   BlockingSession(const MeshUrl& url, const SessionOptions& options,
                   const TransportOptions& transport_options);
   ~BlockingSession();

@@ -1,6 +1,7 @@
 // Transport: how a Session asks a server for a stream's header and packets.
-// HTTP (/header, /packets/{k}, /stream?from=) is the one built here; a
-// WebSocket transport (/v1/ws) can implement the same interface.
+// Two are built here: HTTP (/header, /packets/{k}, /stream?from=) and
+// WebSocket (/v1/ws: start, refine on the same socket, resume after a
+// reconnect).
 #ifndef MESHWAVE_CLIENT_TRANSPORT_H_
 #define MESHWAVE_CLIENT_TRANSPORT_H_
 
@@ -27,6 +28,9 @@ struct TransportOptions {
   std::chrono::milliseconds read_timeout{10000};  // each write and each read
   // PEM file of certificates to trust for https instead of the system's.
   std::string ca_file;
+  // WebSocket only: the rate the server paces the stream to, bytes per
+  // second (0: as fast as the connection takes it).
+  uint64_t pace_bytes_per_second = 0;
 };
 
 // A prefix of a packet order from a cursor: GET
@@ -36,6 +40,9 @@ struct StreamRequest {
   int max_level = -1;              // -1: all levels
   size_t from = 0;                 // 0: the body is a container, header first
   std::optional<uint64_t> budget;  // bytes as the server counts them
+  // The caller holds the header: payloads only, from cursor 0 too (budget
+  // in payload bytes). Only for transports with CanStreamPayloadsFromStart.
+  bool header_held = false;
 };
 
 // What the server says about a stream response before its body.
@@ -47,12 +54,20 @@ struct StreamHead {
 };
 
 // Receives a response body piece by piece; an error stops the transfer and
-// is returned by the transport unchanged.
+// is returned by the transport unchanged. A byte transport (HTTP) calls
+// OnHead, then OnBytes; a message transport (WebSocket) calls OnHead, then
+// OnHeaderMessage (from cursor 0 without the header held) and OnPacketMessage
+// per packet.
 class StreamSink {
  public:
   virtual ~StreamSink() = default;
   virtual Status OnHead(const StreamHead& head) = 0;
   virtual Status OnBytes(std::string_view bytes) = 0;
+  // The StreamHeader, protobuf bytes with `present` empty.
+  virtual Status OnHeaderMessage(std::string_view header) = 0;
+  // The packet at `cursor` of the order, `id` in the header's index.
+  virtual Status OnPacketMessage(size_t cursor, uint32_t id,
+                                 std::string_view payload) = 0;
 };
 
 // Errors: kIoError for failures worth retrying (refused, reset or dropped
@@ -70,6 +85,10 @@ class Transport {
                                         StreamSink& sink) = 0;
   // Closes the connection; a later request opens a new one.
   virtual void Close() = 0;
+  // Whether Stream takes StreamRequest::header_held (WebSocket); otherwise
+  // the Session fetches the first packet by id (HTTP: /stream from cursor 0
+  // always starts with the header).
+  virtual bool CanStreamPayloadsFromStart() const { return false; }
 };
 
 // HTTP/1.1 (http:// or https:// with certificate and host name
@@ -77,6 +96,21 @@ class Transport {
 std::unique_ptr<Transport> MakeHttpTransport(net::any_io_executor executor,
                                              const MeshUrl& url,
                                              const TransportOptions& options);
+
+// WebSocket (ws:// or wss://, TLS verified as for https) to GET /v1/ws of
+// the server at `url`. One connection, kept open between requests: a
+// request that continues where the server's stream stopped is a `refine`
+// on the same socket; after a reconnect it is a `resume` from the cursor.
+// Streams are paced to options.pace_bytes_per_second.
+std::unique_ptr<Transport> MakeWebSocketTransport(
+    net::any_io_executor executor, const MeshUrl& url,
+    const TransportOptions& options);
+
+// The transport the URL's scheme names: WebSocket for ws:// and wss://,
+// HTTP otherwise.
+std::unique_ptr<Transport> MakeTransport(net::any_io_executor executor,
+                                         const MeshUrl& url,
+                                         const TransportOptions& options);
 
 }  // namespace meshwave::client
 

@@ -1,5 +1,7 @@
 // Server and mesh URLs as the client accepts them:
-// http(s)://host[:port] and http(s)://host[:port]/v1/meshes/{id}.
+// http(s)://host[:port] and http(s)://host[:port]/v1/meshes/{id}, and the
+// same with ws:// and wss://, which choose the WebSocket transport
+// (GET /v1/ws on that server).
 #ifndef MESHWAVE_CLIENT_URL_H_
 #define MESHWAVE_CLIENT_URL_H_
 
@@ -12,10 +14,11 @@
 namespace meshwave::client {
 
 struct ServerUrl {
-  bool tls = false;   // https
-  std::string host;   // a name or an address (IPv6 without brackets)
-  uint16_t port = 0;  // 80 or 443 when the URL names none
-  // "http://host:port" (IPv6 hosts in brackets).
+  bool tls = false;        // https or wss
+  bool websocket = false;  // ws or wss
+  std::string host;        // a name or an address (IPv6 without brackets)
+  uint16_t port = 0;       // 80 or 443 when the URL names none
+  // "http://host:port" (or https, ws, wss; IPv6 hosts in brackets).
   std::string ToString() const;
 };
 
@@ -27,14 +30,14 @@ struct MeshUrl {
   std::string ToString() const;
 };
 
-// Parses "http(s)://host[:port][/]". Safe on any input: a wrong scheme
-// (ws:// and wss:// are named as not supported yet), user info, a query or
-// fragment, an empty or malformed host, a port outside 1..65535 or a path
-// give InvalidArgument naming the URL.
+// Parses "http(s)://host[:port][/]" or "ws(s)://...". Safe on any input: a
+// wrong scheme, user info, a query or fragment, an empty or malformed host,
+// a port outside 1..65535 or a path give InvalidArgument naming the URL.
 Result<ServerUrl> ParseServerUrl(std::string_view url);
 
-// Parses "http(s)://host[:port]/v1/meshes/{id}[/]" with the checks above;
-// the id must be 12 lowercase hex digits, as the server's ids are.
+// Parses "http(s)://host[:port]/v1/meshes/{id}[/]" (or ws, wss) with the
+// checks above; the id must be 12 lowercase hex digits, as the server's ids
+// are.
 Result<MeshUrl> ParseMeshUrl(std::string_view url);
 
 }  // namespace meshwave::client

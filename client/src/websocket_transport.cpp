@@ -1,0 +1,325 @@
+// The WebSocket transport: GET /v1/ws of the server, the messages of
+// proto/websocket.proto (docs/API.md, WebSocket).
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wnull-dereference"
+#include <boost/beast/websocket.hpp>
+#include <boost/beast/websocket/ssl.hpp>
+#pragma GCC diagnostic pop
+
+#include "co_status.h"
+#include "meshwave/client/transport.h"
+#include "net.h"
+#include "server_connection.h"
+#include "websocket.pb.h"
+
+namespace meshwave::client {
+namespace {
+
+namespace websocket = beast::websocket;
+
+// The largest packet the HTTP transport accepts, plus the message framing.
+constexpr uint64_t kMessageLimit = (uint64_t{1} << 30) + 1024;
+// "The rest of the order" in a refine (the server's largest budget).
+constexpr uint64_t kWholeOrder = uint64_t{1} << 50;
+
+auto Tuple() { return net::as_tuple(net::use_awaitable); }
+
+StreamHead HeadOf(const proto::Selection& s) {
+  StreamHead h;
+  h.packets = s.next_cursor() >= s.from_cursor()
+                  ? s.next_cursor() - s.from_cursor()
+                  : 0;
+  h.next_cursor = s.next_cursor();
+  h.complete = s.next_cursor() == s.order_packets();
+  h.content_length = s.bytes();
+  return h;
+}
+
+Status StatusFromError(const proto::Error& e) {
+  const std::string what = "the server refused: " + e.message();
+  switch (e.code()) {
+    case proto::Error::NOT_FOUND:
+      return Status(StatusCode::kNotFound, what);
+    case proto::Error::BAD_REQUEST:
+      return InvalidArgument(what);
+    case proto::Error::UNAVAILABLE:
+      return IoError(what);  // worth retrying
+    default:
+      return ParseError("an error message of unknown code " +
+                        std::to_string(e.code()) + ": " + e.message());
+  }
+}
+
+// Collects the header of a header-only start.
+class HeaderSink final : public StreamSink {
+ public:
+  Status OnHead(const StreamHead&) override { return Status::Ok(); }
+  Status OnBytes(std::string_view) override {
+    return ParseError("bytes where messages were expected");
+  }
+  Status OnHeaderMessage(std::string_view header) override {
+    header_ = std::string(header);
+    return Status::Ok();
+  }
+  Status OnPacketMessage(size_t, uint32_t, std::string_view) override {
+    return ParseError("a packet after a request for the header alone");
+  }
+  std::string& header() { return header_; }
+
+ private:
+  std::string header_;
+};
+
+class WebSocketTransport final : public Transport {
+ public:
+  WebSocketTransport(net::any_io_executor executor, const MeshUrl& url,
+                     const TransportOptions& options)
+      : executor_(std::move(executor)), url_(url), options_(options) {}
+
+  net::any_io_executor executor() override { return executor_; }
+
+  net::awaitable<Result<std::string>> GetHeader() override {
+    StreamRequest request;  // the server's defaults: quality, all levels
+    proto::ClientMessage m;
+    auto* start = m.mutable_start();
+    start->set_mesh_id(url_.mesh_id);
+    start->set_header_only(true);
+    start->set_rate(options_.pace_bytes_per_second);
+    HeaderSink sink;
+    Status s = co_await Request(m, request, sink);
+    if (!s.ok()) co_return s;
+    if (sink.header().empty()) co_return ParseError("no stream header came");
+    co_return std::move(sink.header());
+  }
+
+  net::awaitable<Result<std::string>> GetPacket(uint32_t /*id*/) override {
+    // Never asked: CanStreamPayloadsFromStart.
+    co_return Status(StatusCode::kUnsupported,
+                     "the WebSocket transport streams packets by cursor");
+  }
+
+  net::awaitable<Status> Stream(const StreamRequest& request,
+                                StreamSink& sink) override {
+    co_return co_await Request(MessageFor(request), request, sink);
+  }
+
+  void Close() override {
+    plain_.reset();
+    tls_.reset();
+    buffer_.clear();
+    server_stream_.reset();
+  }
+
+  bool CanStreamPayloadsFromStart() const override { return true; }
+
+ private:
+  // Where the server's stream on the open connection stopped (after Done).
+  struct ServerStream {
+    Progression order;
+    int max_level;
+    size_t next_cursor;
+  };
+
+  bool connected() const { return plain_.has_value() || tls_.has_value(); }
+
+  // A refine when the open connection's stream stopped exactly where this
+  // request starts, else a start (from 0 without the header) or a resume.
+  proto::ClientMessage MessageFor(const StreamRequest& r) const {
+    proto::ClientMessage m;
+    const bool continues =
+        connected() && server_stream_ && server_stream_->order == r.order &&
+        server_stream_->max_level == r.max_level &&
+        server_stream_->next_cursor == r.from && (r.from > 0 || r.header_held);
+    if (continues) {
+      m.mutable_refine()->set_extra_bytes(r.budget.value_or(kWholeOrder));
+      return m;
+    }
+    if (r.from == 0 && !r.header_held) {
+      auto* s = m.mutable_start();
+      s->set_mesh_id(url_.mesh_id);
+      s->set_order(ProgressionName(r.order));
+      if (r.max_level >= 0)
+        s->set_max_level(static_cast<uint32_t>(r.max_level));
+      if (r.budget) s->set_budget(*r.budget);
+      s->set_rate(options_.pace_bytes_per_second);
+      return m;
+    }
+    return ResumeFor(r);
+  }
+
+  proto::ClientMessage ResumeFor(const StreamRequest& r) const {
+    proto::ClientMessage m;
+    auto* s = m.mutable_resume();
+    s->set_mesh_id(url_.mesh_id);
+    s->set_order(ProgressionName(r.order));
+    if (r.max_level >= 0) s->set_max_level(static_cast<uint32_t>(r.max_level));
+    s->set_cursor(static_cast<uint32_t>(r.from));
+    if (r.budget) s->set_budget(*r.budget);
+    s->set_rate(options_.pace_bytes_per_second);
+    return m;
+  }
+
+  net::awaitable<Status> Request(proto::ClientMessage m,
+                                 const StreamRequest& request,
+                                 StreamSink& sink) {
+    const bool reused = connected();
+    if (!reused) MWC_CO_RETURN_IF_ERROR(co_await Connect());
+    bool answered = false;
+    Status s = co_await ExchangeOnce(m, request, sink, answered);
+    if (!s.ok() && s.code() == StatusCode::kIoError && reused && !answered) {
+      // The idle connection was closed under us (its read timeout, a
+      // restarted server): once more on a fresh one, where the server holds
+      // no stream, so a refine becomes a resume.
+      MWC_CO_RETURN_IF_ERROR(co_await Connect());
+      if (m.has_refine()) m = ResumeFor(request);
+      s = co_await ExchangeOnce(m, request, sink, answered);
+    }
+    if (!s.ok()) Close();
+    co_return s;
+  }
+
+  net::awaitable<Status> Connect() {
+    Close();
+    Status s;
+    if (!url_.server.tls) {
+      plain_.emplace(executor_);
+      s = co_await ConnectTcp(plain_->next_layer(), url_.server, options_);
+      if (s.ok()) s = co_await Handshake(*plain_);
+    } else {
+      if (!ssl_context_) {
+        auto ctx = MakeTlsContext(options_);
+        if (!ctx.ok()) co_return ctx.status();
+        ssl_context_ = std::move(*ctx);
+      }
+      tls_.emplace(executor_, *ssl_context_);
+      s = co_await ConnectTls(tls_->next_layer(), url_.server, options_);
+      if (s.ok()) s = co_await Handshake(*tls_);
+    }
+    if (!s.ok()) Close();
+    co_return s;
+  }
+
+  template <class Ws>
+  net::awaitable<Status> Handshake(Ws& ws) {
+    // The WebSocket stream keeps its own timers: no read waits longer than
+    // read_timeout for a frame (idle_timeout without pings).
+    beast::get_lowest_layer(ws).expires_never();
+    websocket::stream_base::timeout timeout{};
+    timeout.handshake_timeout = options_.connect_timeout;
+    timeout.idle_timeout = options_.read_timeout;
+    timeout.keep_alive_pings = false;
+    ws.set_option(timeout);
+    ws.set_option(
+        websocket::stream_base::decorator([](websocket::request_type& req) {
+          req.set(http::field::user_agent, "meshwave-client/0.1");
+        }));
+    ws.read_message_max(kMessageLimit);
+    ws.binary(true);
+    websocket::response_type response;
+    auto [ec] = co_await ws.async_handshake(response, HostHeader(url_.server),
+                                            "/v1/ws", Tuple());
+    if (ec == websocket::error::upgrade_declined) {
+      co_return StatusFromResponse(
+          "GET /v1/ws (WebSocket upgrade)", response.result_int(),
+          std::string(response.reason()), response.body());
+    }
+    if (ec) {
+      co_return NetError("WebSocket handshake with " + url_.server.ToString(),
+                         ec, options_.connect_timeout);
+    }
+    co_return Status::Ok();
+  }
+
+  net::awaitable<Status> ExchangeOnce(const proto::ClientMessage& m,
+                                      const StreamRequest& request,
+                                      StreamSink& sink, bool& answered) {
+    if (tls_) co_return co_await Exchange(*tls_, m, request, sink, answered);
+    co_return co_await Exchange(*plain_, m, request, sink, answered);
+  }
+
+  // Sends one request and consumes its answer up to Done.
+  template <class Ws>
+  net::awaitable<Status> Exchange(Ws& ws, const proto::ClientMessage& m,
+                                  const StreamRequest& request,
+                                  StreamSink& sink, bool& answered) {
+    const std::string where = url_.server.ToString() + "/v1/ws";
+    const std::string bytes = m.SerializeAsString();
+    auto [wec, wn] = co_await ws.async_write(net::buffer(bytes), Tuple());
+    if (wec)
+      co_return NetError("sending to " + where, wec, options_.read_timeout);
+    server_stream_.reset();  // until Done says where it stopped
+    const bool expect_header = m.has_start();
+    bool selected = false;
+    proto::ServerMessage reply;
+    for (;;) {
+      buffer_.clear();
+      auto [rec, rn] = co_await ws.async_read(buffer_, Tuple());
+      if (rec) {
+        co_return NetError("reading from " + where, rec, options_.read_timeout);
+      }
+      answered = true;
+      const auto data = buffer_.cdata();
+      if (!ws.got_binary() ||
+          !reply.ParseFromArray(data.data(), static_cast<int>(data.size()))) {
+        co_return ParseError(where + " sent a message that does not parse");
+      }
+      switch (reply.message_case()) {
+        case proto::ServerMessage::kStart:
+          if (!expect_header || selected) {
+            co_return ParseError(where + " sent an unexpected stream header");
+          }
+          selected = true;
+          MWC_CO_RETURN_IF_ERROR(
+              sink.OnHead(HeadOf(reply.start().selection())));
+          MWC_CO_RETURN_IF_ERROR(sink.OnHeaderMessage(reply.start().header()));
+          break;
+        case proto::ServerMessage::kSelection:
+          if (expect_header || selected) {
+            co_return ParseError(where + " sent an unexpected selection");
+          }
+          selected = true;
+          MWC_CO_RETURN_IF_ERROR(sink.OnHead(HeadOf(reply.selection())));
+          break;
+        case proto::ServerMessage::kPacket:
+          if (!selected) {
+            co_return ParseError(where + " sent a packet before its selection");
+          }
+          MWC_CO_RETURN_IF_ERROR(
+              sink.OnPacketMessage(reply.packet().cursor(), reply.packet().id(),
+                                   reply.packet().payload()));
+          break;
+        case proto::ServerMessage::kDone:
+          if (!selected) {
+            co_return ParseError(where + " ended a stream it never started");
+          }
+          server_stream_ = ServerStream{request.order, request.max_level,
+                                        reply.done().next_cursor()};
+          co_return Status::Ok();
+        case proto::ServerMessage::kError:
+          co_return StatusFromError(reply.error());
+        case proto::ServerMessage::MESSAGE_NOT_SET:
+          co_return ParseError(where + " sent an empty message");
+      }
+    }
+  }
+
+  net::any_io_executor executor_;
+  MeshUrl url_;
+  TransportOptions options_;
+  std::unique_ptr<ssl::context> ssl_context_;
+  std::optional<websocket::stream<beast::tcp_stream>> plain_;
+  std::optional<websocket::stream<beast::ssl_stream<beast::tcp_stream>>> tls_;
+  beast::flat_buffer buffer_;
+  std::optional<ServerStream> server_stream_;
+};
+
+}  // namespace
+
+std::unique_ptr<Transport> MakeWebSocketTransport(
+    net::any_io_executor executor, const MeshUrl& url,
+    const TransportOptions& options) {
+  return std::make_unique<WebSocketTransport>(std::move(executor), url,
+                                              options);
+}
+
+}  // namespace meshwave::client
