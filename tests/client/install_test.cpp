@@ -47,7 +47,7 @@ TEST(ClientInstallTest, ExampleProjectBuildsAgainstTheInstalledPackage) {
       ShellQuote((build / "fetch_example").string()) + " ftp://x 100 out.ply",
       log);
   EXPECT_EQ(WEXITSTATUS(code), 1);
-  EXPECT_NE(testing::ReadBytes(log).find("expected http:// or https://"),
+  EXPECT_NE(testing::ReadBytes(log).find("expected http://, https://, ws:// or wss://"),
             std::string::npos)
       << testing::ReadBytes(log);
 }

@@ -108,8 +108,36 @@ def http_seeds(mesh_id):
                                          "3\r\nabc\r\n0\r\n\r\n").encode())
 
 
+def protobuf_field(number, wire_type, payload):
+    """One protobuf field: varint key, then a length for wire type 2."""
+    def varint(n):
+        out = b""
+        while True:
+            low, n = n & 0x7F, n >> 7
+            if not n:
+                return out + bytes([low])
+            out += bytes([low | 0x80])
+    key = varint(number << 3 | wire_type)
+    if wire_type == 2:
+        return key + varint(len(payload)) + payload
+    return key + varint(payload)
+
+
+def ws_seeds():
+    """ClientMessage frames of proto/websocket.proto: start, refine, resume."""
+    f = protobuf_field
+    mesh = b"0123456789ab"
+    start = f(1, 2, mesh) + f(2, 2, b"rd") + f(3, 0, 2) + f(4, 0, 65536) + f(5, 0, 100000)
+    put("ws_message_fuzz", "start_rd_budget_rate", f(1, 2, start))
+    put("ws_message_fuzz", "start_header_only", f(1, 2, f(1, 2, mesh) + f(6, 0, 1)))
+    put("ws_message_fuzz", "refine_4096", f(2, 2, f(1, 0, 4096)))
+    resume = f(1, 2, mesh) + f(2, 2, b"quality") + f(4, 0, 5) + f(5, 0, 65536) + f(6, 0, 0)
+    put("ws_message_fuzz", "resume_quality_cursor5", f(3, 2, resume))
+
+
 if __name__ == "__main__":
     if os.path.isdir(SEEDS):
         shutil.rmtree(SEEDS)
     mesh_seeds()
     http_seeds(container_seeds())
+    ws_seeds()
