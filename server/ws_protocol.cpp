@@ -67,6 +67,20 @@ size_t VarintSize(uint64_t v) {
   return n;
 }
 
+// The fields a start and a resume share (same names in both messages):
+// mesh, order, level limit, budget and rate, each checked.
+template <typename StreamFields>
+Status ParseStreamFields(const StreamFields& s, ClientRequest& r) {
+  MW_RETURN_IF_ERROR(CheckMeshId(s.mesh_id()));
+  r.mesh_id = s.mesh_id();
+  MW_ASSIGN_OR_RETURN(r.order, ParseOrder(s.order()));
+  MW_ASSIGN_OR_RETURN(r.max_level, ParseMaxLevel(s.has_max_level(), s.max_level()));
+  MW_ASSIGN_OR_RETURN(r.budget, ParseBudget(s.has_budget(), s.budget()));
+  MW_RETURN_IF_ERROR(CheckRate(s.rate()));
+  r.rate = s.rate();
+  return Status::Ok();
+}
+
 }  // namespace
 
 Result<ClientRequest> ParseClientMessage(std::string_view bytes,
@@ -85,14 +99,7 @@ Result<ClientRequest> ParseClientMessage(std::string_view bytes,
     case proto::ClientMessage::kStart: {
       const auto& s = m.start();
       r.kind = ClientRequest::Kind::kStart;
-      MW_RETURN_IF_ERROR(CheckMeshId(s.mesh_id()));
-      r.mesh_id = s.mesh_id();
-      MW_ASSIGN_OR_RETURN(r.order, ParseOrder(s.order()));
-      MW_ASSIGN_OR_RETURN(r.max_level,
-                          ParseMaxLevel(s.has_max_level(), s.max_level()));
-      MW_ASSIGN_OR_RETURN(r.budget, ParseBudget(s.has_budget(), s.budget()));
-      MW_RETURN_IF_ERROR(CheckRate(s.rate()));
-      r.rate = s.rate();
+      MW_RETURN_IF_ERROR(ParseStreamFields(s, r));
       r.header_only = s.header_only();
       if (r.header_only && r.budget) return Bad("header_only takes no budget");
       return r;
@@ -109,14 +116,7 @@ Result<ClientRequest> ParseClientMessage(std::string_view bytes,
     case proto::ClientMessage::kResume: {
       const auto& s = m.resume();
       r.kind = ClientRequest::Kind::kResume;
-      MW_RETURN_IF_ERROR(CheckMeshId(s.mesh_id()));
-      r.mesh_id = s.mesh_id();
-      MW_ASSIGN_OR_RETURN(r.order, ParseOrder(s.order()));
-      MW_ASSIGN_OR_RETURN(r.max_level,
-                          ParseMaxLevel(s.has_max_level(), s.max_level()));
-      MW_ASSIGN_OR_RETURN(r.budget, ParseBudget(s.has_budget(), s.budget()));
-      MW_RETURN_IF_ERROR(CheckRate(s.rate()));
-      r.rate = s.rate();
+      MW_RETURN_IF_ERROR(ParseStreamFields(s, r));
       r.cursor = s.cursor();
       return r;
     }
