@@ -25,6 +25,7 @@
 # table. Everything it started is stopped on exit (trap), whatever happens.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
+source "$root/bench/lib.sh"
 build=${1:-$root/build}
 [[ $build = /* ]] || build=$PWD/$build
 server_bin=$build/server/meshwave-server
@@ -77,14 +78,6 @@ trap 'exit 130' INT
 trap 'exit 143' TERM
 
 # A port nothing listens on (nginx is retried if it loses the race).
-free_port() {
-  local p
-  for _ in $(seq 100); do
-    p=$(( 20000 + RANDOM % 40000 ))
-    (exec 3<> "/dev/tcp/127.0.0.1/$p") 2> /dev/null || { echo "$p"; return; }
-  done
-  echo "no free port found" >&2; return 1
-}
 
 # --- catalog and server ----------------------------------------------------
 echo "ingesting $(basename "$mesh") ..." >&2
@@ -182,31 +175,10 @@ packet_bytes=$(check_same "$S$packet_path" "$N/packet.bin")
 stream_bytes=$(check_same "$S$stream_path" "$N/stream.mwv")
 
 # --- wrk ---------------------------------------------------------------------
-# to_ms VALUE-WITH-UNIT; to_mbs VALUE-WITH-UNIT (wrk's units, 1024-based bytes)
-to_ms() { awk -v v="$1" 'BEGIN { n = v + 0; u = v; sub(/^[0-9.]+/, "", u);
-  f = (u == "us") ? 0.001 : (u == "ms") ? 1 : (u == "s") ? 1000 : (u == "m") ? 60000 : 0;
-  printf "%.3f", n * f }'; }
-to_mbs() { awk -v v="$1" 'BEGIN { n = v + 0; u = v; sub(/^[0-9.]+/, "", u);
-  f = (u == "B") ? 1 / 1048576 : (u == "KB") ? 1 / 1024 : (u == "MB") ? 1 : (u == "GB") ? 1024 : 0;
-  printf "%.1f", n * f }'; }
 
 load_before=$(cut -d' ' -f1-3 /proc/loadavg)
 results=$tmp/results.tsv  # name conns rps p50_ms p99_ms mb_s errors
 : > "$results"
-run_wrk() {
-  local name=$1 url=$2 c=$3 out=$tmp/wrk-$1-$3.txt
-  echo "wrk -t$wrk_threads -c$c -d${duration}s --latency $url" >&2
-  timeout $(( duration + 20 )) wrk -t"$wrk_threads" -c"$c" -d"${duration}s" --timeout 5s --latency "$url" \
-    > "$out" 2>&1 || { cat "$out" >&2; exit 1; }
-  local rps p50 p99 tr errs
-  rps=$(awk '/^Requests\/sec:/ { print $2 }' "$out")
-  p50=$(to_ms "$(awk '$1 == "50%" { print $2 }' "$out")")
-  p99=$(to_ms "$(awk '$1 == "99%" { print $2 }' "$out")")
-  tr=$(to_mbs "$(awk '/^Transfer\/sec:/ { print $2 }' "$out")")
-  errs=$(awk '/Non-2xx/ { n += $NF } /Socket errors/ { gsub(/,/, ""); n += $4 + $6 + $8 + $10 }
-    END { print n + 0 }' "$out")
-  printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$name" "$c" "$rps" "$p50" "$p99" "$tr" "$errs" >> "$results"
-}
 for c in $conns_list; do
   run_wrk server-packet "$S$packet_path" "$c"
   run_wrk nginx-packet "$N/packet.bin" "$c"

@@ -13,6 +13,7 @@
 #   as in bench/http_load.sh (DURATION defaults to 5 here).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
+source "$root/bench/lib.sh"
 build=${1:-$root/build}
 [[ $build = /* ]] || build=$PWD/$build
 server_bin=$build/server/meshwave-server
@@ -59,14 +60,6 @@ trap 'exit 143' TERM
 # PostgreSQL refuses root: run it (and nginx) as nobody then.
 as_user=()
 [[ $(id -u) = 0 ]] && as_user=(setpriv --reuid=nobody --regid=nogroup --clear-groups --)
-free_port() {
-  local p
-  for _ in $(seq 100); do
-    p=$(( 20000 + RANDOM % 40000 ))
-    (exec 3<> "/dev/tcp/127.0.0.1/$p") 2> /dev/null || { echo "$p"; return; }
-  done
-  return 1
-}
 wait_http() { for _ in $(seq 200); do curl -sf -o /dev/null "$1" && return 0; sleep 0.05; done; return 1; }
 
 # --- PostgreSQL ---------------------------------------------------------------
@@ -153,29 +146,9 @@ done
 packet_bytes=$(stat -c %s "$tmp/via")
 
 # --- wrk -----------------------------------------------------------------------
-to_ms() { awk -v v="$1" 'BEGIN { n = v + 0; u = v; sub(/^[0-9.]+/, "", u);
-  f = (u == "us") ? 0.001 : (u == "ms") ? 1 : (u == "s") ? 1000 : (u == "m") ? 60000 : 0;
-  printf "%.3f", n * f }'; }
-to_mbs() { awk -v v="$1" 'BEGIN { n = v + 0; u = v; sub(/^[0-9.]+/, "", u);
-  f = (u == "B") ? 1 / 1048576 : (u == "KB") ? 1 / 1024 : (u == "MB") ? 1 : (u == "GB") ? 1024 : 0;
-  printf "%.1f", n * f }'; }
 load_before=$(cut -d' ' -f1-3 /proc/loadavg)
 results=$tmp/results.tsv
 : > "$results"
-run_wrk() {
-  local name=$1 url=$2 c=$3 out=$tmp/wrk-$1-$3.txt
-  echo "wrk -t$wrk_threads -c$c -d${duration}s --latency $url" >&2
-  timeout $(( duration + 20 )) wrk -t"$wrk_threads" -c"$c" -d"${duration}s" --timeout 5s --latency "$url" \
-    > "$out" 2>&1 || { cat "$out" >&2; exit 1; }
-  local rps p50 p99 tr errs
-  rps=$(awk '/^Requests\/sec:/ { print $2 }' "$out")
-  p50=$(to_ms "$(awk '$1 == "50%" { print $2 }' "$out")")
-  p99=$(to_ms "$(awk '$1 == "99%" { print $2 }' "$out")")
-  tr=$(to_mbs "$(awk '/^Transfer\/sec:/ { print $2 }' "$out")")
-  errs=$(awk '/Non-2xx/ { n += $NF } /Socket errors/ { gsub(/,/, ""); n += $4 + $6 + $8 + $10 }
-    END { print n + 0 }' "$out")
-  printf '%s\t%s\t%.0f\t%s\t%s\t%s\t%s\n' "$name" "$c" "$rps" "$p50" "$p99" "$tr" "$errs" >> "$results"
-}
 for c in $conns_list; do
   for what in packet stream; do
     path=$packet_path; [[ $what = stream ]] && path=$stream_path

@@ -16,6 +16,8 @@
 #include <thread>
 #include <vector>
 
+#include "child_process_testonly.h"
+
 extern char** environ;
 
 namespace meshwave::testing {
@@ -48,17 +50,7 @@ inline pid_t SpawnServer(const std::vector<std::string>& args, const std::filesy
 
 // Waits for the child to exit; its exit code, or -1 (signal, timeout).
 inline int WaitExit(pid_t pid, std::chrono::milliseconds timeout = std::chrono::seconds(30)) {
-  const auto end = std::chrono::steady_clock::now() + timeout;
-  int status = 0;
-  while (std::chrono::steady_clock::now() < end) {
-    const pid_t r = ::waitpid(pid, &status, WNOHANG);
-    if (r == pid) return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    if (r < 0) return -1;
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
-  ::kill(pid, SIGKILL);
-  ::waitpid(pid, &status, 0);
-  return -1;
+  return WaitChild(pid, timeout);
 }
 
 // A running `meshwave-server --catalog DIR --listen 127.0.0.1:0`.

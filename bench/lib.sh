@@ -1,0 +1,40 @@
+# Shell helpers shared by the load benchmarks (sourced, not run):
+# a free loopback port, wrk's units converted, and one wrk run appended to a
+# results table.
+
+# free_port: a 127.0.0.1 port nothing answered on a moment ago.
+free_port() {
+  local p
+  for _ in $(seq 100); do
+    p=$(( 20000 + RANDOM % 40000 ))
+    (exec 3<> "/dev/tcp/127.0.0.1/$p") 2> /dev/null || { echo "$p"; return; }
+  done
+  echo "no free port found" >&2; return 1
+}
+
+# to_ms VALUE-WITH-UNIT, to_mbs VALUE-WITH-UNIT: wrk's latency and transfer
+# figures (its units; bytes are 1024-based) as milliseconds and MiB.
+to_ms() { awk -v v="$1" 'BEGIN { n = v + 0; u = v; sub(/^[0-9.]+/, "", u);
+  f = (u == "us") ? 0.001 : (u == "ms") ? 1 : (u == "s") ? 1000 : (u == "m") ? 60000 : 0;
+  printf "%.3f", n * f }'; }
+to_mbs() { awk -v v="$1" 'BEGIN { n = v + 0; u = v; sub(/^[0-9.]+/, "", u);
+  f = (u == "B") ? 1 / 1048576 : (u == "KB") ? 1 / 1024 : (u == "MB") ? 1 : (u == "GB") ? 1024 : 0;
+  printf "%.1f", n * f }'; }
+
+# run_wrk NAME URL CONNECTIONS: one wrk run of $duration seconds with
+# $wrk_threads threads; appends "name conns rps p50_ms p99_ms MiB/s errors"
+# to $results (its raw output stays in $tmp).
+run_wrk() {
+  local name=$1 url=$2 c=$3 out=$tmp/wrk-$1-$3.txt
+  echo "wrk -t$wrk_threads -c$c -d${duration}s --latency $url" >&2
+  timeout $(( duration + 20 )) wrk -t"$wrk_threads" -c"$c" -d"${duration}s" --timeout 5s --latency "$url" \
+    > "$out" 2>&1 || { cat "$out" >&2; exit 1; }
+  local rps p50 p99 tr errs
+  rps=$(awk '/^Requests\/sec:/ { print $2 }' "$out")
+  p50=$(to_ms "$(awk '$1 == "50%" { print $2 }' "$out")")
+  p99=$(to_ms "$(awk '$1 == "99%" { print $2 }' "$out")")
+  tr=$(to_mbs "$(awk '/^Transfer\/sec:/ { print $2 }' "$out")")
+  errs=$(awk '/Non-2xx/ { n += $NF } /Socket errors/ { gsub(/,/, ""); n += $4 + $6 + $8 + $10 }
+    END { print n + 0 }' "$out")
+  printf '%s\t%s\t%.0f\t%s\t%s\t%s\t%s\n' "$name" "$c" "$rps" "$p50" "$p99" "$tr" "$errs" >> "$results"
+}
