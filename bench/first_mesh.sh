@@ -4,7 +4,9 @@
 #
 # Usage: bench/first_mesh.sh [BUILD_DIR]        (default: build)
 #   Expects BUILD_DIR/server/meshwave-server and BUILD_DIR/bench/first_mesh
-#   (configure with -DMESHWAVE_BENCH=ON); builds nothing.
+#   (configure with -DMESHWAVE_BENCH=ON); builds nothing. With
+#   BUILD_DIR/bench/decode_rate it also decodes the ingested container in
+#   memory (CPU per payload byte, no network).
 # Environment:
 #   MESH=FILE   default ../shared/data/meshes/igea.ply, the largest shared mesh
 #   RUNS=9      runs per transport (medians reported)
@@ -50,9 +52,15 @@ for _ in $(seq 200); do [[ -s $tmp/port ]] && break; sleep 0.05; done
 port=$(cat "$tmp/port")
 path=127.0.0.1:$port/v1/meshes/$id
 
+uptime
+if [[ -x $build/bench/decode_rate ]]; then
+  echo "== in memory (decode_rate)"
+  "$build/bench/decode_rate" "$(ls "$tmp"/catalog/containers/*.mwv | head -1)" --runs "$runs" | tail -1
+fi
 echo "== HTTP"
 "$bench_bin" "http://$path" --runs "$runs" | tail -1
 echo "== WebSocket"
 "$bench_bin" "ws://$path" --runs "$runs" | tail -1
 echo "== WebSocket paced at 100 Mbit/s"
 "$bench_bin" "ws://$path" --runs "$runs" --pace 12500000 | tail -1
+uptime

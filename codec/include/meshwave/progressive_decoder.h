@@ -51,7 +51,10 @@ class ProgressiveDecoder {
   // distortion figures for the packets held.
   double EstimatedPsnr() const;
 
-  // The mesh at level max_level (-1: the finest level, J).
+  // The mesh at level max_level (-1: the finest level, J). AddPacket only
+  // updates the coefficients; each call here reconstructs the mesh from them
+  // (dequantisation and the inverse transform: a few ms per 100 k vertices),
+  // so call it when a mesh is needed, not after every packet by default.
   std::vector<Vec3> Positions(int max_level = -1) const;
   TriMesh Mesh(int max_level = -1) const;
 

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <span>
+#include <string_view>
 
 #include "bitplane/coefficient_octree.h"
 #include "entropy/arithmetic_decoder.h"
@@ -16,7 +17,7 @@ class EncoderIo {
  public:
   EncoderIo(ArithmeticEncoder& enc, const CoefficientOctree& tree,
             std::span<const uint32_t> q0, std::span<const uint8_t> negative)
-      : enc_(enc), tree_(tree), q0_(q0), negative_(negative) {}
+      : enc_(&enc), tree_(&tree), q0_(q0), negative_(negative) {}
 
   int SigCoef(uint32_t k, int b, BinaryContext& ctx) {
     return Put((q0_[k] >> b) & 1, ctx);
@@ -25,7 +26,7 @@ class EncoderIo {
     const uint32_t threshold = 1u << b;
     int sig = 0;
     for (uint32_t p = node.begin; p < node.end && !sig; ++p) {
-      sig = q0_[tree_.At(p)] >= threshold;
+      sig = q0_[tree_->At(p)] >= threshold;
     }
     return Put(sig, ctx);
   }
@@ -36,27 +37,33 @@ class EncoderIo {
 
  private:
   int Put(int bit, BinaryContext& ctx) {
-    enc_.Encode(bit, ctx);
+    enc_->Encode(bit, ctx);
     return bit;
   }
-  ArithmeticEncoder& enc_;
-  const CoefficientOctree& tree_;
+  // Pointers, not references: CodeBitplane works on a copy and assigns it
+  // back.
+  ArithmeticEncoder* enc_;
+  const CoefficientOctree* tree_;
   std::span<const uint32_t> q0_;
   std::span<const uint8_t> negative_;
 };
 
+// Holds the decoder by value, so that CodeBitplane's local copy keeps the
+// coder's state in registers (through a reference, every store to the
+// coefficient arrays could alias it and forced a reload per symbol).
 class DecoderIo {
  public:
-  explicit DecoderIo(ArithmeticDecoder& dec) : dec_(dec) {}
+  explicit DecoderIo(std::string_view packet) : dec_(packet) {}
   int SigCoef(uint32_t, int, BinaryContext& ctx) { return dec_.Decode(ctx); }
   int SigNode(const OctreeNode&, int, BinaryContext& ctx) {
     return dec_.Decode(ctx);
   }
   int Sign(uint32_t, BinaryContext& ctx) { return dec_.Decode(ctx); }
   int Refine(uint32_t, int, BinaryContext& ctx) { return dec_.Decode(ctx); }
+  const ArithmeticDecoder& decoder() const { return dec_; }
 
  private:
-  ArithmeticDecoder& dec_;
+  ArithmeticDecoder dec_;
 };
 
 }  // namespace meshwave

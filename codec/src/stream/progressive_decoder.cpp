@@ -128,8 +128,7 @@ Status ProgressiveDecoder::AddPacket(uint32_t id, std::string_view payload) {
   if (Crc32c(payload) != index.crc32c(i)) {
     return ParseError(what + ": CRC32C mismatch (corrupt payload)");
   }
-  ArithmeticDecoder dec(payload);
-  DecoderIo io(dec);
+  DecoderIo io(payload);
   const SubbandLayout& layout = m.layouts[j];
   ComponentContexts contexts;  // shared by the packet's three components
   for (int c = 0; c < 3; ++c) {
@@ -141,7 +140,7 @@ Status ProgressiveDecoder::AddPacket(uint32_t id, std::string_view payload) {
     }
     CodeBitplane(layout.tree, s, b, parent, contexts, io, nullptr);
   }
-  if (dec.overrun()) {
+  if (io.decoder().overrun()) {
     m.broken = true;
     return ParseError(what + ": payload ends before its symbols (corrupt stream)");
   }
@@ -188,9 +187,17 @@ std::vector<Vec3> ProgressiveDecoder::Positions(int max_level) const {
       const int n = s.known_from();
       if (n > s.top) continue;
       const double xi0 = DeadzoneXi(static_cast<int>(q.deadzone()));
+      // Dequantize(s.mag[k] >> n, n, s.negative[k], q.step(), xi0, gamma)
+      // with its two ldexp calls, the same for every k, taken out of the
+      // loop (the same operations in the same order: bit-identical).
+      const double scale = std::ldexp(q.step(), n);
+      const double xi_n = std::ldexp(xi0, -n);
+      const double gamma = m.options.gamma;
       for (uint32_t k : s.lsc) {
-        band[k][c] = Dequantize(s.mag[k] >> n, n, s.negative[k], q.step(), xi0,
-                                m.options.gamma);
+        const uint32_t v = s.mag[k] >> n;
+        if (v == 0) continue;  // band is zero already
+        const double r = (static_cast<double>(v) + gamma - xi_n) * scale;
+        band[k][c] = s.negative[k] ? -r : r;
       }
     }
   }

@@ -41,7 +41,10 @@ struct Progress {
 
 // Called on the session's executor once the header is known (the base mesh,
 // 0 packets) and after every packet. The decoder gives the mesh on demand
-// (decoder.Mesh(max_level)); do not keep the reference.
+// (decoder.Mesh(max_level)); do not keep the reference. Nothing is
+// reconstructed unless the handler asks: Mesh() runs the whole inverse
+// transform on this thread, and while it runs the next packets wait, so a
+// handler that only shows progress should not call it every time.
 using ProgressHandler =
     std::function<void(const Progress&, const ProgressiveDecoder&)>;
 
