@@ -12,8 +12,12 @@
 #     fetches, /stream prefixes at several budgets, orders and cursors,
 #     headers, descriptions, the listing and range requests;
 #   - a curl loop opening a fresh connection per request (connection churn);
-#   - WS_LOAD (default BUILD_DIR/bench/ws_load) when present: WebSocket
-#     sessions with refine.
+#   - WS_LOAD (default BUILD_DIR/bench/ws_load, -DMESHWAVE_BENCH=ON; the
+#     soak refuses to run without it): WS_SESSIONS (default 16) WebSocket
+#     sessions at WS_RATE bytes/s (default 20000), each starting with a
+#     4000-byte budget (above both stream headers), refining by 2000 bytes
+#     on the same socket until the order is complete, then closing and
+#     opening a new session.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-$root/build}
@@ -23,6 +27,7 @@ server_bin=$build/server/meshwave-server
 ws_load=${WS_LOAD:-$build/bench/ws_load}
 [[ -x $server_bin ]] || { echo "no $server_bin" >&2; exit 1; }
 command -v wrk > /dev/null || { echo "wrk is needed (apt-get install wrk)" >&2; exit 1; }
+[[ -x $ws_load ]] || { echo "no $ws_load (configure with -DMESHWAVE_BENCH=ON)" >&2; exit 1; }
 
 tmp=$(mktemp -d /tmp/soak.XXXXXX)
 pids=()
@@ -98,11 +103,16 @@ ref=$(curl -s "$base/v1/meshes/$first/stream?budget=6000" | sha256sum)
   echo "churn_requests $n"; echo "churn_errors $bad"
 ) > "$tmp/churn.log" 2>&1 &
 pids+=($!)
-if [[ -x $ws_load ]]; then
-  nice -n 10 "$ws_load" --url "ws://127.0.0.1:$port/v1/ws" --duration "${seconds}s" \
-    > "$tmp/ws.log" 2>&1 &
+# WebSocket sessions with refine, on each mesh in turn (ws_load holds them
+# for the soak's time minus its ramp).
+ws_pids=()
+for id in $ids; do
+  nice -n 10 "$ws_load" --port "$port" --mesh "$id" --sessions $((${WS_SESSIONS:-16} / 2)) \
+    --rate "${WS_RATE:-20000}" --seconds $((seconds - 2)) --ramp-per-second 100 \
+    --budget 4000 --refine 2000 > "$tmp/ws_$id.log" 2>&1 &
+  ws_pids+=($!)
   pids+=($!)
-fi
+done
 
 printf 't_s\trss_kib\tfds\trequests_total\n' > "$tmp/samples.tsv"
 start=$SECONDS
@@ -118,10 +128,14 @@ done
 wait "${pids[1]}" || true  # wrk
 sleep 1
 wait "${pids[2]}" || true  # churn loop
+ws_rc=0
+for p in "${ws_pids[@]}"; do wait "$p" || ws_rc=1; done
 cat "$tmp/samples.tsv"
 cat "$tmp/wrk.log" | grep -E "^wrk_|Requests/sec|Latency" || cat "$tmp/wrk.log"
 cat "$tmp/churn.log"
-[[ -f $tmp/ws.log ]] && tail -5 "$tmp/ws.log"
+for f in "$tmp"/ws_*.log; do echo "== $(basename "$f")"; cat "$f"; done
+awk '/^ws_/ {s[$1] += $2} END {for (k in s) print k, s[k]}' "$tmp"/ws_*.log | sort
+echo "ws_load exit: $ws_rc (0: every session connected, none failed)"
 # Memory after warm-up (the first minute): min, max, last, and the spread.
 awk -F'\t' 'NR > 1 && $1 >= 60 {if (!n++) {min = max = $2}; if ($2 < min) min = $2;
   if ($2 > max) max = $2; last = $2; fmin = (n == 1 || $3 < fmin) ? $3 : fmin;

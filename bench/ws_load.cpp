@@ -6,8 +6,15 @@
 // it is held. bench/ws_sessions.sh runs it against a server and samples the
 // server's memory.
 //
+// With --budget B --refine R a session starts with a budget of B bytes and,
+// each time the server stops at the budget, asks for R more on the same
+// socket (refine); once the order is complete it closes the connection and
+// opens a new session (bench/soak.sh: sessions come and go). Every packet's
+// cursor is checked to follow the previous one.
+//
 //   ws_load --port P --mesh ID [--sessions 2000] [--rate 8000]
 //           [--seconds 60] [--ramp-per-second 1000]
+//           [--budget B --refine R]
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wnull-dereference"
 #include <boost/asio.hpp>
@@ -40,6 +47,8 @@ struct Options {
   uint64_t rate = 8000;  // bytes/s per session
   double seconds = 60;
   int ramp_per_second = 1000;
+  uint64_t budget = 0;  // 0: the whole order, resumed from 0 at each Done
+  uint64_t refine = 0;  // with budget: refine by this much, reconnect when complete
 };
 
 struct SessionStats {
@@ -49,6 +58,9 @@ struct SessionStats {
   uint64_t bytes_total = 0;
   uint64_t bytes_held = 0;  // received while every session was held
   uint64_t messages = 0;
+  uint64_t connections = 0;  // sessions opened (more than 1 with --refine)
+  uint64_t refines = 0;
+  uint64_t completed = 0;  // orders received to the end
 };
 
 struct Shared {
@@ -67,57 +79,93 @@ std::string Serialize(const meshwave::proto::ClientMessage& m) {
 
 net::awaitable<void> RunSession(Shared& shared, size_t index,
                                 SessionStats& stats) {
-  auto& ws = *shared.sockets[index];
-  auto fail = [&](const char* what, beast::error_code ec) {
+  const Options& o = shared.options;
+  auto fail = [&](const std::string& what, beast::error_code ec) {
     if (shared.stopping) return;
     stats.failed = true;
-    stats.error = std::string(what) + ": " + ec.message();
+    stats.error = what + ": " + ec.message();
   };
-  auto [cec] = co_await beast::get_lowest_layer(ws).socket().async_connect(
-      tcp::endpoint(net::ip::make_address("127.0.0.1"), shared.options.port),
-      Tuple());
-  if (cec) co_return fail("connect", cec);
-  auto [hec] = co_await ws.async_handshake("127.0.0.1", "/v1/ws", Tuple());
-  if (hec) co_return fail("handshake", hec);
-  stats.connected = true;
-  ws.binary(true);
   meshwave::proto::ClientMessage start;
-  start.mutable_start()->set_mesh_id(shared.options.mesh);
-  start.mutable_start()->set_rate(shared.options.rate);
+  start.mutable_start()->set_mesh_id(o.mesh);
+  start.mutable_start()->set_rate(o.rate);
+  if (o.budget > 0) start.mutable_start()->set_budget(o.budget);
   meshwave::proto::ClientMessage again;
-  again.mutable_resume()->set_mesh_id(shared.options.mesh);
+  again.mutable_resume()->set_mesh_id(o.mesh);
   again.mutable_resume()->set_cursor(0);
-  again.mutable_resume()->set_rate(shared.options.rate);
+  again.mutable_resume()->set_rate(o.rate);
+  meshwave::proto::ClientMessage refine;
+  refine.mutable_refine()->set_extra_bytes(o.refine);
   const std::string start_bytes = Serialize(start);
   const std::string again_bytes = Serialize(again);
-  auto [wec, wn] = co_await ws.async_write(net::buffer(start_bytes), Tuple());
-  if (wec) co_return fail("write", wec);
-  beast::flat_buffer buffer;
-  meshwave::proto::ServerMessage m;
-  for (;;) {
-    buffer.clear();
-    auto [rec, n] = co_await ws.async_read(buffer, Tuple());
-    if (rec) co_return fail("read", rec);
-    ++stats.messages;
-    stats.bytes_total += n;
-    if (shared.holding) stats.bytes_held += n;
-    const auto data = buffer.cdata();
-    if (!m.ParseFromArray(data.data(), static_cast<int>(data.size()))) {
-      stats.failed = true;
-      stats.error = "a message that does not parse";
-      co_return;
-    }
-    if (m.has_error()) {
-      stats.failed = true;
-      stats.error = "server error: " + m.error().message();
-      co_return;
-    }
-    if (m.has_done()) {
-      // The whole order sent: the same payloads again, still paced.
-      auto [aec, an] =
-          co_await ws.async_write(net::buffer(again_bytes), Tuple());
+  const std::string refine_bytes = Serialize(refine);
+  const bool refining = o.budget > 0 && o.refine > 0;
+  while (!shared.stopping) {
+    auto& ws = *shared.sockets[index];
+    auto [cec] = co_await beast::get_lowest_layer(ws).socket().async_connect(
+        tcp::endpoint(net::ip::make_address("127.0.0.1"), o.port), Tuple());
+    if (cec) co_return fail("connect", cec);
+    auto [hec] = co_await ws.async_handshake("127.0.0.1", "/v1/ws", Tuple());
+    if (hec) co_return fail("handshake", hec);
+    stats.connected = true;
+    ++stats.connections;
+    ws.binary(true);
+    auto [wec, wn] = co_await ws.async_write(net::buffer(start_bytes), Tuple());
+    if (wec) co_return fail("write", wec);
+    beast::flat_buffer buffer;
+    meshwave::proto::ServerMessage m;
+    uint32_t next_cursor = 0;  // of the next packet expected
+    bool complete = false;
+    while (!complete) {
+      buffer.clear();
+      auto [rec, n] = co_await ws.async_read(buffer, Tuple());
+      if (rec) co_return fail("read", rec);
+      ++stats.messages;
+      stats.bytes_total += n;
+      if (shared.holding) stats.bytes_held += n;
+      const auto data = buffer.cdata();
+      if (!m.ParseFromArray(data.data(), static_cast<int>(data.size()))) {
+        stats.failed = true;
+        stats.error = "a message that does not parse";
+        co_return;
+      }
+      if (m.has_error()) {
+        stats.failed = true;
+        stats.error = "server error: " + m.error().message();
+        co_return;
+      }
+      if (m.has_packet()) {
+        if (m.packet().cursor() != next_cursor) {
+          stats.failed = true;
+          stats.error = "packet cursor " + std::to_string(m.packet().cursor()) +
+                        " where " + std::to_string(next_cursor) + " was due";
+          co_return;
+        }
+        ++next_cursor;
+      }
+      if (!m.has_done()) continue;
+      const std::string* next = &again_bytes;
+      if (refining) {
+        if (m.done().complete()) {
+          ++stats.completed;
+          complete = true;
+          break;
+        }
+        ++stats.refines;
+        next = &refine_bytes;
+      } else {
+        ++stats.completed;
+        next_cursor = 0;  // the same payloads again, still paced
+      }
+      auto [aec, an] = co_await ws.async_write(net::buffer(*next), Tuple());
       if (aec) co_return fail("write", aec);
     }
+    // The order received to its end: close, and a new session.
+    auto [clec] = co_await ws.async_close(websocket::close_code::normal, Tuple());
+    if (clec && !shared.stopping) co_return fail("close", clec);
+    if (shared.stopping) co_return;
+    shared.sockets[index] =
+        std::make_unique<websocket::stream<beast::tcp_stream>>(
+            ws.get_executor());
   }
 }
 
@@ -136,6 +184,10 @@ bool ParseArgs(int argc, char** argv, Options& o) {
       o.seconds = std::stod(v);
     } else if (k == "--ramp-per-second") {
       o.ramp_per_second = std::max(1, std::stoi(v));
+    } else if (k == "--budget") {
+      o.budget = std::stoull(v);
+    } else if (k == "--refine") {
+      o.refine = std::stoull(v);
     } else {
       return false;
     }
@@ -156,7 +208,8 @@ int main(int argc, char** argv) {
   if (!ParseArgs(argc, argv, options)) {
     std::fprintf(stderr,
                  "usage: ws_load --port P --mesh ID [--sessions N] [--rate "
-                 "B/s] [--seconds S] [--ramp-per-second N]\n");
+                 "B/s] [--seconds S] [--ramp-per-second N] [--budget B "
+                 "--refine R]\n");
     return 2;
   }
   // The io_context first: it must outlive the sockets in `shared`.
@@ -216,7 +269,7 @@ int main(int argc, char** argv) {
       std::chrono::duration<double>(shared.hold_end - shared.hold_start)
           .count();
   int connected = 0, failed = 0, alive = 0;
-  uint64_t total = 0;
+  uint64_t total = 0, connections = 0, refines = 0, completed = 0;
   std::vector<double> rates;
   std::string first_error;
   for (const auto& s : stats) {
@@ -225,15 +278,23 @@ int main(int argc, char** argv) {
     if (s.failed && first_error.empty()) first_error = s.error;
     if (s.connected && !s.failed) ++alive;
     total += s.bytes_held;
+    connections += s.connections;
+    refines += s.refines;
+    completed += s.completed;
     if (s.connected) rates.push_back(static_cast<double>(s.bytes_held) / held);
   }
   std::printf(
       "sessions %d, connected %d, alive at the end %d, failed %d%s%s\n"
       "held %.1f s at %llu B/s each: received %.1f MB, %.2f MB/s in all\n"
-      "per-session rate B/s: min %.0f, median %.0f, max %.0f\n",
+      "per-session rate B/s: min %.0f, median %.0f, max %.0f\n"
+      "ws_sessions_opened %llu\nws_refines %llu\nws_orders_completed %llu\n"
+      "ws_failed %d\n",
       o.sessions, connected, alive, failed, first_error.empty() ? "" : ": ",
       first_error.c_str(), held, static_cast<unsigned long long>(o.rate),
       static_cast<double>(total) / 1e6, static_cast<double>(total) / 1e6 / held,
-      Percentile(rates, 0), Percentile(rates, 0.5), Percentile(rates, 1));
+      Percentile(rates, 0), Percentile(rates, 0.5), Percentile(rates, 1),
+      static_cast<unsigned long long>(connections),
+      static_cast<unsigned long long>(refines),
+      static_cast<unsigned long long>(completed), failed);
   return failed == 0 && connected == o.sessions ? 0 : 1;
 }
