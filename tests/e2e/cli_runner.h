@@ -76,6 +76,7 @@ class TempDir {
   std::filesystem::path operator/(const std::string& name) const {
     return path_ / name;
   }
+  const std::filesystem::path& path() const { return path_; }
 
  private:
   std::filesystem::path path_;

@@ -41,6 +41,30 @@ TEST(EncodeDecodeCliTest, FullStreamIsNearLossless) {
   EXPECT_GE(PsnrAgainst(in, dir / "full.ply"), 90.0);
 }
 
+// --transform sawt end to end: the filter choices travel in the header and
+// the complete stream is as near-lossless as the default transform's.
+TEST(EncodeDecodeCliTest, SawtStreamIsNearLosslessLikeTheDefault) {
+  TempDir dir;
+  const auto in = testing::SampleMesh("holes.off");
+  auto r = RunCli({"encode", in.string(), (dir / "sawt.mwv").string(), "--transform", "sawt",
+                   "--sawt-alpha", "200"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("sawt/none"), std::string::npos) << r.out;  // unlifted by default
+  EXPECT_NE(r.out.find("choices per filter f1:"), std::string::npos) << r.out;
+  ASSERT_EQ(RunCli({"encode", in.string(), (dir / "bf.mwv").string()}).exit_code, 0);
+  r = RunCli({"decode", (dir / "sawt.mwv").string(), (dir / "sawt.ply").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ASSERT_EQ(RunCli({"decode", (dir / "bf.mwv").string(), (dir / "bf.ply").string()}).exit_code,
+            0);
+  const double sawt = PsnrAgainst(in, dir / "sawt.ply");
+  const double butterfly = PsnrAgainst(in, dir / "bf.ply");
+  EXPECT_GE(sawt, 90.0);
+  EXPECT_GT(sawt, butterfly - 1.0) << "default " << butterfly;
+  r = RunCli({"encode", "--help"});
+  EXPECT_NE(r.out.find("sawt"), std::string::npos);
+  EXPECT_NE(r.out.find("--sawt-alpha"), std::string::npos);
+}
+
 TEST(EncodeDecodeCliTest, BudgetAndMaxLevelGiveCoarserMeshes) {
   TempDir dir;
   const auto in = testing::SampleMesh("holes.off");

@@ -22,7 +22,7 @@ namespace meshwave::cli {
 namespace {
 
 struct AnalyzeArgs {
-  std::string in, plots, draco_csv, predictor = "butterfly", update = "constant";
+  std::string in, plots, draco_csv, predictor = "butterfly", update = "";
   int levels = -1;
   int precision = 16;
   int subbands = 5;
@@ -181,10 +181,17 @@ std::vector<SnrGainCurve> SnrGainCurves() {
   return out;
 }
 
-Status Run(const AnalyzeArgs& args) {
+Status Run(const AnalyzeArgs& given) {
   EncodeOptions options;
   MW_RETURN_IF_ERROR(
-      ApplyTransformOptions(args.predictor, args.update, args.precision, options));
+      ApplyTransformOptions(given.predictor, given.update, given.precision, options));
+  if (options.transform.predictor == Predictor::kSawt) {
+    return InvalidArgument(
+        "analyze does not run sawt (its filters are chosen inside the encoder); "
+        "measure it with `meshwave rd --transform sawt`");
+  }
+  AnalyzeArgs args = given;  // with the update resolved, as the report prints it
+  args.update = UpdateWeightsName(options.transform.update);
   MW_ASSIGN_OR_RETURN(TriMesh raw, ReadMesh(args.in));
   SemiRegularInputOptions in_options;
   in_options.levels = args.levels;

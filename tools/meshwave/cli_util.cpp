@@ -70,13 +70,15 @@ Result<uint64_t> ParseByteSize(const std::string& text) {
 void AddTransformOptions(CLI::App* cmd, std::string& predictor,
                          std::string& update, int& levels, int& precision) {
   cmd->add_option("--predictor,--transform", predictor,
-                  "Wavelet prediction: butterfly, linear or loop")
-      ->check(CLI::IsMember({"butterfly", "linear", "loop"}))
+                  "Wavelet prediction: butterfly, linear, loop, or sawt (spatially "
+                  "adaptive, seed 2.3: one of six filters per octree region and level, "
+                  "the choices coded in the header)")
+      ->check(CLI::IsMember({"butterfly", "linear", "loop", "sawt"}))
       ->capture_default_str();
   cmd->add_option("--update", update,
-                  "Lifting update: constant (lifted), none (unlifted) or valence")
-      ->check(CLI::IsMember({"constant", "none", "valence", "lifted", "unlifted"}))
-      ->capture_default_str();
+                  "Lifting update: constant (lifted), none (unlifted) or valence "
+                  "(default: constant; none with sawt)")
+      ->check(CLI::IsMember({"constant", "none", "valence", "lifted", "unlifted"}));
   cmd->add_option("--levels", levels,
                   "Subdivision levels when remeshing (default: chosen from the input)")
       ->check(CLI::Range(1, 8));
@@ -86,11 +88,31 @@ void AddTransformOptions(CLI::App* cmd, std::string& predictor,
       ->capture_default_str();
 }
 
+void AddSawtOptions(CLI::App* cmd, uint32_t& alpha, double& lambda_scale) {
+  cmd->add_option("--sawt-alpha", alpha,
+                  "SAWT: split octree cells while they hold at least this many vertices")
+      ->check(CLI::Range(1u, 1u << 30))
+      ->capture_default_str();
+  cmd->add_option("--sawt-lambda", lambda_scale,
+                  "SAWT: Lagrangian weight of the filter index bits, in units of the "
+                  "finest step squared")
+      ->check(CLI::Range(0.0, 1e12))
+      ->capture_default_str();
+}
+
 Status ApplyTransformOptions(const std::string& predictor,
                              const std::string& update, int precision,
                              EncodeOptions& options) {
   MW_ASSIGN_OR_RETURN(options.transform.predictor, ParsePredictor(predictor));
-  MW_ASSIGN_OR_RETURN(options.transform.update, ParseUpdateWeights(update));
+  if (update.empty()) {
+    // SAWT chooses its filters on prediction error alone: unlifted by
+    // default (CODEC_NOTES 3); every other predictor is lifted.
+    options.transform.update = options.transform.predictor == Predictor::kSawt
+                                   ? UpdateWeights::kNone
+                                   : UpdateWeights::kConstant;
+  } else {
+    MW_ASSIGN_OR_RETURN(options.transform.update, ParseUpdateWeights(update));
+  }
   options.precision = precision;
   return Status::Ok();
 }

@@ -30,7 +30,10 @@ Result<uint64_t> ParseByteSize(const std::string& text);
 // rd): --predictor/--transform, --update, --levels (remeshing), --precision.
 void AddTransformOptions(CLI::App* cmd, std::string& predictor,
                          std::string& update, int& levels, int& precision);
-// Applies the parsed values of those options to `options`.
+// --sawt-alpha and --sawt-lambda (EncodeOptions::sawt_alpha, sawt_lambda_scale).
+void AddSawtOptions(CLI::App* cmd, uint32_t& alpha, double& lambda_scale);
+// Applies the parsed values of those options to `options`; an empty
+// `update` is the predictor's default (none for sawt, else constant).
 Status ApplyTransformOptions(const std::string& predictor,
                              const std::string& update, int precision,
                              EncodeOptions& options);

@@ -18,11 +18,13 @@ namespace meshwave::cli {
 namespace {
 
 struct EncodeArgs {
-  std::string in, out, predictor = "butterfly", update = "constant",
+  std::string in, out, predictor = "butterfly", update = "",
                         coder = "3xc", quantizer = "saq";
   int levels = -1;
   int precision = 16;
   bool force_remesh = false;
+  uint32_t sawt_alpha = EncodeOptions{}.sawt_alpha;
+  double sawt_lambda = EncodeOptions{}.sawt_lambda_scale;
 };
 
 Result<SemiRegularMesh> LoadSemiRegular(const EncodeArgs& args) {
@@ -51,6 +53,8 @@ Status Run(const EncodeArgs& args) {
   EncodeOptions options;
   MW_RETURN_IF_ERROR(
       ApplyTransformOptions(args.predictor, args.update, args.precision, options));
+  options.sawt_alpha = args.sawt_alpha;
+  options.sawt_lambda_scale = args.sawt_lambda;
   MW_ASSIGN_OR_RETURN(options.coder, ParseCoderKind(args.coder));
   MW_RETURN_IF_ERROR(ApplyQuantizerOption(args.quantizer, options));
   options.name = std::filesystem::path(args.in).stem().string();
@@ -71,6 +75,15 @@ Status Run(const EncodeArgs& args) {
               PredictorName(options.transform.predictor),
               UpdateWeightsName(options.transform.update),
               CoderKindName(options.coder), 8.0 * static_cast<double>(bytes.size()) / v);
+  if (!stream.sawt_filter_usage.empty()) {
+    std::printf("sawt: %u regions (alpha %u), header field %zu bytes; choices per filter",
+                stream.sawt_regions, options.sawt_alpha,
+                stream.header.transform().sawt().coded().size());
+    for (size_t l = 0; l < stream.sawt_filter_usage.size(); ++l) {
+      std::printf(" f%zu:%u", l + 1, stream.sawt_filter_usage[l]);
+    }
+    std::printf("\n");
+  }
   return Status::Ok();
 }
 
@@ -85,6 +98,7 @@ void AddEncodeCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("out", args->out, "Output stream (.mwv)")->required();
   AddTransformOptions(cmd, args->predictor, args->update, args->levels,
                       args->precision);
+  AddSawtOptions(cmd, args->sawt_alpha, args->sawt_lambda);
   cmd->add_option("--coder", args->coder, "Bitplane coder: 3xc or sim")
       ->check(CLI::IsMember({"3xc", "sim"}))
       ->capture_default_str();

@@ -24,11 +24,13 @@ namespace {
 
 struct RdArgs {
   std::string in, csv, coders = "3xc,sim,pgc", predictor = "butterfly",
-                       update = "constant", quantizer = "saq";
+                       update = "", quantizer = "saq";
   int levels = -1;
   int precision = 16;
   uint32_t leaf_size = EncodeOptions{}.octree_leaf_size;
   bool json = false;
+  uint32_t sawt_alpha = EncodeOptions{}.sawt_alpha;
+  double sawt_lambda = EncodeOptions{}.sawt_lambda_scale;
 };
 
 struct LoadedMesh {
@@ -168,10 +170,14 @@ proto::RdReport Report(const RdArgs& args, const LoadedMesh& loaded,
   return r;
 }
 
-Status Run(const RdArgs& args) {
+Status Run(const RdArgs& given) {
   EncodeOptions options;
   MW_RETURN_IF_ERROR(
-      ApplyTransformOptions(args.predictor, args.update, args.precision, options));
+      ApplyTransformOptions(given.predictor, given.update, given.precision, options));
+  RdArgs args = given;  // with the update resolved, as the report prints it
+  args.update = UpdateWeightsName(options.transform.update);
+  options.sawt_alpha = args.sawt_alpha;
+  options.sawt_lambda_scale = args.sawt_lambda;
   options.octree_leaf_size = args.leaf_size;
   MW_RETURN_IF_ERROR(ApplyQuantizerOption(args.quantizer, options));
   options.name = std::filesystem::path(args.in).stem().string();
@@ -212,6 +218,7 @@ void AddRdCommand(CLI::App& app, int& exit_code) {
                   "bpv_excl_base,psnr_db");
   AddTransformOptions(cmd, args->predictor, args->update, args->levels,
                       args->precision);
+  AddSawtOptions(cmd, args->sawt_alpha, args->sawt_lambda);
   cmd->add_option("--leaf-size", args->leaf_size,
                   "Octree leaf size of SIM and 3xC (coefficients coded one by one "
                   "below it)")

@@ -33,6 +33,12 @@ struct EncodeOptions {
   // then only the fallback for tiny subbands. 3xC and SIM only: the PGC
   // baseline keeps one deadzone.
   bool auto_deadzone = false;
+  // SAWT (transform.predictor == kSawt, seed 2.3): octree cells split while
+  // they hold >= sawt_alpha vertices, and the Lagrangian of each filter
+  // choice weighs its index bits by lambda = sawt_lambda_scale * step^2,
+  // step being the finest step above (docs/ANALYSIS.md for the tuning).
+  uint32_t sawt_alpha = 400;
+  double sawt_lambda_scale = 64.0;
   std::string name;
 };
 
@@ -45,6 +51,10 @@ struct EncodedStream {
   // mesh so that it codes compactly, and a decoder returns vertices in this
   // order. Compare decoded meshes with these positions.
   SemiRegularMesh mesh;
+  // SAWT only: how many coded (level, region) choices took each of the
+  // filters f1..f6, and the number of regions.
+  std::vector<uint32_t> sawt_filter_usage;
+  uint32_t sawt_regions = 0;
 };
 
 Result<EncodedStream> EncodeMesh(const SemiRegularMesh& mesh,

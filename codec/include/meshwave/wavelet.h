@@ -26,7 +26,12 @@ enum class Predictor {
   kButterfly,  // Zorin's modified butterfly: 8-point rule, extraordinary
                // and boundary rules (CODEC_NOTES 2.3)
   kLoop,       // Loop's edge mask 3/8, 3/8, 1/8, 1/8; midpoint on boundaries
+  kSawt,       // spatially adaptive (seed 2.3): one of the filters f1..f6
+               // per (level, region), TransformSettings::sawt says which
 };
+
+// The SAWT's regions and filter choices (wavelet/sawt_plan.h).
+struct SawtPlan;
 
 enum class UpdateWeights {
   kNone,      // unlifted: coarse levels are plain subsamples
@@ -40,13 +45,21 @@ enum class FrameMode {
 };
 
 struct TransformSettings {
+  TransformSettings() = default;
+  TransformSettings(Predictor p, UpdateWeights u, FrameMode f,
+                    std::shared_ptr<const SawtPlan> plan = nullptr)
+      : predictor(p), update(u), frames(f), sawt(std::move(plan)) {}
+
   Predictor predictor = Predictor::kButterfly;
   UpdateWeights update = UpdateWeights::kConstant;
   FrameMode frames = FrameMode::kLocal;
+  // Required with Predictor::kSawt, ignored otherwise. The encoder chooses
+  // it (ChooseSawtFilters), a decoder reads it from the stream header.
+  std::shared_ptr<const SawtPlan> sawt;
 };
 
 // Names as used on the command line and in the stream header:
-// "linear", "butterfly", "loop" plus "lifted"/"unlifted"; e.g. "butterfly".
+// "linear", "butterfly", "loop", "sawt" plus "lifted"/"unlifted"; e.g. "butterfly".
 Result<Predictor> ParsePredictor(const std::string& name);
 const char* PredictorName(Predictor predictor);
 Result<UpdateWeights> ParseUpdateWeights(const std::string& name);

@@ -60,6 +60,9 @@ SubbandGains Measure(const TransformSettings& settings, int levels) {
                                        torus.faces, measured);
   TransformSettings global = settings;
   global.frames = FrameMode::kGlobal;
+  // SAWT's gains are taken as f1's: on the regular torus f1 is the
+  // butterfly, and the calibration of the packet index corrects the rest.
+  if (global.predictor == Predictor::kSawt) global.predictor = Predictor::kButterfly;
   auto t = WaveletTransform::Create(*h, global);
   Pyramid zero;
   zero.hierarchy = *h;

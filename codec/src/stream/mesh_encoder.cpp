@@ -12,6 +12,7 @@
 #include "quant/subband_gains.h"
 #include "stream/base_mesh_codec.h"
 #include "stream/stream_preparation.h"
+#include "wavelet/sawt_choice.h"
 #include "stream/stream_format.h"
 
 namespace meshwave {
@@ -52,6 +53,11 @@ Result<EncodedStream> EncodeMesh(const SemiRegularMesh& input,
   EncodedStream out;
   out.mesh = std::move(prepared.mesh);
   out.header = std::move(prepared.header);
+  if (prepared.transform.sawt) {
+    const auto usage = SawtFilterUsage(*out.mesh.hierarchy, *prepared.transform.sawt);
+    out.sawt_filter_usage.assign(usage.begin(), usage.end());
+    out.sawt_regions = prepared.transform.sawt->regions.count;
+  }
   const SemiRegularMesh& mesh = out.mesh;
   const SemiRegularHierarchy& h = *mesh.hierarchy;
   const int levels = h.levels();

@@ -3,6 +3,7 @@
 
 #include "quant/deadzone_quantizer.h"
 #include "stream/pgc_stream.h"
+#include "stream/sawt_field.h"
 #include "stream/stream_format.h"
 
 namespace meshwave {
@@ -75,6 +76,10 @@ Result<std::unique_ptr<PgcDecoder>> PgcDecoder::Create(
   if (header.vertices() != h.vertex_count(levels) ||
       header.faces() != h.faces(levels).size()) {
     return ParseError("PGC header: vertex or face count does not match the hierarchy");
+  }
+  if (settings.predictor == Predictor::kSawt) {
+    MW_ASSIGN_OR_RETURN(settings.sawt,
+                        DecodeSawtChoices(header.transform().sawt(), h, d->base_.grid));
   }
   MW_ASSIGN_OR_RETURN(WaveletTransform t, WaveletTransform::Create(d->hierarchy_, settings));
   d->transform_ = std::make_unique<WaveletTransform>(std::move(t));

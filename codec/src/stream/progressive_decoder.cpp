@@ -12,6 +12,7 @@
 #include "meshwave/wavelet.h"
 #include "quant/deadzone_quantizer.h"
 #include "stream/base_mesh_codec.h"
+#include "stream/sawt_field.h"
 #include "stream/stream_format.h"
 
 namespace meshwave {
@@ -64,6 +65,10 @@ Result<std::unique_ptr<ProgressiveDecoder>> ProgressiveDecoder::Create(
     impl->diagonal += d * d;
   }
   impl->diagonal = std::sqrt(impl->diagonal);
+  if (settings.predictor == Predictor::kSawt) {
+    MW_ASSIGN_OR_RETURN(settings.sawt,
+                        DecodeSawtChoices(header.transform().sawt(), h, impl->base.grid));
+  }
   MW_ASSIGN_OR_RETURN(WaveletTransform t, WaveletTransform::Create(impl->hierarchy, settings));
   impl->transform = std::make_unique<WaveletTransform>(std::move(t));
   impl->layouts = BuildSubbandLayouts(h, impl->base.grid, header.octree_leaf_size());

@@ -12,7 +12,7 @@
 
 namespace meshwave {
 
-inline constexpr uint32_t kFormatVersion = 2;
+inline constexpr uint32_t kFormatVersion = 3;  // 3: Transform.sawt
 inline constexpr char kContainerMagic[4] = {'M', 'W', 'V', '1'};
 // Limits on what a stream may ask a decoder to build.
 inline constexpr uint32_t kMaxBaseVertices = 1u << 24;
@@ -27,6 +27,7 @@ inline uint32_t Crc32c(std::string_view bytes) {
 inline void ToProto(const TransformSettings& s, int levels, proto::Transform& t) {
   t.set_predictor(s.predictor == Predictor::kLinear ? proto::PREDICTOR_LINEAR
                   : s.predictor == Predictor::kLoop ? proto::PREDICTOR_LOOP
+                  : s.predictor == Predictor::kSawt ? proto::PREDICTOR_SAWT
                                                     : proto::PREDICTOR_BUTTERFLY);
   t.set_update(s.update == UpdateWeights::kNone       ? proto::UPDATE_NONE
                : s.update == UpdateWeights::kValence ? proto::UPDATE_VALENCE
@@ -41,6 +42,7 @@ inline Result<TransformSettings> FromProto(const proto::Transform& t) {
     case proto::PREDICTOR_LINEAR: s.predictor = Predictor::kLinear; break;
     case proto::PREDICTOR_BUTTERFLY: s.predictor = Predictor::kButterfly; break;
     case proto::PREDICTOR_LOOP: s.predictor = Predictor::kLoop; break;
+    case proto::PREDICTOR_SAWT: s.predictor = Predictor::kSawt; break;
     default: return ParseError("unknown predictor " + std::to_string(t.predictor()));
   }
   switch (t.update()) {
@@ -50,6 +52,14 @@ inline Result<TransformSettings> FromProto(const proto::Transform& t) {
     default: return ParseError("unknown update weights " + std::to_string(t.update()));
   }
   s.frames = t.local_frames() ? FrameMode::kLocal : FrameMode::kGlobal;
+  // The SAWT choices need the decoded base mesh: the decoders read them
+  // (stream/sawt_field.h) once it is built.
+  if (s.predictor == Predictor::kSawt && !t.has_sawt()) {
+    return ParseError("header: SAWT transform without its filter choices");
+  }
+  if (s.predictor != Predictor::kSawt && t.has_sawt()) {
+    return ParseError("header: SAWT filter choices with another predictor");
+  }
   return s;
 }
 

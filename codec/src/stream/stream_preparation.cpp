@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "stream/sawt_field.h"
 #include "stream/stream_format.h"
+#include "wavelet/sawt_choice.h"
+#include "wavelet/sawt_regions.h"
 
 namespace meshwave {
 
@@ -21,6 +24,52 @@ double BaseStep(const PreparedStream& p, const SemiRegularHierarchy& h) {
   const double ratio = static_cast<double>(h.vertex_count(h.levels())) /
                        static_cast<double>(h.vertex_count(0));
   return p.step0 / std::sqrt(p.gains.base) * std::max(1.0, 0.5 * std::sqrt(ratio));
+}
+
+// The grid a decoder will hold for these base positions.
+Result<std::vector<IntVec3>> DecodedGrid(const std::vector<Vec3>& base, const PreparedStream& p,
+                                         const SemiRegularHierarchy& h) {
+  MW_ASSIGN_OR_RETURN(const proto::BaseMesh coded,
+                      EncodeBaseMesh(base, h.faces(0), BaseStep(p, h)));
+  MW_ASSIGN_OR_RETURN(DecodedBase decoded, DecodeBaseMesh(coded, coded.vertex_count()));
+  return std::move(decoded.grid);
+}
+
+// SAWT regions live on the decoded base grid, but with an update step the
+// base positions depend on the filters chosen: iterate until the regions
+// of the grid that the chosen transform produces are the ones it was
+// chosen with (unlifted: the base is the mesh's own, one round).
+Result<std::shared_ptr<const SawtPlan>> PlanSawt(const PreparedStream& p,
+                                                 const EncodeOptions& options) {
+  const SemiRegularHierarchy& h = *p.mesh.hierarchy;
+  std::vector<Vec3> base(p.mesh.positions.begin(),
+                         p.mesh.positions.begin() + h.vertex_count(0));
+  const double lambda = options.sawt_lambda_scale * p.step0 * p.step0;
+  const uint32_t alpha = std::max<uint32_t>(1, options.sawt_alpha);
+  for (int round = 0; round < 8; ++round) {
+    MW_ASSIGN_OR_RETURN(const std::vector<IntVec3> grid, DecodedGrid(base, p, h));
+    SawtRegions regions = BuildSawtRegions(h, grid, alpha);
+    MW_ASSIGN_OR_RETURN(std::shared_ptr<const SawtPlan> plan,
+                        ChooseSawtFilters(h, regions, p.mesh.positions,
+                                          options.transform.update, lambda));
+    if (options.transform.update == UpdateWeights::kNone) return plan;
+    TransformSettings settings = options.transform;
+    settings.sawt = plan;
+    MW_ASSIGN_OR_RETURN(WaveletTransform t, WaveletTransform::Create(p.mesh.hierarchy, settings));
+    base = t.Forward(p.mesh.positions).base;
+    MW_ASSIGN_OR_RETURN(const std::vector<IntVec3> moved, DecodedGrid(base, p, h));
+    size_t next = 0;
+    const SawtRegions seen = ReplaySawtRegions(h, moved, [&](int) {
+      return next < plan->regions.split_flags.size() ? plan->regions.split_flags[next++] : 0;
+    });
+    if (next == plan->regions.split_flags.size() && seen.count == plan->regions.count &&
+        seen.face_region == plan->regions.face_region) {
+      return plan;
+    }
+  }
+  return InvalidArgument(
+      "SAWT with an update step: the base faces' regions kept moving with the filters "
+      "chosen (8 rounds); encode with --update none");
 }
 
 }  // namespace
@@ -48,8 +97,12 @@ Result<PreparedStream> PrepareStream(const SemiRegularMesh& input,
   }
   out.step0 = std::ldexp(diag, -options.precision);
   out.gains = ComputeSubbandGains(options.transform, levels);
+  out.transform = options.transform;
+  if (out.transform.predictor == Predictor::kSawt) {
+    MW_ASSIGN_OR_RETURN(out.transform.sawt, PlanSawt(out, options));
+  }
   MW_ASSIGN_OR_RETURN(WaveletTransform transform,
-                      WaveletTransform::Create(out.mesh.hierarchy, options.transform));
+                      WaveletTransform::Create(out.mesh.hierarchy, out.transform));
   out.pyramid = transform.Forward(out.mesh.positions);
 
   proto::StreamHeader& header = out.header;
@@ -61,11 +114,15 @@ Result<PreparedStream> PrepareStream(const SemiRegularMesh& input,
     header.add_bbox_min(box.min[a]);
     header.add_bbox_max(box.max[a]);
   }
-  ToProto(options.transform, levels, *header.mutable_transform());
+  ToProto(out.transform, levels, *header.mutable_transform());
   MW_ASSIGN_OR_RETURN(*header.mutable_base(),
                       EncodeBaseMesh(out.pyramid.base, h.faces(0), BaseStep(out, h)));
   MW_ASSIGN_OR_RETURN(out.base,
                       DecodeBaseMesh(header.base(), header.base().vertex_count()));
+  if (out.transform.sawt) {
+    *header.mutable_transform()->mutable_sawt() =
+        EncodeSawtChoices(h, out.base.grid, *out.transform.sawt, options.sawt_alpha);
+  }
   for (size_t v = 0; v < out.base.positions.size(); ++v) {
     out.base_distortion +=
         out.gains.base * (out.pyramid.base[v] - out.base.positions[v]).squaredNorm();

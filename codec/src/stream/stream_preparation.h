@@ -14,6 +14,7 @@ namespace meshwave {
 struct PreparedStream {
   SemiRegularMesh mesh;        // in the stream's vertex order
   proto::StreamHeader header;  // common fields and the base mesh; no coder
+  TransformSettings transform;  // the options' transform, with its SAWT plan
   Pyramid pyramid;
   SubbandGains gains;
   DecodedBase base;            // the base mesh as a decoder will hold it

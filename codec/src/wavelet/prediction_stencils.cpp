@@ -245,7 +245,64 @@ void AddButterfly(const LevelView& view, StencilBuilder& s, uint32_t e) {
   view.AddWings(s, fb, e, -1.0 / 16);
 }
 
+void AddSawtFilter(const LevelView& view, StencilBuilder& s, uint32_t e, SawtFilter filter) {
+  const uint32_t c1 = view.edges_[e][0], c2 = view.edges_[e][1];
+  const uint32_t fa = view.edge_faces_[e][0], fb = view.edge_faces_[e][1];
+  if (fb == kNone) {
+    if (filter == SawtFilter::kButterfly || filter == SawtFilter::kTenseButterfly) {
+      const double w = filter == SawtFilter::kButterfly ? 1.0 / 16 : 1.0 / 8;
+      s.Add(c1, 0.5 + w);
+      s.Add(c2, 0.5 + w);
+      s.Add(view.OtherBoundaryNeighbour(c1, c2), -w);
+      s.Add(view.OtherBoundaryNeighbour(c2, c1), -w);
+    } else {
+      s.Add(c1, 0.5);
+      s.Add(c2, 0.5);
+    }
+    return;
+  }
+  const uint32_t c3 = view.Opposite(fa, e), c4 = view.Opposite(fb, e);
+  // Weights of (c1, c2), (c3, c4) and each wing.
+  double near = 0.5, far = 0, wing = 0;
+  switch (filter) {
+    case SawtFilter::kButterfly: far = 1.0 / 8; wing = -1.0 / 16; break;
+    case SawtFilter::kTenseButterfly: far = 1.0 / 4; wing = -1.0 / 8; break;
+    case SawtFilter::kLoop: near = 3.0 / 8; far = 1.0 / 8; break;
+    case SawtFilter::kEdge: break;
+    case SawtFilter::kAntiEdge: near = 0; far = 0.5; break;
+    case SawtFilter::kHybrid: near = 0.25; far = 0.25; break;
+  }
+  if (near != 0) {
+    s.Add(c1, near);
+    s.Add(c2, near);
+  }
+  if (far != 0) {
+    s.Add(c3, far);
+    s.Add(c4, far);
+  }
+  if (wing != 0) {
+    view.AddWings(s, fa, e, wing);
+    view.AddWings(s, fb, e, wing);
+  }
+}
+
 }  // namespace
+
+StencilTable BuildSawtStencils(const SemiRegularHierarchy& hierarchy, int j,
+                               const VertexRings& rings,
+                               std::span<const SawtFilter> filter_of_edge) {
+  const LevelView view(hierarchy, j, rings);
+  StencilTable table;
+  table.offsets.reserve(view.edges_.size() + 1);
+  table.offsets.push_back(0);
+  table.weight_start.reserve(view.edges_.size());
+  StencilBuilder s;
+  for (uint32_t e = 0; e < view.edges_.size(); ++e) {
+    AddSawtFilter(view, s, e, filter_of_edge[e]);
+    s.Flush(table);
+  }
+  return table;
+}
 
 StencilTable BuildPredictionStencils(const SemiRegularHierarchy& hierarchy,
                                      int j, const VertexRings& rings,
@@ -288,6 +345,9 @@ StencilTable BuildPredictionStencils(const SemiRegularHierarchy& hierarchy,
       case Predictor::kButterfly:
         if (TryRegularButterfly(view, e, regular_run, table)) continue;
         AddButterfly(view, s, e);
+        break;
+      case Predictor::kSawt:  // without choices: f1 everywhere
+        AddSawtFilter(view, s, e, SawtFilter::kButterfly);
         break;
     }
     s.Flush(table);

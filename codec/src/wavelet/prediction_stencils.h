@@ -4,11 +4,13 @@
 #define MESHWAVE_WAVELET_PREDICTION_STENCILS_H_
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "meshwave/semiregular.h"
 #include "meshwave/wavelet.h"
 #include "semiregular/vertex_rings.h"
+#include "wavelet/sawt_plan.h"
 
 namespace meshwave {
 
@@ -29,10 +31,30 @@ struct StencilTable {
   }
 };
 
+// Prediction of odd vertex k from the level's positions x.
+inline Vec3 PredictWithStencil(const StencilTable& s, uint32_t k, const Vec3* x) {
+  const uint32_t begin = s.offsets[k], end = s.offsets[k + 1];
+  const double* w = s.weights.data() + s.weight_start[k];
+  const uint32_t* idx = s.indices.data() + begin;
+  Vec3 p = Vec3::Zero();
+  for (uint32_t i = 0; i < end - begin; ++i) p += w[i] * x[idx[i]];
+  return p;
+}
+
 // `rings` are the one-rings of M^j. Weights of every stencil sum to 1.
 StencilTable BuildPredictionStencils(const SemiRegularHierarchy& hierarchy,
                                      int j, const VertexRings& rings,
                                      Predictor predictor);
+
+// SAWT stencils: edge k of M^j is predicted by filter_of_edge[k] (seed 2.3).
+// Interior edges: the filter as written, wings reflected where missing.
+// Boundary edges (no c4): f1 and f2 become their curve rules along the
+// boundary, 1/2 + w on the endpoints and -w on the boundary neighbours
+// beyond (w = 1/16: the 4-point rule; w = 1/8), and f3..f6 the midpoint,
+// which is what they give with c4 reflected to c1 + c2 - c3.
+StencilTable BuildSawtStencils(const SemiRegularHierarchy& hierarchy, int j,
+                               const VertexRings& rings,
+                               std::span<const SawtFilter> filter_of_edge);
 
 // The update weights (w_a, w_b) of every odd vertex of level j+1, for the
 // two endpoints of its edge; empty for UpdateWeights::kNone.

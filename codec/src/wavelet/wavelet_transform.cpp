@@ -4,6 +4,7 @@
 #include "semiregular/vertex_rings.h"
 #include "wavelet/local_frames.h"
 #include "wavelet/prediction_stencils.h"
+#include "wavelet/sawt_regions.h"
 
 namespace meshwave {
 
@@ -13,15 +14,6 @@ struct WaveletTransform::Level {
 };
 
 namespace {
-
-Vec3 Predict(const StencilTable& s, uint32_t k, const Vec3* x) {
-  const uint32_t begin = s.offsets[k], end = s.offsets[k + 1];
-  const double* w = s.weights.data() + s.weight_start[k];
-  const uint32_t* idx = s.indices.data() + begin;
-  Vec3 p = Vec3::Zero();
-  for (uint32_t i = 0; i < end - begin; ++i) p += w[i] * x[idx[i]];
-  return p;
-}
 
 // Face normals of the level being transformed; kept per thread so repeated
 // transforms of large meshes do not allocate (and fault in) new pages.
@@ -36,6 +28,22 @@ Result<WaveletTransform> WaveletTransform::Create(
     std::shared_ptr<const SemiRegularHierarchy> hierarchy,
     const TransformSettings& settings) {
   if (!hierarchy) return InvalidArgument("no hierarchy");
+  const SawtPlan* plan = settings.sawt.get();
+  if (settings.predictor == Predictor::kSawt) {
+    if (plan == nullptr) return InvalidArgument("SAWT transform without its filter choices");
+    if (plan->filters.size() != static_cast<size_t>(hierarchy->levels()) ||
+        plan->regions.face_region.size() != hierarchy->faces(0).size()) {
+      return InvalidArgument("SAWT filter choices do not fit the hierarchy");
+    }
+    for (const auto& level : plan->filters) {
+      if (level.size() != plan->regions.count) {
+        return InvalidArgument("SAWT filter choices: one per region and level expected");
+      }
+    }
+    for (uint32_t r : plan->regions.face_region) {
+      if (r >= plan->regions.count) return InvalidArgument("SAWT region out of range");
+    }
+  }
   auto levels = std::make_shared<std::vector<Level>>();
   for (int j = 0; j < hierarchy->levels(); ++j) {
     auto rings =
@@ -44,8 +52,15 @@ Result<WaveletTransform> WaveletTransform::Create(
       return rings.status().WithContext("level " + std::to_string(j));
     }
     Level level;
-    level.stencils =
-        BuildPredictionStencils(*hierarchy, j, *rings, settings.predictor);
+    if (settings.predictor == Predictor::kSawt) {
+      const auto region = SawtOddVertexRegions(*hierarchy, j, plan->regions.face_region);
+      std::vector<SawtFilter> filter(region.size());
+      for (size_t k = 0; k < region.size(); ++k) filter[k] = plan->filters[j][region[k]];
+      level.stencils = BuildSawtStencils(*hierarchy, j, *rings, filter);
+    } else {
+      level.stencils =
+          BuildPredictionStencils(*hierarchy, j, *rings, settings.predictor);
+    }
     level.update = BuildUpdateWeights(*hierarchy, j, *rings, settings.update);
     levels->push_back(std::move(level));
   }
@@ -80,7 +95,7 @@ void WaveletTransform::Forward(std::span<const Vec3> positions,
     const uint32_t n = static_cast<uint32_t>(h.subband_size(j));
     Vec3* odd = x.data() + vj;
     for (uint32_t k = 0; k < n; ++k) {
-      odd[k] -= Predict(level.stencils, k, x.data());
+      odd[k] -= PredictWithStencil(level.stencils, k, x.data());
     }
     if (!level.update.empty()) {
       const auto& edges = h.edges(j);
@@ -137,7 +152,7 @@ void WaveletTransform::Inverse(const Pyramid& pyramid, int max_level,
       }
     }
     for (uint32_t k = 0; k < n; ++k) {
-      odd[k] += Predict(level.stencils, k, x.data());
+      odd[k] += PredictWithStencil(level.stencils, k, x.data());
     }
   }
 }
@@ -147,7 +162,7 @@ void WaveletTransform::PredictLevel(int j, std::span<Vec3> positions) const {
   const uint32_t vj = hierarchy_->vertex_count(j);
   const uint32_t n = static_cast<uint32_t>(hierarchy_->subband_size(j));
   for (uint32_t k = 0; k < n; ++k) {
-    positions[vj + k] = Predict(level.stencils, k, positions.data());
+    positions[vj + k] = PredictWithStencil(level.stencils, k, positions.data());
   }
 }
 
@@ -155,8 +170,9 @@ Result<Predictor> ParsePredictor(const std::string& name) {
   if (name == "linear" || name == "midpoint") return Predictor::kLinear;
   if (name == "butterfly") return Predictor::kButterfly;
   if (name == "loop") return Predictor::kLoop;
+  if (name == "sawt") return Predictor::kSawt;
   return InvalidArgument("unknown predictor \"" + name +
-                         "\" (expected linear, butterfly or loop)");
+                         "\" (expected linear, butterfly, loop or sawt)");
 }
 
 const char* PredictorName(Predictor predictor) {
@@ -164,6 +180,7 @@ const char* PredictorName(Predictor predictor) {
     case Predictor::kLinear: return "linear";
     case Predictor::kButterfly: return "butterfly";
     case Predictor::kLoop: return "loop";
+    case Predictor::kSawt: return "sawt";
   }
   return "?";
 }

@@ -1,0 +1,68 @@
+#include "stream/sawt_field.h"
+
+#include <string>
+
+#include "entropy/arithmetic_decoder.h"
+#include "entropy/arithmetic_encoder.h"
+#include "stream/stream_format.h"
+#include "wavelet/sawt_choice.h"
+#include "wavelet/sawt_index_model.h"
+#include "wavelet/sawt_regions.h"
+
+namespace meshwave {
+
+proto::SawtChoices EncodeSawtChoices(const SemiRegularHierarchy& h,
+                                     std::span<const IntVec3> base_grid,
+                                     const SawtPlan& plan, uint32_t alpha) {
+  ArithmeticEncoder encoder;
+  SawtSideModel model;
+  size_t next = 0;
+  // Replaying the flags gives each its octree depth (its context).
+  ReplaySawtRegions(h, base_grid, [&](int depth) {
+    const int bit = next < plan.regions.split_flags.size() ? plan.regions.split_flags[next++] : 0;
+    encoder.Encode(bit, model.SplitContext(depth));
+    return bit;
+  });
+  ForEachCodedSawtChoice(h, plan.regions, [&](int j, uint32_t r) {
+    model.ForEachIndexBit(plan.filters[j][r],
+                          [&](int bit, BinaryContext& ctx) { encoder.Encode(bit, ctx); });
+  });
+  proto::SawtChoices field;
+  field.set_alpha(alpha);
+  field.set_region_count(plan.regions.count);
+  field.set_coded(encoder.Finish());
+  field.set_crc32c(Crc32c(field.coded()));
+  return field;
+}
+
+Result<std::shared_ptr<const SawtPlan>> DecodeSawtChoices(
+    const proto::SawtChoices& field, const SemiRegularHierarchy& h,
+    std::span<const IntVec3> base_grid) {
+  if (Crc32c(field.coded()) != field.crc32c()) {
+    return ParseError("header: SAWT filter choices are corrupt (the CRC-32C of their " +
+                      std::to_string(field.coded().size()) + " bytes does not match)");
+  }
+  ArithmeticDecoder decoder(field.coded());
+  SawtSideModel model;
+  auto plan = std::make_shared<SawtPlan>();
+  plan->regions = ReplaySawtRegions(
+      h, base_grid, [&](int depth) { return decoder.Decode(model.SplitContext(depth)); });
+  if (plan->regions.count != field.region_count()) {
+    return ParseError("header: SAWT filter choices are corrupt (their split flags give " +
+                      std::to_string(plan->regions.count) + " regions, the header says " +
+                      std::to_string(field.region_count()) + ")");
+  }
+  plan->filters.assign(h.levels(), std::vector<SawtFilter>(plan->regions.count,
+                                                           SawtFilter::kButterfly));
+  ForEachCodedSawtChoice(h, plan->regions, [&](int j, uint32_t r) {
+    plan->filters[j][r] = model.DecodeIndex(decoder);
+  });
+  if (decoder.overrun()) {
+    return ParseError("header: SAWT filter choices are truncated or corrupt (the codeword of " +
+                      std::to_string(field.coded().size()) +
+                      " bytes ends before the last filter index)");
+  }
+  return std::shared_ptr<const SawtPlan>(std::move(plan));
+}
+
+}  // namespace meshwave

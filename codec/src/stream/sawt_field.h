@@ -1,0 +1,32 @@
+// The SAWT filter choices in the stream header (docs/FORMAT.md section 9):
+// the octree split flags, then one filter index per coded (level, region),
+// in one arithmetic codeword with the adaptive models of
+// wavelet/sawt_index_model.h.
+#ifndef MESHWAVE_STREAM_SAWT_FIELD_H_
+#define MESHWAVE_STREAM_SAWT_FIELD_H_
+
+#include <memory>
+#include <span>
+
+#include "bitplane/coefficient_octree.h"
+#include "meshwave/semiregular.h"
+#include "meshwave/status.h"
+#include "stream.pb.h"
+#include "wavelet/sawt_plan.h"
+
+namespace meshwave {
+
+// `base_grid`: the integer base positions the decoder will hold.
+proto::SawtChoices EncodeSawtChoices(const SemiRegularHierarchy& h,
+                                     std::span<const IntVec3> base_grid,
+                                     const SawtPlan& plan, uint32_t alpha);
+
+// Safe on untrusted input: a codeword that ends early or gives another
+// number of regions than the header states is refused.
+Result<std::shared_ptr<const SawtPlan>> DecodeSawtChoices(
+    const proto::SawtChoices& field, const SemiRegularHierarchy& h,
+    std::span<const IntVec3> base_grid);
+
+}  // namespace meshwave
+
+#endif  // MESHWAVE_STREAM_SAWT_FIELD_H_

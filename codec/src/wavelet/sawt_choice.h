@@ -1,0 +1,61 @@
+// The encoder's choice of SAWT filters (seed eq. 15): per (level, region),
+// the filter l minimising E_k[|c_p - f_l(c)|^2] + lambda R_k(f_l), with E_k
+// the mean squared prediction error (x + y + z) over the region's odd
+// vertices and R_k the bits the adaptive index code would spend on l at
+// that point of the stream (wavelet/sawt_index_model.h).
+#ifndef MESHWAVE_WAVELET_SAWT_CHOICE_H_
+#define MESHWAVE_WAVELET_SAWT_CHOICE_H_
+
+#include <array>
+#include <memory>
+#include <span>
+
+#include "meshwave/semiregular.h"
+#include "meshwave/status.h"
+#include "meshwave/wavelet.h"
+#include "wavelet/sawt_plan.h"
+
+namespace meshwave {
+
+// The encoder passes lambda = EncodeOptions::sawt_lambda_scale * step0^2
+// (step0 the finest quantisation step; docs/ANALYSIS.md "SAWT" has the
+// sweep that chose the constant). Levels are chosen finest first, as the forward transform runs: with an
+// update step, the coarser levels' positions depend on the finer choices.
+Result<std::shared_ptr<const SawtPlan>> ChooseSawtFilters(
+    const SemiRegularHierarchy& hierarchy, SawtRegions regions,
+    std::span<const Vec3> positions, UpdateWeights update, double lambda);
+
+// (level, region) pairs that hold at least one odd vertex, in the order
+// the stream codes them: levels finest first, regions in order.
+// visit(j, region).
+template <typename Visit>
+void ForEachCodedSawtChoice(const SemiRegularHierarchy& h, const SawtRegions& regions,
+                            Visit&& visit);
+
+// How many coded (level, region) pairs use each filter.
+std::array<uint32_t, kSawtFilterCount> SawtFilterUsage(const SemiRegularHierarchy& h,
+                                                       const SawtPlan& plan);
+
+}  // namespace meshwave
+
+#include "wavelet/sawt_regions.h"
+
+namespace meshwave {
+
+template <typename Visit>
+void ForEachCodedSawtChoice(const SemiRegularHierarchy& h, const SawtRegions& regions,
+                            Visit&& visit) {
+  for (int j = h.levels() - 1; j >= 0; --j) {
+    std::vector<char> used(regions.count, 0);
+    for (uint32_t k = 0; k < h.subband_size(j); ++k) {
+      used[regions.face_region[SawtBaseFaceOf(h, j, k)]] = 1;
+    }
+    for (uint32_t r = 0; r < regions.count; ++r) {
+      if (used[r]) visit(j, r);
+    }
+  }
+}
+
+}  // namespace meshwave
+
+#endif  // MESHWAVE_WAVELET_SAWT_CHOICE_H_
