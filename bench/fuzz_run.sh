@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Long fuzzing sessions: runs each libFuzzer target of tests/fuzz for a
-# bounded time, one at a time under `nice -n 10`, and appends what it did
+# bounded time, one at a time under `nice -n 19`, and appends what it did
 # (executions, coverage, crashes) to bench/fuzz_runs.tsv, the ledger
 # docs/RELIABILITY.md sums.
 #
@@ -9,7 +9,11 @@
 #     cmake -S . -B build-fuzz -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DMESHWAVE_FUZZ=ON
 #     cmake --build build-fuzz --target <targets>
 # Environment: FUZZ_BUILD=DIR (default build-fuzz), FUZZ_JOBS=N (parallel
-#   libFuzzer jobs per target, default 1).
+#   libFuzzer jobs per target, default 1), FUZZ_NICE=N (default 19: the
+#   machine's other users come first), FUZZ_MAX_LEN=N (libFuzzer -max_len),
+#   FUZZ_TIMEOUT=S (default 120: libFuzzer's -timeout is wall-clock time, and
+#   a process at nice 19 on a loaded machine can wait seconds for a core; at
+#   -timeout=10 two inputs that run in 3 and 29 ms were reported as hangs).
 #
 # Each target fuzzes into its working corpus FUZZ_BUILD/tests/fuzz/work/T
 # (kept between runs, so coverage accumulates), seeded from
@@ -24,6 +28,7 @@ shift || true
 build=${FUZZ_BUILD:-$root/build-fuzz}
 [[ $build = /* ]] || build=$root/$build
 jobs=${FUZZ_JOBS:-1}
+niceness=${FUZZ_NICE:-19}
 all=(ply_reader_fuzz obj_reader_fuzz off_reader_fuzz container_fuzz packet_fuzz
      decoder_order_fuzz http_request_fuzz ws_message_fuzz)
 targets=("$@")
@@ -45,8 +50,9 @@ for t in "${targets[@]}"; do
   work=$build/tests/fuzz/work/$t
   artifacts=$build/tests/fuzz/artifacts/$t
   mkdir -p "$work" "$artifacts"
-  args=(-max_total_time="$seconds" -rss_limit_mb=2048 -timeout=10 -print_final_stats=1
+  args=(-max_total_time="$seconds" -rss_limit_mb=2048 -timeout="${FUZZ_TIMEOUT:-120}" -print_final_stats=1
         -artifact_prefix="$artifacts/")
+  [[ -n ${FUZZ_MAX_LEN:-} ]] && args+=(-max_len="$FUZZ_MAX_LEN")
   d=$(dict_of "$t")
   [[ -n $d && -f $root/tests/fuzz/dict/$d ]] && args+=(-dict="$root/tests/fuzz/dict/$d")
   corpora=("$work")
@@ -58,10 +64,10 @@ for t in "${targets[@]}"; do
   echo "fuzz_run: $t for ${seconds}s" >&2
   set +e
   if ((jobs > 1)); then
-    nice -n 10 "$bin" "${args[@]}" -jobs="$jobs" -workers="$jobs" "${corpora[@]}" > "$log" 2>&1
+    nice -n "$niceness" "$bin" "${args[@]}" -jobs="$jobs" -workers="$jobs" "${corpora[@]}" > "$log" 2>&1
     cat "$build"/tests/fuzz/fuzz-*.log >> "$log" 2>/dev/null; rm -f "$build"/tests/fuzz/fuzz-*.log
   else
-    nice -n 10 "$bin" "${args[@]}" "${corpora[@]}" > "$log" 2>&1
+    nice -n "$niceness" "$bin" "${args[@]}" "${corpora[@]}" > "$log" 2>&1
   fi
   rc=$?
   set -e

@@ -47,10 +47,14 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     }
     if (s.ok()) ++added;
     fuzz::Require(dec.packets_decoded() == added, "packets_decoded counts what was added");
-    if (i % 8 == 7) (void)dec.Positions(static_cast<int>(data[i] % 5) - 1);
   }
+  // The mesh once per input, not every few steps: the inverse transform
+  // was 40% of an execution (perf), and the decoder's state is what the
+  // order exercises. The level comes from the last step.
   if (added == n) {
     fuzz::Require(dec.Positions() == f.full, "every order gives the same final mesh");
+  } else if (size > 0) {
+    (void)dec.Positions(static_cast<int>(data[size - 1] % 5) - 1);
   }
   return 0;
 }

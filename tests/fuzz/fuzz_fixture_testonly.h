@@ -1,4 +1,6 @@
-// A small real container (an octahedron subdivided three times, 34 packets)
+// A small real container (MESHWAVE_FUZZ_CONTAINER: the octahedron subdivided
+// three times, 34 packets, or for the decoder targets the tetrahedron
+// subdivided twice, 19 packets; tests/fuzz/CMakeLists.txt)
 // loaded once per fuzzing process: the fixed header and payloads the packet
 // and decoder-order targets mutate around.
 #ifndef MESHWAVE_TESTS_FUZZ_FUZZ_FIXTURE_TESTONLY_H_

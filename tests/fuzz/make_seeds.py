@@ -1,8 +1,22 @@
 #!/usr/bin/env python3
 """Regenerates tests/fuzz/seeds/ from real files: the test meshes of
 tests/data, the sample meshes of data/ and the shared development meshes
-(cut to their first lines: small seeds fuzz faster), and the fixture
-container data/octahedron_sr3.mwv (packets split out with protoc).
+(cut to their first lines: small seeds fuzz faster), the fixture
+container data/octahedron_sr3.mwv (container_fuzz; 258 vertices, 34
+packets) and the lighter fixture data/tetrahedron_sr2.mwv of packet_fuzz and
+decoder_order_fuzz (34 vertices, 19 packets: an execution rebuilds a decoder,
+so a smaller mesh fuzzes several times faster). Packets are split out with
+protoc. The seeds made from the octahedron for those two targets are kept
+(prefix octahedron_sr3_): any bytes are valid inputs there.
+
+The fixtures themselves, after a .mwv format change (a build of the new
+format in build/):
+  build/tools/meshwave/meshwave encode --precision 12 \
+    tests/fuzz/data/tetrahedron_sr2.obj tests/fuzz/data/tetrahedron_sr2.mwv
+(a tetrahedron subdivided twice by midpoints, each vertex i moved radially
+by 15 % * sin(3.1 i + 0.7) so that the details are not zero). The
+octahedron's source mesh was not kept: decode octahedron_sr3.mwv with the
+old build (meshwave decode) and encode the result with the new one.
 
 Usage: python3 tests/fuzz/make_seeds.py [SHARED_MESHES_DIR]
 """
@@ -53,12 +67,8 @@ def mesh_seeds():
             put(ext + "_reader_fuzz", "shared_" + name, head_lines(path, 80))
 
 
-def container_seeds():
-    path = os.path.join(HERE, "data", "octahedron_sr3.mwv")
-    data = open(path, "rb").read()
-    put("container_fuzz", "octahedron_sr3.mwv", data)
-    for cut in (0, 4, 8, 100, 700, 900, len(data) - 1):
-        put("container_fuzz", "octahedron_sr3_cut%d.mwv" % cut, data[:cut])
+def split_packets(data):
+    """The payloads of a container, by packet id."""
     n = struct.unpack("<I", data[4:8])[0]
     header = data[8:8 + n]
     text = subprocess.run(["protoc", "--decode=meshwave.proto.StreamHeader", "-I" + os.path.join(ROOT, "proto"),
@@ -69,17 +79,34 @@ def container_seeds():
         payloads.append(data[pos:pos + length])
         pos += length
     assert pos == len(data), (pos, len(data))
+    return payloads
+
+
+def decoder_seeds(payloads, prefix):
+    """packet_fuzz and decoder_order_fuzz inputs for a fixture's packets."""
     for i, p in enumerate(payloads):
         if i % 3 == 0 or i == len(payloads) - 1:
-            put("packet_fuzz", "packet%02d" % i, bytes([i]) + p)
+            put("packet_fuzz", prefix + "packet%02d" % i, bytes([i]) + p)
     count = len(payloads)
-    put("decoder_order_fuzz", "canonical", bytes(range(count)))
-    put("decoder_order_fuzz", "reversed", bytes(reversed(range(count))))
+    put("decoder_order_fuzz", prefix + "canonical", bytes(range(count)))
+    put("decoder_order_fuzz", prefix + "reversed", bytes(reversed(range(count))))
     rng = random.Random(7)
     order = list(range(count))
     rng.shuffle(order)
-    put("decoder_order_fuzz", "shuffled_twice", bytes(order + order))
-    put("decoder_order_fuzz", "damaged", bytes([0x80, 0, 0x81, 1, 2, 0x83, 3, count + 1]))
+    put("decoder_order_fuzz", prefix + "shuffled_twice", bytes(order + order))
+    put("decoder_order_fuzz", prefix + "damaged", bytes([0x80, 0, 0x81, 1, 2, 0x83, 3, count + 1]))
+
+
+def container_seeds():
+    path = os.path.join(HERE, "data", "octahedron_sr3.mwv")
+    data = open(path, "rb").read()
+    put("container_fuzz", "octahedron_sr3.mwv", data)
+    for cut in (0, 4, 8, 100, 700, 900, len(data) - 1):
+        put("container_fuzz", "octahedron_sr3_cut%d.mwv" % cut, data[:cut])
+    decoder_seeds(split_packets(data), "octahedron_sr3_")
+    tiny = open(os.path.join(HERE, "data", "tetrahedron_sr2.mwv"), "rb").read()
+    put("container_fuzz", "tetrahedron_sr2.mwv", tiny)
+    decoder_seeds(split_packets(tiny), "")
     return hashlib.sha256(data).hexdigest()[:12]
 
 
