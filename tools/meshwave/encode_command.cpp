@@ -76,9 +76,10 @@ Status Run(const EncodeArgs& args) {
               UpdateWeightsName(options.transform.update),
               CoderKindName(options.coder), 8.0 * static_cast<double>(bytes.size()) / v);
   if (!stream.sawt_filter_usage.empty()) {
+    // The field as the header carries it: tag, length and message.
+    const size_t field = stream.header.transform().sawt().ByteSizeLong();
     std::printf("sawt: %u regions (alpha %u), header field %zu bytes; choices per filter",
-                stream.sawt_regions, options.sawt_alpha,
-                stream.header.transform().sawt().coded().size());
+                stream.sawt_regions, options.sawt_alpha, field + 1 + (field < 128 ? 1 : 2));
     for (size_t l = 0; l < stream.sawt_filter_usage.size(); ++l) {
       std::printf(" f%zu:%u", l + 1, stream.sawt_filter_usage[l]);
     }
