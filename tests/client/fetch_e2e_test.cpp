@@ -312,7 +312,7 @@ TEST_F(ClientE2eTest, RefuseACorruptStateFile) {
   WriteFile(state, bytes);
   r = RunCli({"refine", state, "--more", "4KiB"});
   EXPECT_EQ(r.exit_code, 1);
-  EXPECT_NE(r.err.find("CRC32C mismatch"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("CRC-16 check mismatch"), std::string::npos) << r.err;
 }
 
 TEST_F(ClientE2eTest, ResumesAfterTheProxyCutsTheConnection) {
@@ -395,7 +395,7 @@ TEST_F(ClientE2eTest, ACorruptByteOnTheWireIsAClearError) {
               "--out", (dir / "bad.ply").string()});
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("meshwave fetch: "), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("CRC32C mismatch"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("CRC-16 check mismatch"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "bad.ply"));
   EXPECT_EQ(corrupt.connections(), 1);  // refused, not retried
 

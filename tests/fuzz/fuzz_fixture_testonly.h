@@ -1,8 +1,12 @@
 // A small real container (MESHWAVE_FUZZ_CONTAINER: the octahedron subdivided
-// three times, 34 packets, or for the decoder targets the tetrahedron
-// subdivided twice, 19 packets; tests/fuzz/CMakeLists.txt)
-// loaded once per fuzzing process: the fixed header and payloads the packet
-// and decoder-order targets mutate around.
+// three times, or for the decoder targets the tetrahedron subdivided twice;
+// tests/fuzz/CMakeLists.txt) loaded once per fuzzing process: the fixed
+// header and payloads the packet and decoder-order targets mutate around.
+// The octahedron is made (in tests/fuzz/) with
+//   meshwave subdivide data/octahedron.off oct3.ply --levels 3 --scheme midpoint
+//   meshwave encode oct3.ply data/octahedron_sr3.mwv
+// the tetrahedron as make_seeds.py says; both are remade whenever the format
+// changes (then run make_seeds.py).
 #ifndef MESHWAVE_TESTS_FUZZ_FUZZ_FIXTURE_TESTONLY_H_
 #define MESHWAVE_TESTS_FUZZ_FUZZ_FIXTURE_TESTONLY_H_
 

@@ -1,7 +1,7 @@
 // Fuzz target: the packet decoder on arbitrary payload bytes. The header is
-// the fixture's, with the chosen packet's length and CRC32C rewritten to
+// the fixture's, with the chosen packet's length and check rewritten to
 // match the input so that the bytes reach the bitplane decoder (a corrupt
-// payload with a valid CRC: what a malicious server can send). Byte 0 picks
+// payload with a valid check: what a malicious server can send). Byte 0 picks
 // the packet; the packets before it in index order (a dependency-closed
 // prefix) are the real ones, and the real packets after it are added
 // afterwards: each must be decoded or refused, never crash.
@@ -11,7 +11,7 @@
 
 #include "fuzz_fixture_testonly.h"
 #include "meshwave/progressive_decoder.h"
-#include "stream/stream_format.h"
+#include "stream/packet_index.h"
 
 using namespace meshwave;
 
@@ -23,7 +23,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string_view payload(reinterpret_cast<const char*>(data + 1), size - 1);
   proto::StreamHeader h = f.header;
   h.mutable_packets()->set_length(static_cast<int>(id), static_cast<uint32_t>(payload.size()));
-  h.mutable_packets()->set_crc32c(static_cast<int>(id), Crc32c(payload));
+  const uint16_t check = PacketCheck(payload);
+  (*h.mutable_packets()->mutable_check())[2 * id] = static_cast<char>(check >> 8);
+  (*h.mutable_packets()->mutable_check())[2 * id + 1] = static_cast<char>(check & 0xff);
   auto dec = ProgressiveDecoder::Create(h);
   fuzz::Require(dec.ok(), "the fixture header is valid");
   for (uint32_t k = 0; k < id; ++k) {

@@ -2,7 +2,7 @@
 // any order that respects their dependencies, and gives the current mesh at
 // any time. The same object serves a file, an HTTP response and a WebSocket
 // session; it does no I/O. Safe on untrusted input: every header field and
-// every packet is checked (bounds, CRC32C, dependencies) before use.
+// every packet is checked (bounds, CRC-16 check, dependencies) before use.
 #ifndef MESHWAVE_PROGRESSIVE_DECODER_H_
 #define MESHWAVE_PROGRESSIVE_DECODER_H_
 

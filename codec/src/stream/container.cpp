@@ -9,6 +9,7 @@
 #include <limits>
 #include <unordered_set>
 
+#include "stream/packet_index.h"
 #include "stream/stream_format.h"
 
 namespace meshwave {
@@ -112,10 +113,11 @@ std::vector<double> EstimatedPsnrCurve(const proto::StreamHeader& header,
   };
   std::vector<double> out;
   out.reserve(order.size() + 1);
-  double distortion = header.initial_distortion();
+  const DistortionEstimates estimates = ReadDistortionIndex(header, PacketChains(header));
+  double distortion = estimates.start;
   out.push_back(psnr(distortion));
   for (uint32_t id : order) {
-    distortion -= header.packets().distortion_reduction(static_cast<int>(id));
+    if (id < estimates.reduction.size()) distortion -= estimates.reduction[id];
     out.push_back(psnr(distortion));
   }
   return out;

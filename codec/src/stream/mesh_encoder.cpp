@@ -11,6 +11,7 @@
 #include "quant/deadzone_quantizer.h"
 #include "quant/subband_gains.h"
 #include "stream/base_mesh_codec.h"
+#include "stream/packet_index.h"
 #include "stream/stream_preparation.h"
 #include "wavelet/sawt_choice.h"
 #include "stream/stream_format.h"
@@ -69,7 +70,9 @@ Result<EncodedStream> EncodeMesh(const SemiRegularMesh& input,
   header.set_coder(options.coder == CoderKind::k3xC ? proto::CODER_3XC
                                                     : proto::CODER_SIM);
   header.set_octree_leaf_size(options.octree_leaf_size);
-  double initial = prepared.base_distortion;
+  DistortionModel model;
+  model.base = prepared.base_distortion;
+  model.chain_start.assign(static_cast<size_t>(levels), 0.0);
   const auto layouts =
       BuildSubbandLayouts(h, base.grid, options.octree_leaf_size);
 
@@ -93,7 +96,7 @@ Result<EncodedStream> EncodeMesh(const SemiRegularMesh& input,
         q.q0[k] = QuantizeMagnitude(q.value[k], q.step, q.xi0);
         q.negative[k] = q.value[k] < 0;
         max_q = std::max(max_q, q.q0[k]);
-        initial += gains.subband[j] * q.value[k] * q.value[k];
+        model.chain_start[j] += gains.subband[j] * q.value[k] * q.value[k];
       }
       q.top = TopBitplane(max_q);
       proto::Quantizer* pq = header.add_quantizers();
@@ -102,7 +105,6 @@ Result<EncodedStream> EncodeMesh(const SemiRegularMesh& input,
       pq->set_top_bitplane(q.top);
     }
   }
-  header.set_initial_distortion(initial);
 
   // Code the packets, subband by subband, bitplanes from the top down.
   proto::PacketIndex& index = *header.mutable_packets();
@@ -139,15 +141,16 @@ Result<EncodedStream> EncodeMesh(const SemiRegularMesh& input,
         }
       }
       std::string payload = enc.Finish();
-      index.add_subband(static_cast<uint32_t>(j));
-      index.add_bitplane(static_cast<uint32_t>(b));
       index.add_length(static_cast<uint32_t>(payload.size()));
-      index.add_crc32c(Crc32c(payload));
-      index.add_distortion_reduction(static_cast<float>(reduction));
+      const uint16_t check = PacketCheck(payload);
+      index.mutable_check()->push_back(static_cast<char>(check >> 8));
+      index.mutable_check()->push_back(static_cast<char>(check & 0xff));
+      model.chain.push_back(static_cast<uint32_t>(j));
+      model.reduction.push_back(reduction);
       out.packets.push_back(std::move(payload));
     }
   }
-  CalibrateDistortionIndex(prepared, header);
+  WriteDistortionIndex(model, prepared.zero_packet_distortion, header);
   return out;
 }
 

@@ -2,6 +2,7 @@
 #include <string>
 
 #include "quant/deadzone_quantizer.h"
+#include "stream/packet_index.h"
 #include "stream/pgc_stream.h"
 #include "stream/sawt_field.h"
 #include "stream/stream_format.h"
@@ -35,22 +36,7 @@ Status ValidatePgcHeader(const proto::StreamHeader& h) {
     }
     top = std::max(top, q.top_bitplane());
   }
-  const auto& index = h.packets();
-  const int count = index.length_size();
-  if (index.subband_size() != count || index.bitplane_size() != count ||
-      index.crc32c_size() != count || index.distortion_reduction_size() != count) {
-    return ParseError("PGC header: packet index arrays differ in length");
-  }
-  if (count != top + 1) {
-    return ParseError("PGC header: " + std::to_string(count) + " packets for " +
-                      std::to_string(top + 1) + " bitplanes");
-  }
-  for (int i = 0; i < count; ++i) {
-    if (index.bitplane(i) != static_cast<uint32_t>(top - i)) {
-      return ParseError("PGC header: packet " + std::to_string(i) +
-                        " is not bitplane " + std::to_string(top - i));
-    }
-  }
+  MW_RETURN_IF_ERROR(ValidateCompactIndex(h, top + 1, 1));
   if (h.bbox_min_size() != 3 || h.bbox_max_size() != 3) {
     return ParseError("PGC header: bounding box needs 3 coordinates");
   }
@@ -109,8 +95,8 @@ Status PgcDecoder::AddPacket(std::string_view payload) {
     return ParseError(what + ": " + std::to_string(payload.size()) +
                       " bytes, index says " + std::to_string(index.length(i)));
   }
-  if (Crc32c(payload) != index.crc32c(i)) {
-    return ParseError(what + ": CRC32C mismatch (corrupt payload)");
+  if (!PacketCheckMatches(index, static_cast<uint32_t>(i), payload)) {
+    return ParseError(what + ": CRC-16 check mismatch (corrupt payload)");
   }
   ArithmeticDecoder dec(payload);
   ZerotreeDecoderIo io(dec);

@@ -5,6 +5,7 @@
 
 #include "quant/deadzone_quantizer.h"
 #include "quant/subband_gains.h"
+#include "stream/packet_index.h"
 #include "stream/pgc_stream.h"
 #include "stream/stream_preparation.h"
 #include "stream/stream_format.h"
@@ -46,7 +47,9 @@ Result<PgcStream> EncodePgc(const SemiRegularMesh& input,
   const Pyramid& pyramid = prepared.pyramid;
   proto::StreamHeader& header = out.header;
   header.set_coder(static_cast<proto::Coder>(kPgcCoderValue));
-  double initial = prepared.base_distortion;
+  DistortionModel model;
+  model.base = prepared.base_distortion;
+  model.chain_start.assign(1, 0.0);
 
   const double xi0 = DeadzoneXi(options.deadzone);
   std::vector<double> steps(levels);
@@ -72,7 +75,7 @@ Result<PgcStream> EncodePgc(const SemiRegularMesh& input,
         t.q0[j][k] = QuantizeMagnitude(x, steps[j], xi0);
         t.negative[j][k] = x < 0;
         max_q = std::max(max_q, t.q0[j][k]);
-        initial += gains.subband[j] * x * x;
+        model.chain_start[0] += gains.subband[j] * x * x;
       }
       t.top[j] = TopBitplane(max_q);
       proto::Quantizer* pq = header.add_quantizers();
@@ -81,7 +84,6 @@ Result<PgcStream> EncodePgc(const SemiRegularMesh& input,
       pq->set_top_bitplane(t.top[j]);
     }
   }
-  header.set_initial_distortion(initial);
 
   std::array<ZerotreeState, 3> states;
   std::array<ZerotreeSetMaxima, 3> maxima;
@@ -112,14 +114,15 @@ Result<PgcStream> EncodePgc(const SemiRegularMesh& input,
       }
     }
     std::string payload = enc.Finish();
-    index.add_subband(0);
-    index.add_bitplane(static_cast<uint32_t>(b));
     index.add_length(static_cast<uint32_t>(payload.size()));
-    index.add_crc32c(Crc32c(payload));
-    index.add_distortion_reduction(static_cast<float>(reduction));
+    const uint16_t check = PacketCheck(payload);
+    index.mutable_check()->push_back(static_cast<char>(check >> 8));
+    index.mutable_check()->push_back(static_cast<char>(check & 0xff));
+    model.chain.push_back(0);
+    model.reduction.push_back(reduction);
     out.packets.push_back(std::move(payload));
   }
-  CalibrateDistortionIndex(prepared, header);
+  WriteDistortionIndex(model, prepared.zero_packet_distortion, header);
   return out;
 }
 

@@ -32,10 +32,11 @@ namespace meshwave {
 inline constexpr int kPgcCoderValue = 2;
 
 // A PGC encoding. `header` is a StreamHeader as EncodeMesh fills it (base
-// mesh, transform, quantizers, bounding box, initial distortion) except that
+// mesh, transform, quantizers, bounding box, base distortion) except that
 // coder is kPgcCoderValue, octree_leaf_size is 0 and the packet index has
 // one entry per bitplane, from the highest top bitplane of any (subband,
-// component) down to 0, with subband = 0 (a packet spans all subbands).
+// component) down to 0, all in one distortion chain (a packet spans all
+// subbands).
 // ContainerSize(header, ids) therefore counts a PGC stream as it counts a
 // 3xC one.
 struct PgcStream {
@@ -54,7 +55,7 @@ Result<PgcStream> EncodePgc(const SemiRegularMesh& mesh,
 
 // Decodes a PGC stream packet by packet, in bitplane order; the mesh can be
 // reconstructed after any number of packets. Checks the header (counts,
-// ranges, hierarchy limits) and every packet (length, CRC32C, symbols within
+// ranges, hierarchy limits) and every packet (length, CRC-16 check, symbols within
 // the payload), so it does not crash on corrupt input, but it is a
 // measurement tool, not a hardened network decoder.
 class PgcDecoder {
@@ -64,6 +65,8 @@ class PgcDecoder {
 
   size_t packet_count() const { return static_cast<size_t>(header_.packets().length_size()); }
   size_t packets_decoded() const { return decoded_; }
+  // Packet i codes bitplane top_bitplane() - i.
+  int top_bitplane() const { return top_; }
 
   // Decodes the next packet. Errors: all packets decoded already
   // (kInvalidArgument), length or CRC mismatch (kParseError, nothing

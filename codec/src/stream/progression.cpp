@@ -7,34 +7,11 @@
 
 #include "meshwave/container.h"
 #include "quant/deadzone_quantizer.h"
+#include "stream/packet_index.h"
 #include "stream/stream_format.h"
 
 namespace meshwave {
 namespace {
-
-int TopOfSubband(const proto::StreamHeader& h, int j) {
-  int top = -1;
-  for (int c = 0; c < 3; ++c) top = std::max(top, h.quantizers(3 * j + c).top_bitplane());
-  return top;
-}
-
-// Id of packet (j, b) or -1: ids run subband by subband, bitplanes down.
-struct PacketMap {
-  std::vector<int> first;  // id of (j, top_j)
-  std::vector<int> top;
-  explicit PacketMap(const proto::StreamHeader& h) {
-    int id = 0;
-    for (int j = 0; j < static_cast<int>(h.transform().levels()); ++j) {
-      first.push_back(id);
-      top.push_back(TopOfSubband(h, j));
-      id += top.back() + 1;
-    }
-  }
-  int Id(int j, int b) const {
-    if (j < 0 || j >= static_cast<int>(top.size()) || b < 0 || b > top[j]) return -1;
-    return first[j] + (top[j] - b);
-  }
-};
 
 }  // namespace
 
@@ -81,42 +58,26 @@ Status ValidateStreamHeader(const proto::StreamHeader& h) {
     }
   }
   const auto& index = h.packets();
-  const int count = index.subband_size();
-  if (index.bitplane_size() != count || index.length_size() != count ||
-      index.crc32c_size() != count || index.distortion_reduction_size() != count) {
-    return ParseError("header: packet index arrays differ in length");
-  }
-  const PacketMap map(h);
-  int expected = 0;
-  for (uint32_t j = 0; j < levels; ++j) expected += map.top[j] + 1;
-  if (count != expected) {
-    return ParseError("header: " + std::to_string(count) + " packets indexed, " +
-                      std::to_string(expected) + " expected from the quantizers");
-  }
-  for (uint32_t j = 0; j < levels; ++j) {
-    for (int b = map.top[j]; b >= 0; --b) {
-      const int id = map.Id(static_cast<int>(j), b);
-      if (index.subband(id) != j || index.bitplane(id) != static_cast<uint32_t>(b)) {
-        return ParseError("header: packet " + std::to_string(id) +
-                          " is not (subband " + std::to_string(j) + ", bitplane " +
-                          std::to_string(b) + ")");
-      }
-      if (index.length(id) > (1u << 30)) {
-        return ParseError("header: packet " + std::to_string(id) + " is too long");
-      }
+  const PacketLayout map(h);
+  MW_RETURN_IF_ERROR(ValidateCompactIndex(h, map.count(), static_cast<int>(levels)));
+  for (int id = 0; id < map.count(); ++id) {
+    if (index.length(id) > (1u << 30)) {
+      return ParseError("header: packet " + std::to_string(id) + " is too long");
     }
   }
   return Status::Ok();
 }
 
-std::vector<uint32_t> PacketDependencies(const proto::StreamHeader& h,
-                                         uint32_t id) {
-  const PacketMap map(h);
-  const int j = static_cast<int>(h.packets().subband(static_cast<int>(id)));
-  const int b = static_cast<int>(h.packets().bitplane(static_cast<int>(id)));
+namespace {
+
+std::vector<uint32_t> Dependencies(const PacketLayout& map, bool parent_contexts,
+                                   uint32_t id) {
+  if (id >= static_cast<uint32_t>(map.count())) return {};
+  const int j = map.Subband(id);
+  const int b = map.Bitplane(id);
   std::vector<uint32_t> deps;
   if (int up = map.Id(j, b + 1); up >= 0) deps.push_back(static_cast<uint32_t>(up));
-  if (h.coder() == proto::CODER_3XC) {
+  if (parent_contexts) {
     if (int parent = map.Id(j - 1, b); parent >= 0) {
       deps.push_back(static_cast<uint32_t>(parent));
     }
@@ -124,13 +85,20 @@ std::vector<uint32_t> PacketDependencies(const proto::StreamHeader& h,
   return deps;
 }
 
+}  // namespace
+
+std::vector<uint32_t> PacketDependencies(const proto::StreamHeader& h,
+                                         uint32_t id) {
+  return Dependencies(PacketLayout(h), h.coder() == proto::CODER_3XC, id);
+}
+
 std::vector<uint32_t> PacketOrder(const proto::StreamHeader& h,
                                   Progression progression, int max_level) {
-  const PacketMap map(h);
-  const int levels = static_cast<int>(map.top.size());
+  const PacketLayout map(h);
+  const int levels = map.levels();
   const int used = (max_level < 0 || max_level > levels) ? levels : max_level;
   int top = -1;
-  for (int j = 0; j < used; ++j) top = std::max(top, map.top[j]);
+  for (int j = 0; j < used; ++j) top = std::max(top, map.Top(j));
   std::vector<uint32_t> order;
   switch (progression) {
     case Progression::kQuality:
@@ -142,7 +110,7 @@ std::vector<uint32_t> PacketOrder(const proto::StreamHeader& h,
       break;
     case Progression::kResolution:
       for (int j = 0; j < used; ++j) {
-        for (int b = map.top[j]; b >= 0; --b) order.push_back(static_cast<uint32_t>(map.Id(j, b)));
+        for (int b = map.Top(j); b >= 0; --b) order.push_back(static_cast<uint32_t>(map.Id(j, b)));
       }
       break;
     case Progression::kRd: {
@@ -150,18 +118,22 @@ std::vector<uint32_t> PacketOrder(const proto::StreamHeader& h,
       // the largest distortion reduction per byte (ties: lower id).
       std::vector<uint32_t> candidates;
       for (int j = 0; j < used; ++j) {
-        for (int b = map.top[j]; b >= 0; --b) candidates.push_back(static_cast<uint32_t>(map.Id(j, b)));
+        for (int b = map.Top(j); b >= 0; --b) candidates.push_back(static_cast<uint32_t>(map.Id(j, b)));
       }
       std::vector<char> sent(h.packets().length_size(), 0);
+      const std::vector<uint32_t> chains = PacketChains(h);
+      const DistortionEstimates estimates = ReadDistortionIndex(h, chains);
       while (order.size() < candidates.size()) {
         int best = -1;
         double best_value = -1;
         for (uint32_t id : candidates) {
           if (sent[id]) continue;
           bool ready = true;
-          for (uint32_t d : PacketDependencies(h, id)) ready = ready && sent[d];
+          for (uint32_t d : Dependencies(map, h.coder() == proto::CODER_3XC, id)) {
+            ready = ready && sent[d];
+          }
           if (!ready) continue;
-          const double value = h.packets().distortion_reduction(static_cast<int>(id)) /
+          const double value = estimates.reduction[id] /
                                (h.packets().length(static_cast<int>(id)) + 4.0);
           // The first ready packet is taken whatever its value: an untrusted
           // header may give reductions below -1 or NaN (fuzz_replay_container_fuzz).

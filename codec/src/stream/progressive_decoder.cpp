@@ -12,6 +12,7 @@
 #include "meshwave/wavelet.h"
 #include "quant/deadzone_quantizer.h"
 #include "stream/base_mesh_codec.h"
+#include "stream/packet_index.h"
 #include "stream/sawt_field.h"
 #include "stream/stream_format.h"
 
@@ -26,6 +27,8 @@ struct ProgressiveDecoder::Impl {
   std::vector<SubbandLayout> layouts;
   std::vector<std::array<ComponentState, 3>> states;
   std::vector<char> have;
+  std::unique_ptr<PacketLayout> packets;
+  std::vector<double> reduction;  // estimated, per packet
   size_t decoded = 0;
   uint64_t bytes = 0;
   double distortion = 0;
@@ -80,7 +83,10 @@ Result<std::unique_ptr<ProgressiveDecoder>> ProgressiveDecoder::Create(
     }
   }
   impl->have.assign(header.packets().length_size(), 0);
-  impl->distortion = header.initial_distortion();
+  impl->packets = std::make_unique<PacketLayout>(header);
+  DistortionEstimates estimates = ReadDistortionIndex(header, PacketChains(header));
+  impl->distortion = estimates.start;
+  impl->reduction = std::move(estimates.reduction);
   return std::unique_ptr<ProgressiveDecoder>(new ProgressiveDecoder(std::move(impl)));
 }
 
@@ -112,17 +118,16 @@ Status ProgressiveDecoder::AddPacket(uint32_t id, std::string_view payload) {
   }
   const auto& index = m.header.packets();
   const int i = static_cast<int>(id);
-  const int j = static_cast<int>(index.subband(i));
-  const int b = static_cast<int>(index.bitplane(i));
+  const int j = m.packets->Subband(id);
+  const int b = m.packets->Bitplane(id);
   const std::string what = "packet " + std::to_string(id) + " (subband " +
                            std::to_string(j) + ", bitplane " + std::to_string(b) + ")";
   if (m.have[id]) return InvalidArgument(what + " was already added");
   for (uint32_t d : PacketDependencies(m.header, id)) {
     if (!m.have[d]) {
       return InvalidArgument(what + " needs packet " + std::to_string(d) + " (subband " +
-                             std::to_string(index.subband(static_cast<int>(d))) +
-                             ", bitplane " +
-                             std::to_string(index.bitplane(static_cast<int>(d))) +
+                             std::to_string(m.packets->Subband(d)) + ", bitplane " +
+                             std::to_string(m.packets->Bitplane(d)) +
                              ") first");
     }
   }
@@ -130,8 +135,8 @@ Status ProgressiveDecoder::AddPacket(uint32_t id, std::string_view payload) {
     return ParseError(what + ": " + std::to_string(payload.size()) + " bytes, index says " +
                       std::to_string(index.length(i)));
   }
-  if (Crc32c(payload) != index.crc32c(i)) {
-    return ParseError(what + ": CRC32C mismatch (corrupt payload)");
+  if (!PacketCheckMatches(index, id, payload)) {
+    return ParseError(what + ": CRC-16 check mismatch (corrupt payload)");
   }
   DecoderIo io(payload);
   const SubbandLayout& layout = m.layouts[j];
@@ -152,7 +157,7 @@ Status ProgressiveDecoder::AddPacket(uint32_t id, std::string_view payload) {
   m.have[id] = 1;
   ++m.decoded;
   m.bytes += payload.size();
-  m.distortion -= index.distortion_reduction(i);
+  m.distortion -= m.reduction[id];
   return Status::Ok();
 }
 

@@ -10,6 +10,7 @@
 #include "meshwave/metrics.h"
 #include "meshwave/progression.h"
 #include "meshwave/progressive_decoder.h"
+#include "stream/packet_index.h"
 #include "stream/pgc_stream.h"
 
 namespace meshwave {
@@ -50,10 +51,8 @@ Status MeasureEmbedded(const SemiRegularMesh& input, double diagonal,
   const std::vector<uint32_t> order = PacketOrder(stream.header, Progression::kQuality);
   MW_RETURN_IF_ERROR(
       AddPoint(mesh, diagonal, stream.header, {}, -1, decoder->Positions(), curve));
-  const auto& index = stream.header.packets();
-  auto bitplane = [&](size_t i) {
-    return static_cast<int>(index.bitplane(static_cast<int>(order[i])));
-  };
+  const PacketLayout layout(stream.header);
+  auto bitplane = [&](size_t i) { return layout.Bitplane(order[i]); };
   for (size_t i = 0; i < order.size(); ++i) {
     MW_RETURN_IF_ERROR(decoder->AddPacket(order[i], stream.packets[order[i]]));
     // The quality order is bitplane-major: a bitplane is complete where the
@@ -82,7 +81,7 @@ Status MeasurePgc(const SemiRegularMesh& input, double diagonal,
     MW_RETURN_IF_ERROR(decoder->AddPacket(stream.packets[i]));
     MW_RETURN_IF_ERROR(AddPoint(
         mesh, diagonal, stream.header, std::span(ids).first(i + 1),
-        static_cast<int>(stream.header.packets().bitplane(static_cast<int>(i))),
+        decoder->top_bitplane() - static_cast<int>(i),
         decoder->Positions(), curve));
   }
   return Status::Ok();

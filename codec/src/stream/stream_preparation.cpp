@@ -138,18 +138,4 @@ Result<PreparedStream> PrepareStream(const SemiRegularMesh& input,
   return out;
 }
 
-void CalibrateDistortionIndex(const PreparedStream& prepared,
-                              proto::StreamHeader& header) {
-  const double model = header.initial_distortion();
-  const double truth = prepared.zero_packet_distortion;
-  if (!(model > 0) || !(truth > 0) || !std::isfinite(model) || !std::isfinite(truth)) return;
-  const double scale = truth / model;
-  header.set_initial_distortion(truth);
-  proto::PacketIndex& index = *header.mutable_packets();
-  for (int i = 0; i < index.distortion_reduction_size(); ++i) {
-    index.set_distortion_reduction(
-        i, static_cast<float>(scale * index.distortion_reduction(i)));
-  }
-}
-
 }  // namespace meshwave

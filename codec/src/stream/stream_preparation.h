@@ -27,14 +27,6 @@ struct PreparedStream {
 Result<PreparedStream> PrepareStream(const SemiRegularMesh& input,
                                      const EncodeOptions& options);
 
-// The encoders estimate each packet's distortion reduction with subband
-// gains, as if the synthesis were orthogonal. It is not (Loop's predictor
-// least of all: the model was 3 to 4.5 dB pessimistic at low rates), so
-// the estimates are scaled to make the stream's starting distortion exact;
-// every PSNR read off the index is then anchored to the truth.
-void CalibrateDistortionIndex(const PreparedStream& prepared,
-                              proto::StreamHeader& header);
-
 }  // namespace meshwave
 
 #endif  // MESHWAVE_STREAM_STREAM_PREPARATION_H_

@@ -13,6 +13,7 @@
 #include "codec/stream/stream_test_util.h"
 #include "codec/test_meshes.h"
 #include "meshwave/progressive_decoder.h"
+#include "stream/packet_index.h"
 #include "stream/pgc_stream.h"
 
 namespace meshwave {
@@ -75,7 +76,7 @@ TEST(ZerotreeCoderTest, UsesTheQuantizersAndVertexOrderOfEncodeMesh) {
     EXPECT_EQ(a.quantizers(i).deadzone(), b.quantizers(i).deadzone()) << i;
   }
   EXPECT_EQ(a.base().SerializeAsString(), b.base().SerializeAsString());
-  EXPECT_EQ(a.initial_distortion(), b.initial_distortion());
+  EXPECT_NEAR(a.base_distortion(), b.base_distortion(), 1e-9 * a.base_distortion());
 }
 
 TEST(ZerotreeCoderTest, HasOnePacketPerBitplane) {
@@ -83,8 +84,10 @@ TEST(ZerotreeCoderTest, HasOnePacketPerBitplane) {
   int top = -1;
   for (const auto& q : f.stream.header.quantizers()) top = std::max(top, q.top_bitplane());
   ASSERT_EQ(f.stream.packets.size(), static_cast<size_t>(top + 1));
+  EXPECT_EQ(f.stream.header.packets().check().size(), 2 * f.stream.packets.size());
+  EXPECT_EQ(f.stream.header.packets().distortion_step().size(), f.stream.packets.size());
+  EXPECT_EQ(f.stream.header.packets().chain_distortion_size(), 1);
   for (int i = 0; i <= top; ++i) {
-    EXPECT_EQ(f.stream.header.packets().bitplane(i), static_cast<uint32_t>(top - i));
     EXPECT_EQ(f.stream.header.packets().length(i), f.stream.packets[i].size());
   }
 }
@@ -135,10 +138,12 @@ TEST(ZerotreeCoderTest, DistortionFiguresMatchTheDecodedError) {
   // every prefix up to the frame mismatch of a truncated decode.
   const Fixture& f = Encoded();
   auto d = NewDecoder(f.stream);
-  double estimate = f.stream.header.initial_distortion();
+  const DistortionEstimates estimates =
+      ReadDistortionIndex(f.stream.header, PacketChains(f.stream.header));
+  double estimate = estimates.start;
   for (size_t i = 0; i < f.stream.packets.size(); ++i) {
     ASSERT_TRUE(d->AddPacket(f.stream.packets[i]).ok());
-    estimate -= f.stream.header.packets().distortion_reduction(static_cast<int>(i));
+    estimate -= estimates.reduction[i];
     const auto decoded = d->Positions();
     double sse = 0;
     for (size_t v = 0; v < decoded.size(); ++v) {
@@ -227,7 +232,7 @@ TEST(ZerotreeCoderTest, HeaderIsRefusedByTheMwvDecoderAndViceVersa) {
   ASSERT_TRUE(sim.ok());
   EXPECT_FALSE(PgcDecoder::Create(sim->header).ok());
   proto::StreamHeader wrong = f.stream.header;
-  wrong.mutable_packets()->set_bitplane(0, 0);
+  wrong.mutable_packets()->mutable_distortion_step()->push_back('\0');
   EXPECT_EQ(PgcDecoder::Create(wrong).status().code(), StatusCode::kParseError);
 }
 

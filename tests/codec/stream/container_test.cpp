@@ -109,8 +109,9 @@ TEST(ContainerTest, RejectsBadMagicVersionTrailingBytes) {
   EXPECT_NE(ParseContainer(bad).status().message().find("magic"), std::string::npos);
   EXPECT_NE(ParseContainer(bytes + "zz").status().message().find("after the last packet"),
             std::string::npos);
-  // The old base code, the version before the SAWT field, and a future one.
-  for (uint32_t version : {1u, 2u, 4u}) {
+  // The old base code, the version before the SAWT field, the one before the
+  // compact packet index, and a future one.
+  for (uint32_t version : {1u, 2u, 3u, 5u}) {
     EncodedStream other = Stream();
     other.header.set_format_version(version);
     EXPECT_EQ(ParseContainer(SerializeFullContainer(other)).status().code(),

@@ -10,6 +10,7 @@
 #include "codec/stream/stream_test_util.h"
 #include "meshwave/container.h"
 #include "meshwave/progression.h"
+#include "stream/packet_index.h"
 
 namespace meshwave {
 namespace {
@@ -98,9 +99,9 @@ TEST_P(CoderTest, ResolutionOrderWithMaxLevelGivesThatLevelsMesh) {
   const Fixture& f = Encoded(GetParam());
   for (int level = 0; level <= 4; ++level) {
     auto d = NewDecoder(f.stream);
+    const PacketLayout layout(f.stream.header);
     for (uint32_t id : PacketOrder(f.stream.header, Progression::kResolution, level)) {
-      ASSERT_LT(f.stream.header.packets().subband(static_cast<int>(id)),
-                static_cast<uint32_t>(level));
+      ASSERT_LT(layout.Subband(id), level);
       ASSERT_TRUE(d->AddPacket(id, f.stream.packets[id]).ok());
     }
     const TriMesh m = d->Mesh(level);
@@ -153,14 +154,34 @@ TEST(ProgressiveDecoderTest, RefusesPacketBeforeItsDependencies) {
   EXPECT_EQ(d->AddPacket(99999, "").code(), StatusCode::kInvalidArgument);
 }
 
+TEST(ProgressiveDecoderTest, PacketLayoutDerivesSubbandAndBitplaneFromTheQuantizers) {
+  const auto& f = Encoded(CoderKind::k3xC);
+  const PacketLayout layout(f.stream.header);
+  ASSERT_EQ(layout.count(), static_cast<int>(f.stream.packets.size()));
+  int id = 0;
+  for (int j = 0; j < layout.levels(); ++j) {
+    int top = -1;
+    for (int c = 0; c < 3; ++c) {
+      top = std::max(top, f.stream.header.quantizers(3 * j + c).top_bitplane());
+    }
+    for (int b = top; b >= 0; --b, ++id) {
+      EXPECT_EQ(layout.Subband(static_cast<uint32_t>(id)), j);
+      EXPECT_EQ(layout.Bitplane(static_cast<uint32_t>(id)), b);
+      EXPECT_EQ(layout.Id(j, b), id);
+    }
+  }
+  EXPECT_EQ(id, layout.count());
+  EXPECT_EQ(layout.Id(0, layout.Top(0) + 1), -1);
+}
+
 TEST(ProgressiveDecoderTest, ThreeXcNeedsTheParentSubbandsBitplane) {
   const Fixture& f = Encoded(CoderKind::k3xC);
   auto d = NewDecoder(f.stream);
-  const auto& index = f.stream.header.packets();
+  const PacketLayout layout(f.stream.header);
   // First packet of subband 1 (its top bitplane) needs subband 0 at that
   // bitplane when subband 0 has one.
   uint32_t first1 = 0;
-  while (index.subband(static_cast<int>(first1)) != 1) ++first1;
+  while (layout.Subband(first1) != 1) ++first1;
   EXPECT_FALSE(d->DependenciesMet(first1));
   EXPECT_EQ(d->AddPacket(first1, f.stream.packets[first1]).code(),
             StatusCode::kInvalidArgument);
@@ -174,7 +195,7 @@ TEST(ProgressiveDecoderTest, RefusesCorruptPayload) {
   bad[bad.size() / 2] ^= 0x10;
   Status s = d->AddPacket(0, bad);
   EXPECT_EQ(s.code(), StatusCode::kParseError);
-  EXPECT_NE(s.message().find("CRC32C"), std::string::npos);
+  EXPECT_NE(s.message().find("CRC-16"), std::string::npos);
   EXPECT_EQ(d->AddPacket(0, f.stream.packets[0].substr(1)).code(), StatusCode::kParseError);
   EXPECT_TRUE(d->AddPacket(0, f.stream.packets[0]).ok());
 }
