@@ -91,8 +91,34 @@ run_cases() {
       echo "</details>"
       echo
     } > "$tmp/rate.md"
+    # The seed's own Bunny figures (3xC, Fig. 11, base excluded) beside ours
+    # at the seed's rates, interpolated between our packet points.
+    if [[ $file == bunny* ]]; then
+      {
+        echo "Beside the seed's Bunny (3xC, its Fig. 11, base mesh excluded; ours interpolated at its rates):"
+        echo
+        echo "| PSNR [dB] at bpv (base excluded) | 0.050 | 0.098 | 0.178 | 0.314 | 0.540 |"
+        echo "|---|---:|---:|---:|---:|---:|"
+        echo "| seed 3xC (its Bunny remesh) | 47.6 | 51.4 | 55.4 | 59.2 | 63.1 |"
+        for coder in 3xc pgc; do
+          jq -r --arg c "$coder" '.curves[] | select(.coder == $c) | .points[] | [.bpv_excl_base, .psnr_db] | @tsv' "$json" |
+            awk -F'\t' -v coder="$coder" -v rates="0.050 0.098 0.178 0.314 0.540" '
+              { x[NR] = $1; y[NR] = $2 }
+              END { n = split(rates, r, " "); printf "| ours %s (this remesh) |", coder
+                    for (i = 1; i <= n; ++i) {
+                      v = "-"
+                      for (k = 2; k <= NR; ++k) if (x[k] >= r[i]) {
+                        v = sprintf("%.2f", y[k-1] + (y[k] - y[k-1]) * (r[i] - x[k-1]) / (x[k] - x[k-1])); break }
+                      printf " %s |", v }
+                    print "" }'
+        done
+        echo
+      } > "$tmp/seed.md"
+    else
+      : > "$tmp/seed.md"
+    fi
     if [[ $detail == 1 ]]; then
-      cat "$tmp/psnr.md" "$tmp/rate.md" >> "$out"
+      cat "$tmp/psnr.md" "$tmp/seed.md" "$tmp/rate.md" >> "$out"
     fi
   done
 

@@ -114,10 +114,15 @@ std::vector<double> EstimatedPsnrCurve(const proto::StreamHeader& header,
   std::vector<double> out;
   out.reserve(order.size() + 1);
   const DistortionEstimates estimates = ReadDistortionIndex(header, PacketChains(header));
-  double distortion = estimates.start;
+  std::vector<double> now = estimates.chain_start;
+  double distortion = estimates.Estimate(now);
   out.push_back(psnr(distortion));
   for (uint32_t id : order) {
-    if (id < estimates.reduction.size()) distortion -= estimates.reduction[id];
+    // Chains sum in a fixed order: the decoder's figure, bit for bit.
+    if (id < estimates.chain.size() && estimates.chain[id] < now.size()) {
+      now[estimates.chain[id]] = estimates.after[id];
+    }
+    distortion = estimates.Estimate(now);
     out.push_back(psnr(distortion));
   }
   return out;

@@ -105,17 +105,22 @@ void WriteDistortionIndex(const DistortionModel& model, double true_start_distor
   index.set_distortion_step(steps);
 }
 
+double DistortionEstimates::Estimate(const std::vector<double>& current) const {
+  double d = base;
+  for (double e : current) d += e;
+  return d;
+}
+
 DistortionEstimates ReadDistortionIndex(const proto::StreamHeader& header,
                                         std::span<const uint32_t> chain_of) {
   const proto::PacketIndex& index = header.packets();
   DistortionEstimates out;
-  std::vector<double> current(static_cast<size_t>(index.chain_distortion_size()));
-  out.start = header.base_distortion();
-  for (size_t c = 0; c < current.size(); ++c) {
-    current[c] = index.chain_distortion(static_cast<int>(c));
-    out.start += current[c];
-  }
+  out.base = header.base_distortion();
+  for (float e : index.chain_distortion()) out.chain_start.push_back(e);
+  std::vector<double> current = out.chain_start;
   const std::string& steps = index.distortion_step();
+  out.chain.assign(chain_of.begin(), chain_of.end());
+  out.after.assign(chain_of.size(), 0.0);
   out.reduction.assign(chain_of.size(), 0.0);
   for (size_t i = 0; i < chain_of.size() && i < steps.size(); ++i) {
     const uint32_t c = chain_of[i];
@@ -123,6 +128,7 @@ DistortionEstimates ReadDistortionIndex(const proto::StreamHeader& header,
     const int d = static_cast<uint8_t>(steps[i]);
     const double next = d == 255 ? 0.0 : current[c] * std::exp2(-d / kDistortionCodesPerOctave);
     out.reduction[i] = current[c] - next;
+    out.after[i] = next;
     current[c] = next;
   }
   return out;

@@ -79,13 +79,20 @@ struct DistortionModel {
 void WriteDistortionIndex(const DistortionModel& model, double true_start_distortion,
                           proto::StreamHeader& header);
 
-// The estimates a reader derives from a validated header: per packet its
-// distortion reduction (E before - E after), and the distortion with no
-// packet. For any set of packets closed under the dependencies, start minus
-// the sum of their reductions is the model estimate above.
+// The estimates a reader derives from a validated header. For any set of
+// packets closed under the dependencies the estimate is base + the sum over
+// chains of the chain's term after its last packet held (chain_start when
+// none): Estimate() sums in chain order, so the figure does not depend on
+// the order the packets arrived in. reduction = term before - term after.
 struct DistortionEstimates {
-  double start = 0;
-  std::vector<double> reduction;
+  double base = 0;
+  std::vector<double> chain_start;  // per chain
+  std::vector<uint32_t> chain;      // per packet
+  std::vector<double> after;        // per packet: its chain's term after it
+  std::vector<double> reduction;    // per packet
+  double start() const { return Estimate(chain_start); }
+  // `current`: every chain's term (chain_start, or `after` of its last packet).
+  double Estimate(const std::vector<double>& current) const;
 };
 DistortionEstimates ReadDistortionIndex(const proto::StreamHeader& header,
                                         std::span<const uint32_t> chain_of);

@@ -28,7 +28,8 @@ struct ProgressiveDecoder::Impl {
   std::vector<std::array<ComponentState, 3>> states;
   std::vector<char> have;
   std::unique_ptr<PacketLayout> packets;
-  std::vector<double> reduction;  // estimated, per packet
+  DistortionEstimates estimates;
+  std::vector<double> chain_now;  // each chain's estimated term now
   size_t decoded = 0;
   uint64_t bytes = 0;
   double distortion = 0;
@@ -84,9 +85,9 @@ Result<std::unique_ptr<ProgressiveDecoder>> ProgressiveDecoder::Create(
   }
   impl->have.assign(header.packets().length_size(), 0);
   impl->packets = std::make_unique<PacketLayout>(header);
-  DistortionEstimates estimates = ReadDistortionIndex(header, PacketChains(header));
-  impl->distortion = estimates.start;
-  impl->reduction = std::move(estimates.reduction);
+  impl->estimates = ReadDistortionIndex(header, PacketChains(header));
+  impl->chain_now = impl->estimates.chain_start;
+  impl->distortion = impl->estimates.start();
   return std::unique_ptr<ProgressiveDecoder>(new ProgressiveDecoder(std::move(impl)));
 }
 
@@ -157,7 +158,13 @@ Status ProgressiveDecoder::AddPacket(uint32_t id, std::string_view payload) {
   m.have[id] = 1;
   ++m.decoded;
   m.bytes += payload.size();
-  m.distortion -= m.reduction[id];
+  // A chain's packets arrive in bitplane order (its dependencies), so the
+  // packet just added is the chain's last; summing the chains in a fixed
+  // order makes the estimate independent of the order of arrival.
+  if (id < m.estimates.chain.size() && m.estimates.chain[id] < m.chain_now.size()) {
+    m.chain_now[m.estimates.chain[id]] = m.estimates.after[id];
+  }
+  m.distortion = m.estimates.Estimate(m.chain_now);
   return Status::Ok();
 }
 

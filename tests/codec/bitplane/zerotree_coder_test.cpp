@@ -140,7 +140,7 @@ TEST(ZerotreeCoderTest, DistortionFiguresMatchTheDecodedError) {
   auto d = NewDecoder(f.stream);
   const DistortionEstimates estimates =
       ReadDistortionIndex(f.stream.header, PacketChains(f.stream.header));
-  double estimate = estimates.start;
+  double estimate = estimates.start();
   for (size_t i = 0; i < f.stream.packets.size(); ++i) {
     ASSERT_TRUE(d->AddPacket(f.stream.packets[i]).ok());
     estimate -= estimates.reduction[i];

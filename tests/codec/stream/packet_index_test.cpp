@@ -56,8 +56,8 @@ TEST(PacketIndexTest, DistortionCodeFollowsTheModelWithinItsStep) {
   EXPECT_DOUBLE_EQ(header.base_distortion(), scale * 0.5);
   ASSERT_EQ(header.packets().distortion_step().size(), model.reduction.size());
   const DistortionEstimates e = ReadDistortionIndex(header, model.chain);
-  EXPECT_NEAR(e.start, scale * 1010.5, 1e-3);
-  double left = e.start;
+  EXPECT_NEAR(e.start(), scale * 1010.5, 1e-3);
+  double left = e.start();
   std::vector<double> chains = truth;
   const double tolerance = std::exp2(1.0 / 64) - 1 + 1e-6;
   for (size_t i = 0; i < model.reduction.size(); ++i) {
@@ -69,6 +69,11 @@ TEST(PacketIndexTest, DistortionCodeFollowsTheModelWithinItsStep) {
     }
   }
   EXPECT_NEAR(left, scale * (model.base + chains[0]), tolerance * left);
+  // The estimate from the chains' last terms: the same figure, whatever the
+  // order in which the chains' packets interleave.
+  std::vector<double> now = e.chain_start;
+  for (size_t i = 0; i < model.reduction.size(); ++i) now[model.chain[i]] = e.after[i];
+  EXPECT_NEAR(e.Estimate(now), left, 1e-9 * left);
 }
 
 }  // namespace
