@@ -2,6 +2,7 @@
 #ifndef MESHWAVE_STREAM_STREAM_FORMAT_H_
 #define MESHWAVE_STREAM_STREAM_FORMAT_H_
 
+#include <boost/crc.hpp>
 #include <cstdint>
 #include <string_view>
 
@@ -16,6 +17,13 @@ inline constexpr char kContainerMagic[4] = {'M', 'W', 'V', '1'};
 // Limits on what a stream may ask a decoder to build.
 inline constexpr uint32_t kMaxBaseVertices = 1u << 24;
 inline constexpr uint32_t kMaxHeaderBytes = 64u << 20;
+
+// CRC-32C (Castagnoli) of a byte string; the SAWT field's check.
+inline uint32_t Crc32c(std::string_view bytes) {
+  boost::crc_optimal<32, 0x1EDC6F41, 0xFFFFFFFF, 0xFFFFFFFF, true, true> crc;
+  crc.process_bytes(bytes.data(), bytes.size());
+  return crc.checksum();
+}
 
 inline void ToProto(const TransformSettings& s, int levels, proto::Transform& t) {
   t.set_predictor(s.predictor == Predictor::kLinear ? proto::PREDICTOR_LINEAR
