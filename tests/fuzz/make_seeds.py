@@ -2,7 +2,7 @@
 """Regenerates tests/fuzz/seeds/ from real files: the test meshes of
 tests/data, the sample meshes of data/ and the shared development meshes
 (cut to their first lines: small seeds fuzz faster), the fixture
-container data/octahedron_sr3.mwv (container_fuzz; 258 vertices, 34
+container data/octahedron_sr3.mwv (container_fuzz; 258 vertices, 36
 packets) and the lighter fixture data/tetrahedron_sr2.mwv of packet_fuzz and
 decoder_order_fuzz (34 vertices, 19 packets: an execution rebuilds a decoder,
 so a smaller mesh fuzzes several times faster). Packets are split out with
@@ -14,9 +14,10 @@ format in build/):
   build/tools/meshwave/meshwave encode --precision 12 \
     tests/fuzz/data/tetrahedron_sr2.obj tests/fuzz/data/tetrahedron_sr2.mwv
 (a tetrahedron subdivided twice by midpoints, each vertex i moved radially
-by 15 % * sin(3.1 i + 0.7) so that the details are not zero). The
-octahedron's source mesh was not kept: decode octahedron_sr3.mwv with the
-old build (meshwave decode) and encode the result with the new one.
+by 15 % * sin(3.1 i + 0.7) so that the details are not zero), and
+  build/tools/meshwave/meshwave subdivide tests/fuzz/data/octahedron.off \
+    /tmp/oct3.ply --levels 3 --scheme midpoint
+  build/tools/meshwave/meshwave encode /tmp/oct3.ply tests/fuzz/data/octahedron_sr3.mwv
 
 Usage: python3 tests/fuzz/make_seeds.py [SHARED_MESHES_DIR]
 """
