@@ -7,6 +7,7 @@
 #include <set>
 
 #include "codec/test_meshes.h"
+#include "codec/wavelet/jittered_mesh_testonly.h"
 #include "meshwave/mesh.h"
 #include "meshwave/semiregular.h"
 #include "meshwave/wavelet.h"
@@ -20,17 +21,9 @@ namespace meshwave {
 namespace {
 
 using testing::Icosahedron;
+using testing::Jittered;
 using testing::OpenPatch;
 using testing::Torus;
-
-SemiRegularMesh Jittered(const TriMesh& base, int levels, uint32_t seed) {
-  auto sr = Subdivide(base, levels, SubdivisionScheme::kButterfly);
-  EXPECT_TRUE(sr.ok()) << sr.status().ToString();
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-0.05, 0.05);
-  for (Vec3& p : sr->positions) p += Vec3(u(rng), u(rng), u(rng));
-  return *sr;
-}
 
 // An integer grid of the base positions, as a quantised base would be.
 std::vector<IntVec3> Grid(const SemiRegularMesh& mesh, double step) {

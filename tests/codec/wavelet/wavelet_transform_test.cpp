@@ -3,6 +3,7 @@
 #include <random>
 
 #include "codec/test_meshes.h"
+#include "codec/wavelet/jittered_mesh_testonly.h"
 #include "meshwave/semiregular.h"
 #include "meshwave/wavelet.h"
 #include "semiregular/vertex_rings.h"
@@ -13,18 +14,9 @@ namespace meshwave {
 namespace {
 
 using testing::Icosahedron;
+using testing::Jittered;
 using testing::OpenPatch;
 using testing::Torus;
-
-// A semi-regular mesh with rough geometry: every vertex jittered.
-SemiRegularMesh Jittered(const TriMesh& base, int levels, uint32_t seed) {
-  auto sr = Subdivide(base, levels, SubdivisionScheme::kButterfly);
-  EXPECT_TRUE(sr.ok()) << sr.status().ToString();
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-0.05, 0.05);
-  for (Vec3& p : sr->positions) p += Vec3(u(rng), u(rng), u(rng));
-  return *sr;
-}
 
 double MaxError(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
   double e = 0;
