@@ -20,26 +20,19 @@
 #include <string>
 #include <vector>
 
+#include "bench_clock.h"
 #include "meshwave/container.h"
 #include "meshwave/progressive_decoder.h"
 
 namespace {
 
-double ThreadCpuSeconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + static_cast<double>(ts.tv_nsec) * 1e-9;
-}
+using meshwave::bench::Median;
+using meshwave::bench::ThreadCpuSeconds;
 
 double WallSeconds() {
   return std::chrono::duration<double>(
              std::chrono::steady_clock::now().time_since_epoch())
       .count();
-}
-
-double Median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0 : v[v.size() / 2];
 }
 
 }  // namespace

@@ -24,22 +24,16 @@
 #include <string>
 #include <vector>
 
+#include "bench_clock.h"
 #include "meshwave/client/blocking_session.h"
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double ThreadCpuMs() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) * 1e3 + static_cast<double>(ts.tv_nsec) * 1e-6;
-}
+using meshwave::bench::Median;
 
-double Median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0 : v[v.size() / 2];
-}
+double ThreadCpuMs() { return meshwave::bench::ThreadCpuSeconds() * 1e3; }
 
 }  // namespace
 
