@@ -48,7 +48,8 @@ TEST(LocalStateTest, RoundTripsAndLeavesNoTemporaryFiles) {
   EXPECT_EQ(back->budget_bytes, 4000u);
   EXPECT_EQ(back->container, st.container);
   // The state is a plain valid container.
-  EXPECT_TRUE(ParseContainer(ReadBytes(file)).ok());
+  const std::string bytes = ReadBytes(file);
+  EXPECT_TRUE(ParseContainer(bytes).ok());
   int files = 0;
   for (const auto& e :
        std::filesystem::directory_iterator(file.parent_path())) {

@@ -166,7 +166,8 @@ TEST_F(ServerHttpTest, HeaderIsTheContainersStreamHeader) {
     ASSERT_EQ(r.status, 200u);
     proto::StreamHeader served;
     ASSERT_TRUE(served.ParseFromString(r.body));
-    auto parsed = ParseContainer(Container(id));
+    const std::string bytes = Container(id);
+    auto parsed = ParseContainer(bytes);
     ASSERT_TRUE(parsed.ok());
     parsed->header.clear_present();
     EXPECT_EQ(served.SerializeAsString(), parsed->header.SerializeAsString()) << name;
@@ -216,7 +217,8 @@ TEST_F(ServerHttpTest, StreamDecodesLikeALocalTruncation) {
 
 TEST_F(ServerHttpTest, StreamLimitsLevels) {
   const std::string id = ids_.at("elephant_cartoon_sr2");
-  auto parsed = ParseContainer(Container(id));
+  const std::string bytes = Container(id);
+  auto parsed = ParseContainer(bytes);
   ASSERT_TRUE(parsed.ok());
   const auto order = PacketOrder(parsed->header, Progression::kResolution, 1);
   const HttpReply r = HttpGet(port_, "/v1/meshes/" + id + "/stream?order=resolution&max_level=1");
@@ -285,7 +287,8 @@ TEST_F(ServerHttpTest, StreamContinuesFromCursor) {
 
 TEST_F(ServerHttpTest, ServesSinglePackets) {
   const std::string id = ids_.at("holes");
-  auto parsed = ParseContainer(Container(id));
+  const std::string bytes = Container(id);
+  auto parsed = ParseContainer(bytes);
   ASSERT_TRUE(parsed.ok());
   for (size_t i = 0; i < parsed->ids.size(); ++i) {
     const HttpReply r =

@@ -6,6 +6,7 @@
 #define MESHWAVE_CONTAINER_H_
 
 #include <span>
+#include <concepts>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -62,6 +63,11 @@ struct ParsedContainer {
 // is missing); otherwise that is an error too.
 Result<ParsedContainer> ParseContainer(std::string_view bytes,
                                        bool allow_truncated = false);
+// The payloads point into `bytes`: parsing a temporary string would leave
+// them dangling (ASan found one such test), so that does not compile.
+template <class S>
+  requires std::same_as<S, std::string>
+Result<ParsedContainer> ParseContainer(S&& bytes, bool allow_truncated = false) = delete;
 
 }  // namespace meshwave
 

@@ -107,14 +107,16 @@ TEST(ContainerTest, RejectsBadMagicVersionTrailingBytes) {
   std::string bad = bytes;
   bad[0] = 'X';
   EXPECT_NE(ParseContainer(bad).status().message().find("magic"), std::string::npos);
-  EXPECT_NE(ParseContainer(bytes + "zz").status().message().find("after the last packet"),
+  const std::string trailing = bytes + "zz";
+  EXPECT_NE(ParseContainer(trailing).status().message().find("after the last packet"),
             std::string::npos);
   // The old base code, the version before the SAWT field, the one before the
   // compact packet index, and a future one.
   for (uint32_t version : {1u, 2u, 3u, 5u}) {
     EncodedStream other = Stream();
     other.header.set_format_version(version);
-    EXPECT_EQ(ParseContainer(SerializeFullContainer(other)).status().code(),
+    const std::string versioned = SerializeFullContainer(other);
+    EXPECT_EQ(ParseContainer(versioned).status().code(),
               StatusCode::kUnsupported);
   }
   EXPECT_FALSE(ParseContainer("MWV1").ok());
