@@ -21,6 +21,10 @@ struct DecoderOptions {
   // (0.5: midpoint). Does not affect parsing.
   double gamma = 0.5;
   uint32_t max_base_vertices = 1u << 24;
+  // Faces of the finest level. A header is refused before anything is
+  // allocated when it claims more: a client bounds its memory with it (a
+  // small header can claim 12 levels), the fuzzers their time per input.
+  uint64_t max_faces = uint64_t{1} << 27;
 };
 
 class ProgressiveDecoder {
@@ -41,6 +45,11 @@ class ProgressiveDecoder {
   // payload that passed the CRC but does not decode (kParseError; the
   // decoder is then unusable, as its state is half-updated).
   Status AddPacket(uint32_t id, std::string_view payload);
+
+  // Forgets every packet: the decoder is as Create left it (the base mesh
+  // only), usable again after a corrupt packet broke it, without rebuilding
+  // the hierarchy and transform (most of Create's time).
+  void Reset();
 
   size_t packets_decoded() const;
   uint64_t payload_bytes_decoded() const;

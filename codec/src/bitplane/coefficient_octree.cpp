@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <numeric>
+#include <tuple>
+#include <utility>
 
 namespace meshwave {
 namespace {
@@ -26,6 +28,17 @@ void RadixSortByCode(std::vector<uint64_t>& codes, std::vector<uint32_t>& order)
   constexpr int kDigitBits = 11;
   constexpr size_t kBins = size_t{1} << kDigitBits;
   const size_t n = codes.size();
+  // Below a few bins' worth of codes, clearing and summing 2048 bins per
+  // digit costs more than the sort (the coarse subbands; a whole small
+  // mesh): a comparison sort of the pairs gives the same stable order.
+  if (n < kBins / 4) {
+    std::vector<std::pair<uint64_t, uint32_t>> pairs(n);
+    for (size_t i = 0; i < n; ++i) pairs[i] = {codes[i], order[i]};
+    std::stable_sort(pairs.begin(), pairs.end(),
+                     [](const auto& x, const auto& y) { return x.first < y.first; });
+    for (size_t i = 0; i < n; ++i) std::tie(codes[i], order[i]) = pairs[i];
+    return;
+  }
   std::vector<uint64_t> codes_tmp(n);
   std::vector<uint32_t> order_tmp(n);
   std::vector<uint32_t> count(kBins);

@@ -44,6 +44,20 @@ int PacketLayout::Id(int j, int b) const {
   return first_[static_cast<size_t>(j)] + (top_[static_cast<size_t>(j)] - b);
 }
 
+PacketLayout::Needs PacketLayout::Dependencies(uint32_t id, bool parent_contexts) const {
+  Needs needs;
+  if (id >= static_cast<uint32_t>(count())) return needs;
+  const int j = Subband(id);
+  const int b = Bitplane(id);
+  if (int up = Id(j, b + 1); up >= 0) needs.ids[needs.count++] = static_cast<uint32_t>(up);
+  if (parent_contexts) {
+    if (int parent = Id(j - 1, b); parent >= 0) {
+      needs.ids[needs.count++] = static_cast<uint32_t>(parent);
+    }
+  }
+  return needs;
+}
+
 int PacketLayout::Bitplane(uint32_t id) const {
   const int j = subband_[id];
   return top_[static_cast<size_t>(j)] - (static_cast<int>(id) - first_[static_cast<size_t>(j)]);

@@ -15,6 +15,7 @@
 #ifndef MESHWAVE_STREAM_PACKET_INDEX_H_
 #define MESHWAVE_STREAM_PACKET_INDEX_H_
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <string_view>
@@ -51,6 +52,17 @@ class PacketLayout {
   // The subband and bitplane of packet `id` (0 <= id < count()).
   int Subband(uint32_t id) const { return subband_[id]; }
   int Bitplane(uint32_t id) const;
+  // The packets `id` needs first (PacketDependencies): the one above it in
+  // its subband and, with parent contexts (3xC), the parent subband's at the
+  // same bitplane. Empty for an id out of range. At most two, so no
+  // allocation: the decoder asks for every packet it is offered.
+  struct Needs {
+    std::array<uint32_t, 2> ids{};
+    int count = 0;
+    const uint32_t* begin() const { return ids.data(); }
+    const uint32_t* end() const { return ids.data() + count; }
+  };
+  Needs Dependencies(uint32_t id, bool parent_contexts) const;
 
  private:
   std::vector<int> first_;  // id of (j, top_j)

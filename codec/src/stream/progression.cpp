@@ -68,28 +68,10 @@ Status ValidateStreamHeader(const proto::StreamHeader& h) {
   return Status::Ok();
 }
 
-namespace {
-
-std::vector<uint32_t> Dependencies(const PacketLayout& map, bool parent_contexts,
-                                   uint32_t id) {
-  if (id >= static_cast<uint32_t>(map.count())) return {};
-  const int j = map.Subband(id);
-  const int b = map.Bitplane(id);
-  std::vector<uint32_t> deps;
-  if (int up = map.Id(j, b + 1); up >= 0) deps.push_back(static_cast<uint32_t>(up));
-  if (parent_contexts) {
-    if (int parent = map.Id(j - 1, b); parent >= 0) {
-      deps.push_back(static_cast<uint32_t>(parent));
-    }
-  }
-  return deps;
-}
-
-}  // namespace
-
 std::vector<uint32_t> PacketDependencies(const proto::StreamHeader& h,
                                          uint32_t id) {
-  return Dependencies(PacketLayout(h), h.coder() == proto::CODER_3XC, id);
+  const PacketLayout::Needs needs = PacketLayout(h).Dependencies(id, h.coder() == proto::CODER_3XC);
+  return {needs.begin(), needs.end()};
 }
 
 std::vector<uint32_t> PacketOrder(const proto::StreamHeader& h,
@@ -129,7 +111,7 @@ std::vector<uint32_t> PacketOrder(const proto::StreamHeader& h,
         for (uint32_t id : candidates) {
           if (sent[id]) continue;
           bool ready = true;
-          for (uint32_t d : Dependencies(map, h.coder() == proto::CODER_3XC, id)) {
+          for (uint32_t d : map.Dependencies(id, h.coder() == proto::CODER_3XC)) {
             ready = ready && sent[d];
           }
           if (!ready) continue;

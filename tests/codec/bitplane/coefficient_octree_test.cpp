@@ -46,14 +46,10 @@ TEST(CoefficientOctreeTest, CellsPartitionTheCoefficients) {
   }
 }
 
-// The order is canonical (encoder and decoder must agree bit for bit): by
-// the Morton interleave of the coordinates, x the most significant of each
-// bit triple, then by index among coincident positions. Checked against a
-// comparison written from that definition, on points with many duplicates.
-TEST(CoefficientOctreeTest, OrderIsMortonCodeThenIndex) {
+void ExpectMortonThenIndexOrder(size_t n) {
   std::mt19937 rng(11);
-  std::uniform_int_distribution<int64_t> u(0, 63);
-  std::vector<IntVec3> points(20000);
+  std::uniform_int_distribution<int64_t> u(0, n < 1000 ? 7 : 63);  // duplicates either way
+  std::vector<IntVec3> points(n);
   for (auto& p : points) p = {u(rng), u(rng), u(rng)};
   const CoefficientOctree tree(points, 4);
   auto less = [&](uint32_t a, uint32_t b) {
@@ -72,6 +68,19 @@ TEST(CoefficientOctreeTest, OrderIsMortonCodeThenIndex) {
   ASSERT_EQ(tree.size(), points.size());
   for (uint32_t i = 1; i < tree.size(); ++i) {
     ASSERT_TRUE(less(tree.At(i - 1), tree.At(i))) << "at " << i;
+  }
+}
+
+// The order is canonical (encoder and decoder must agree bit for bit): by
+// the Morton interleave of the coordinates, x the most significant of each
+// bit triple, then by index among coincident positions. Checked against a
+// comparison written from that definition, on points with many duplicates;
+// sizes on both sides of the switch from a comparison sort to the radix sort
+// (512 codes), and a single point.
+TEST(CoefficientOctreeTest, OrderIsMortonCodeThenIndex) {
+  for (size_t n : {1u, 7u, 200u, 511u, 512u, 20000u}) {
+    SCOPED_TRACE(n);
+    ExpectMortonThenIndexOrder(n);
   }
 }
 

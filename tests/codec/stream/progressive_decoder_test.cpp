@@ -200,6 +200,67 @@ TEST(ProgressiveDecoderTest, RefusesCorruptPayload) {
   EXPECT_TRUE(d->AddPacket(0, f.stream.packets[0]).ok());
 }
 
+TEST(ProgressiveDecoderTest, ResetForgetsEveryPacket) {
+  const Fixture& f = Encoded(CoderKind::k3xC);
+  const uint32_t n = static_cast<uint32_t>(f.stream.packets.size());
+  auto fresh = NewDecoder(f.stream);
+  auto d = NewDecoder(f.stream);
+  for (uint32_t id = 0; id < n / 2; ++id) ASSERT_TRUE(d->AddPacket(id, f.stream.packets[id]).ok());
+  ASSERT_NE(d->Positions(), fresh->Positions());
+  d->Reset();
+  EXPECT_EQ(d->packets_decoded(), 0u);
+  EXPECT_EQ(d->payload_bytes_decoded(), 0u);
+  EXPECT_FALSE(d->HasPacket(0));
+  EXPECT_EQ(d->CompleteLevels(), 0);
+  EXPECT_EQ(d->EstimatedPsnr(), fresh->EstimatedPsnr());
+  EXPECT_EQ(d->Positions(), fresh->Positions());  // the base mesh only
+  for (uint32_t id = 0; id < n; ++id) {
+    ASSERT_TRUE(d->AddPacket(id, f.stream.packets[id]).ok()) << id;
+    ASSERT_TRUE(fresh->AddPacket(id, f.stream.packets[id]).ok()) << id;
+  }
+  EXPECT_EQ(d->Positions(), fresh->Positions());  // bit for bit
+  EXPECT_EQ(d->EstimatedPsnr(), fresh->EstimatedPsnr());
+}
+
+// A payload that passes its check but ends before its symbols (what a
+// malicious server can send) breaks the decoder; Reset makes it usable.
+TEST(ProgressiveDecoderTest, ResetRecoversFromAPayloadThatDoesNotDecode) {
+  const Fixture& f = Encoded(CoderKind::k3xC);
+  const uint32_t last = static_cast<uint32_t>(f.stream.packets.size()) - 1;
+  ASSERT_GT(f.stream.packets[last].size(), 8u);
+  proto::StreamHeader h = f.stream.header;
+  const std::string cut = f.stream.packets[last].substr(0, 1);
+  h.mutable_packets()->set_length(static_cast<int>(last), 1);
+  const uint16_t check = PacketCheck(cut);
+  (*h.mutable_packets()->mutable_check())[2 * last] = static_cast<char>(check >> 8);
+  (*h.mutable_packets()->mutable_check())[2 * last + 1] = static_cast<char>(check & 0xff);
+  auto created = ProgressiveDecoder::Create(h);
+  ASSERT_TRUE(created.ok()) << created.status().ToString();
+  ProgressiveDecoder& d = **created;
+  auto reference = NewDecoder(f.stream);
+  for (uint32_t id = 0; id < last; ++id) {
+    ASSERT_TRUE(d.AddPacket(id, f.stream.packets[id]).ok()) << id;
+    ASSERT_TRUE(reference->AddPacket(id, f.stream.packets[id]).ok()) << id;
+  }
+  EXPECT_EQ(d.AddPacket(last, cut).code(), StatusCode::kParseError);
+  EXPECT_NE(d.AddPacket(last, cut).message().find("unusable"), std::string::npos);
+  d.Reset();
+  for (uint32_t id = 0; id < last; ++id) ASSERT_TRUE(d.AddPacket(id, f.stream.packets[id]).ok());
+  EXPECT_EQ(d.Positions(), reference->Positions());
+}
+
+TEST(ProgressiveDecoderTest, RefusesAHeaderOverItsFaceLimitBeforeBuildingIt) {
+  const Fixture& f = Encoded(CoderKind::k3xC);
+  DecoderOptions options;
+  options.max_faces = f.stream.header.faces();
+  EXPECT_TRUE(ProgressiveDecoder::Create(f.stream.header, options).ok());
+  options.max_faces = f.stream.header.faces() - 1;
+  auto refused = ProgressiveDecoder::Create(f.stream.header, options);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_EQ(refused.status().code(), StatusCode::kUnsupported);
+  EXPECT_NE(refused.status().message().find("limit"), std::string::npos);
+}
+
 TEST(ProgressiveDecoderTest, EstimatedPsnrTracksTheTruth) {
   const Fixture& f = Encoded(CoderKind::k3xC);
   auto d = NewDecoder(f.stream);
