@@ -85,7 +85,12 @@ HeaderDecision InspectHeader(const ServerContext& ctx, const http::request_heade
   const auto method = header.method();
   if (method != http::verb::post && method != http::verb::delete_) return d;
   auto target = ParseRequestTarget(header.target());
-  if (!target.ok()) return d;  // HandleRequest answers 400
+  if (!target.ok()) {
+    // The 400 HandleRequest would give, before reading a body that no
+    // route can take (the fuzzer sent a POST with a malformed query).
+    d.reject = StatusError(target.status());
+    return d;
+  }
   const bool meshes = target->segments.size() >= 2 && target->segments[0] == "v1" &&
                       target->segments[1] == "meshes";
   if (!meshes) return d;

@@ -3,8 +3,8 @@
 // body limits, InspectHeader, and HandleRequest (ParseRequestTarget, mesh
 // ids, ParseStreamQuery, Range, If-None-Match, Accept) against a catalog
 // holding the fixture container. The input is the raw request bytes.
-// Uploads and deletions are refused by InspectHeader (no upload token is
-// configured), so the catalog never changes between inputs.
+// No upload token is configured, so no upload or deletion may succeed: the
+// catalog never changes between inputs (checked).
 #include <unistd.h>
 
 #include <cstddef>
@@ -63,14 +63,21 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     fuzz::Require(d.reject->result_int() >= 400, "a rejection is an error status");
     return 0;
   }
-  fuzz::Require(parser.get().method() != http::verb::post &&
-                    parser.get().method() != http::verb::delete_,
-                "without a token, uploads and deletions are refused at the header");
+  // Routes that exist for uploads and deletions are refused at the header
+  // (no token); a POST or DELETE elsewhere reaches HandleRequest's 404/405.
+  const bool mutating = parser.get().method() == http::verb::post ||
+                        parser.get().method() == http::verb::delete_;
+  fuzz::Require(!d.upload, "without a token no upload is accepted at the header");
   if (!parser.is_done()) return 0;
   std::optional<Response> response;
   HandleRequest(ctx, parser.release(), [&](Response r) { response = std::move(r); });
-  fuzz::Require(response.has_value(), "GET-like requests are answered on the calling thread");
+  fuzz::Require(response.has_value(), "requests other than uploads are answered on the calling thread");
   fuzz::Require(response->result_int() >= 200 && response->result_int() < 500,
                 "an untrusted request gets a 2xx, 3xx or 4xx, never a 5xx");
+  if (mutating) {
+    fuzz::Require(response->result_int() >= 400, "without a token no upload or deletion succeeds");
+    const auto entries = ctx.catalog().Count();
+    fuzz::Require(entries.ok() && *entries == 1, "the catalog still holds the fixture alone");
+  }
   return 0;
 }
