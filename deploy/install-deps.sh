@@ -24,6 +24,7 @@ test=(
   postgresql                   # catalog tests and the replica test start their own server
   nginx-light                  # the replica test's load balancer and cache
   docker-compose               # `docker-compose config`: compose file validation, no engine
+  clang libclang-rt-14-dev     # the ASan + UBSan stage and the libFuzzer targets (tools/sanitize.sh)
 )
 
 case "${1:-all}" in

@@ -1,15 +1,13 @@
 #!/usr/bin/env bash
-# Sanitizer stages (docs/RELIABILITY.md, "Sanitizers"). Not yet part of
-# tools/test.sh / .ci/run: neither stage has run to its end on the shared
-# 2-core machine, so whether both fit CI's ~20 minutes beside the Release
-# stage is not measured. Two extra builds, kept small: -O1 without debug
-# information, only the targets the suites below need, tests by ctest
-# label two at a time.
+# Sanitizer stages (docs/RELIABILITY.md, "Sanitizers"), run by tools/test.sh
+# (and so by .ci/run) after the Release stage. Two extra builds, kept small:
+# -O1 without debug information, only the targets the suites below need,
+# tests by ctest label two at a time.
 #   asan: clang, ASan + UBSan with libFuzzer's coverage (-DMESHWAVE_FUZZ=ON,
 #     build-asan): the codec's core, mesh I/O, entropy and stream suites,
 #     the server (unit, HTTP, WebSocket), the client (unit, end to end), the
-#     fault and abuse tests, and every fuzz replay (seeds + regression
-#     corpus). The servers and CLIs these tests start are ASan builds too.
+#     fault and abuse tests, every fuzz replay (seeds + regression
+#     corpus) and a 10-second libFuzzer run of every target. The servers and CLIs these tests start are ASan builds too.
 #     The same build is a fuzzing build: bench/fuzz_run.sh runs its targets.
 #   tsan: gcc, TSan (build-tsan): the server's concurrency tests, i.e. the
 #     HTTP and WebSocket integration suites and the fault and abuse tests,
@@ -61,7 +59,7 @@ if [[ $stage == all || $stage == asan ]]; then
   built=$SECONDS
   export ASAN_OPTIONS=abort_on_error=1:detect_leaks=1:strict_string_checks=1:log_path=$PWD/$dir/sanitizer-reports/asan
   export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1:log_path=$PWD/$dir/sanitizer-reports/ubsan
-  labels="^($(IFS='|'; echo "${suites[*]}")|fuzz_replay)\$"
+  labels="^($(IFS='|'; echo "${suites[*]}")|fuzz_replay|fuzz_short)\$"
   run_suites $dir "$labels"
   unset ASAN_OPTIONS UBSAN_OPTIONS
   echo "sanitizers: ASan + UBSan passed (build $((built - start)) s, tests $((SECONDS - built)) s)"

@@ -1,9 +1,17 @@
 #!/usr/bin/env bash
 # The test command: installs dependencies, builds everything with warnings as
-# errors, and runs the whole test suite. CI runs exactly this (.ci/run).
+# errors, runs the whole test suite, then the sanitizer stages (ASan + UBSan,
+# TSan: tools/sanitize.sh). CI runs exactly this (.ci/run).
+#   SANITIZE=0 bash tools/test.sh    the Release stage only (a quick local run)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash deploy/install-deps.sh
+start=$SECONDS
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DMESHWAVE_WERROR=ON
 cmake --build build -j2
 ctest --test-dir build --output-on-failure -j2 --timeout 900
+echo "test: Release stage passed ($((SECONDS - start)) s)"
+if [[ ${SANITIZE:-1} != 0 ]]; then
+  bash tools/sanitize.sh all
+fi
+echo "test: all stages passed ($((SECONDS - start)) s)"
