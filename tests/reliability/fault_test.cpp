@@ -345,7 +345,8 @@ struct Misbehaviour {
 };
 
 // The client against a server that sends an endless header, an endless
-// body, a container header claiming 60 MB, or resets: each fetch fails
+// body, a container header claiming 60 MB (each also after valid /stream
+// headers), or resets: each fetch fails
 // with a clear error in bounded time, writes no output, and does not grow
 // without bound.
 TEST(FaultTest, ClientRefusesOversizeAndBrokenResponses) {
@@ -359,6 +360,25 @@ TEST(FaultTest, ClientRefusesOversizeAndBrokenResponses) {
       {"stream header claims 60 MB",
        [](auto& s) {
          std::string head = "HTTP/1.1 200 OK\r\nContent-Length: 70000000\r\n\r\nMWV1";
+         const uint32_t n = 60u << 20;
+         for (int i = 0; i < 4; ++i) head.push_back(static_cast<char>((n >> (8 * i)) & 0xff));
+         Flood(s, head, 70000000, '\x0a');
+       }},
+      // The same two with the /stream headers the client needs, so that the
+      // body reaches the client's container parser (above they are refused
+      // at the header).
+      {"endless body after a stream head",
+       [](auto& s) {
+         Flood(s,
+               "HTTP/1.1 200 OK\r\nX-Meshwave-Packets: 5\r\nX-Meshwave-Next-Cursor: 5\r\n"
+               "Content-Length: 1000000000000\r\n\r\nMWV1",
+               512u << 20, 'z');
+       }},
+      {"stream head, header claims 60 MB",
+       [](auto& s) {
+         std::string head =
+             "HTTP/1.1 200 OK\r\nX-Meshwave-Packets: 5\r\nX-Meshwave-Next-Cursor: 5\r\n"
+             "Content-Length: 70000000\r\n\r\nMWV1";
          const uint32_t n = 60u << 20;
          for (int i = 0; i < 4; ++i) head.push_back(static_cast<char>((n >> (8 * i)) & 0xff));
          Flood(s, head, 70000000, '\x0a');
