@@ -166,7 +166,7 @@ Status ProgressiveDecoder::AddPacket(uint32_t id, std::string_view payload) {
     ComponentState& s = m.states[j][c];
     if (b > s.top) continue;
     ParentView parent;
-    if (m.header.coder() == proto::CODER_3XC && j > 0) {
+    if (m.parent_contexts() && j > 0) {
       parent = {layout.parent_of, m.states[j - 1][c].mag, m.states[j - 1][c].negative};
     }
     CodeBitplane(layout.tree, s, b, parent, contexts, io, nullptr);
