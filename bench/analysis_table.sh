@@ -29,16 +29,7 @@ mkdir -p "$cache" "$figs"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
-# semi_regular NAME: path of the semi-regular version of shared mesh NAME.
-semi_regular() {
-  local name=$1 src=$meshes/$1
-  if "$cli" info "$src" --json 2> /dev/null | jq -e '.semiregular_levels > 0' > /dev/null 2>&1; then
-    echo "$src"; return
-  fi
-  local out=$cache/${name%.*}.sr.ply
-  [[ -f $out ]] || "$cli" remesh "$src" "$out" > /dev/null 2> "$cache/${name%.*}.remesh.log"
-  echo "$out"
-}
+source "$root/bench/lib.sh"
 
 names=()
 for path in "$meshes"/*.ply "$meshes"/*.obj; do [[ -f $path ]] && names+=("$(basename "$path")"); done

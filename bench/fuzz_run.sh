@@ -16,7 +16,9 @@
 #   -timeout=10 two inputs that run in 3 and 29 ms were reported as hangs),
 #   FUZZ_ENTROPIC=1 (libFuzzer's entropic power schedule; off by default:
 #   with a grown corpus its UpdateFeatureFrequency took 68 % of packet_fuzz's
-#   time, 3,900 against 25,300 executions in 10 s with -entropic=0).
+#   time, 3,900 against 25,300 executions in 10 s with -entropic=0),
+#   FUZZ_RUNS=N (stop after N executions, libFuzzer -runs, even before
+#   SECONDS: to top a target up to a total).
 #
 # Each target fuzzes into its working corpus FUZZ_BUILD/tests/fuzz/work/T
 # (kept between runs, so coverage accumulates), seeded from
@@ -57,6 +59,7 @@ for t in "${targets[@]}"; do
         -entropic="${FUZZ_ENTROPIC:-0}"
         -artifact_prefix="$artifacts/")
   [[ -n ${FUZZ_MAX_LEN:-} ]] && args+=(-max_len="$FUZZ_MAX_LEN")
+  [[ -n ${FUZZ_RUNS:-} ]] && args+=(-runs="$FUZZ_RUNS")
   d=$(dict_of "$t")
   [[ -n $d && -f $root/tests/fuzz/dict/$d ]] && args+=(-dict="$root/tests/fuzz/dict/$d")
   corpora=("$work")
@@ -66,6 +69,7 @@ for t in "${targets[@]}"; do
   log=$build/tests/fuzz/$t.log
   before=$(find "$artifacts" -type f | wc -l)
   echo "fuzz_run: $t for ${seconds}s" >&2
+  started=$SECONDS
   set +e
   if ((jobs > 1)); then
     nice -n "$niceness" "$bin" "${args[@]}" -jobs="$jobs" -workers="$jobs" "${corpora[@]}" > "$log" 2>&1
@@ -75,6 +79,7 @@ for t in "${targets[@]}"; do
   fi
   rc=$?
   set -e
+  elapsed=$((SECONDS - started))
   execs=$(grep -h '^stat::number_of_executed_units:' "$log" | awk '{s += $2} END {print s + 0}')
   rate=$(grep -h '^stat::average_exec_per_sec:' "$log" | awk '{s += $2} END {print s + 0}')
   cov=$(grep -ho 'cov: [0-9]*' "$log" | tail -1 | awk '{print $2}')
@@ -83,6 +88,6 @@ for t in "${targets[@]}"; do
   result=ok
   ((rc == 0)) || result="exit $rc"
   ((after > before)) && result="$result; new artifact: $(ls -t "$artifacts" | head -1)"
-  printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$(date -u +%FT%TZ)" "$t" "$seconds" "$execs" "$rate" \
+  printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$(date -u +%FT%TZ)" "$t" "$elapsed" "$execs" "$rate" \
     "${cov:-?}" "$corpus" "$result" | tee -a "$ledger"
 done

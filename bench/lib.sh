@@ -1,6 +1,6 @@
-# Shell helpers shared by the load benchmarks (sourced, not run):
-# a free loopback port, wrk's units converted, and one wrk run appended to a
-# results table.
+# Shell helpers shared by the bench scripts (sourced, not run): a free
+# loopback port, wrk's units converted, one wrk run appended to a results
+# table, and the cached semi-regular version of a shared mesh.
 
 # free_port: a 127.0.0.1 port nothing answered on a moment ago.
 free_port() {
@@ -37,4 +37,17 @@ run_wrk() {
   errs=$(awk '/Non-2xx/ { n += $NF } /Socket errors/ { gsub(/,/, ""); n += $4 + $6 + $8 + $10 }
     END { print n + 0 }' "$out")
   printf '%s\t%s\t%.0f\t%s\t%s\t%s\t%s\n' "$name" "$c" "$rps" "$p50" "$p99" "$tr" "$errs" >> "$results"
+}
+
+# semi_regular NAME: path of the semi-regular version of shared mesh NAME
+# ($meshes/NAME as it is when `meshwave info` finds levels, otherwise
+# `meshwave remesh`'s output cached in $cache). Needs $cli, $meshes, $cache, jq.
+semi_regular() {
+  local name=$1 src=$meshes/$1
+  if "$cli" info "$src" --json 2> /dev/null | jq -e '.semiregular_levels > 0' > /dev/null 2>&1; then
+    echo "$src"; return
+  fi
+  local out=$cache/${name%.*}.sr.ply
+  [[ -f $out ]] || "$cli" remesh "$src" "$out" > /dev/null 2> "$cache/${name%.*}.remesh.log"
+  echo "$out"
 }

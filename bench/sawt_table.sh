@@ -27,15 +27,7 @@ mkdir -p "$cache"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
-semi_regular() {
-  local name=$1 src=$meshes/$1
-  if "$cli" info "$src" --json 2> /dev/null | jq -e '.semiregular_levels > 0' > /dev/null 2>&1; then
-    echo "$src"; return
-  fi
-  local out=$cache/${name%.*}.sr.ply
-  [[ -f $out ]] || "$cli" remesh "$src" "$out" > /dev/null 2> "$cache/${name%.*}.remesh.log"
-  echo "$out"
-}
+source "$root/bench/lib.sh"
 
 # delta A B [SIDE_BPV]: "mean<TAB>d1 d2 d3 d4 d5" of PSNR(B) - PSNR(A) at the rd
 # table's rates, B's curve read SIDE_BPV lower: the rd rates count payload
