@@ -48,7 +48,7 @@ struct Session::Impl {
   }
 
   Status SetHeader(const proto::StreamHeader& h) {
-    auto d = ProgressiveDecoder::Create(h);
+    auto d = ProgressiveDecoder::Create(h, options.decoder);
     if (!d.ok()) return d.status().WithContext("the server's stream header");
     const int levels = static_cast<int>(h.transform().levels());
     if (options.max_level > levels) {
@@ -102,7 +102,7 @@ class Session::Impl::ResponseSink final : public StreamSink,
  public:
   ResponseSink(Session::Impl& s, const Budget& budget,
                std::optional<size_t> target)
-      : s_(s), budget_(budget), target_(target), splitter_(!s.header, *this) {}
+      : s_(s), budget_(budget), target_(target), splitter_(!s.header, s.options.max_header_bytes, *this) {}
 
   Status OnHead(const StreamHead& head) override {
     head_ = head;
@@ -112,8 +112,8 @@ class Session::Impl::ResponseSink final : public StreamSink,
     s_.received_bytes += bytes.size();
     return splitter_.Feed(bytes);
   }
-  Status OnHeader(const proto::StreamHeader& header) override {
-    MW_RETURN_IF_ERROR(s_.SetHeader(header));
+  Status OnHeader(const proto::StreamHeader& received) override {
+    MW_RETURN_IF_ERROR(s_.SetHeader(received));
     target_ = TargetCursor(*s_.header, s_.order, budget_);
     return CheckHead();
   }
@@ -131,11 +131,14 @@ class Session::Impl::ResponseSink final : public StreamSink,
     messages_ = true;
     if (s_.header) return ParseError("the server sent the header again");
     s_.received_bytes += bytes.size();
-    proto::StreamHeader header;
-    if (!header.ParseFromArray(bytes.data(), static_cast<int>(bytes.size()))) {
+    if (bytes.size() > s_.options.max_header_bytes) {
+      return HeaderTooLarge(bytes.size(), s_.options.max_header_bytes);
+    }
+    proto::StreamHeader parsed;
+    if (!parsed.ParseFromArray(bytes.data(), static_cast<int>(bytes.size()))) {
       return ParseError("the server's stream header does not parse");
     }
-    return OnHeader(header);
+    return OnHeader(parsed);
   }
   Status OnPacketMessage(size_t cursor, uint32_t id,
                          std::string_view payload) override {

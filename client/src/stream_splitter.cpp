@@ -17,6 +17,13 @@ uint64_t HeaderLength(std::string_view preamble) {
 
 }  // namespace
 
+Status HeaderTooLarge(uint64_t header_bytes, uint64_t limit) {
+  return ParseError("the server's stream header is " +
+                    std::to_string(header_bytes) +
+                    " bytes, over this client's limit of " +
+                    std::to_string(limit));
+}
+
 Status StreamSplitter::Feed(std::string_view bytes) {
   pending_.append(bytes);
   const std::string_view all(pending_);
@@ -28,7 +35,12 @@ Status StreamSplitter::Feed(std::string_view bytes) {
       if (rest.size() < kPreambleBytes) break;
       // ParseContainer checks the magic, the length limit, the version and
       // the header; we only need the length to know when it is complete.
-      const uint64_t head = kPreambleBytes + HeaderLength(rest);
+      const uint64_t header_length = HeaderLength(rest);
+      if (header_length > max_header_bytes_) {
+        status = HeaderTooLarge(header_length, max_header_bytes_);
+        break;
+      }
+      const uint64_t head = kPreambleBytes + header_length;
       auto parsed =
           ParseContainer(rest.substr(0, std::min<uint64_t>(rest.size(), head)),
                          /*allow_truncated=*/true);

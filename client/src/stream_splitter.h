@@ -15,6 +15,9 @@
 
 namespace meshwave::client {
 
+// The error for a stream header over the client's limit (both transports).
+Status HeaderTooLarge(uint64_t header_bytes, uint64_t limit);
+
 class StreamSplitter {
  public:
   class Events {
@@ -26,8 +29,12 @@ class StreamSplitter {
     virtual Status OnPacket(std::string_view payload) = 0;
   };
 
-  StreamSplitter(bool container, Events& events)
-      : expect_header_(container), events_(events) {}
+  // `max_header_bytes`: a container whose header length field claims more
+  // is refused at once, before its header is buffered.
+  StreamSplitter(bool container, uint64_t max_header_bytes, Events& events)
+      : expect_header_(container),
+        max_header_bytes_(max_header_bytes),
+        events_(events) {}
 
   // Consumes `bytes`; an error from the events, a container that does not
   // parse or bytes beyond the last expected packet stop it.
@@ -37,6 +44,7 @@ class StreamSplitter {
 
  private:
   bool expect_header_;
+  uint64_t max_header_bytes_;
   Events& events_;
   std::string pending_;
 };

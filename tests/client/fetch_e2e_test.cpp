@@ -430,6 +430,29 @@ TEST_F(ClientE2eTest, ServerRefusalsAreClearErrors) {
   EXPECT_EQ(r.exit_code, 1);
 }
 
+// The client's own limits (--max-header, --max-faces) refuse a stream
+// before allocating for it, over both transports, and leave no output.
+TEST_F(ClientE2eTest, ClientLimitsRefuseAnOversizeHeaderOrMesh) {
+  TempDir dir;
+  const auto out = dir / "x.ply";
+  for (const std::string& url : {Url(elephant_), WsUrl(elephant_)}) {
+    auto r = RunCli({"fetch", url, "--max-header", "100", "--out", out.string()});
+    EXPECT_EQ(r.exit_code, 1) << url;
+    EXPECT_NE(r.err.find("over this client's limit of 100"), std::string::npos)
+        << r.err;
+    r = RunCli({"fetch", url, "--max-faces", "100", "--out", out.string()});
+    EXPECT_EQ(r.exit_code, 1) << url;
+    EXPECT_NE(r.err.find("more than this decoder's limit of 100"),
+              std::string::npos)
+        << r.err;
+    EXPECT_FALSE(std::filesystem::exists(out)) << url;
+  }
+  auto r = RunCli({"fetch", Url(elephant_), "--max-header", "lots", "--out",
+                   out.string()});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
 // --- The same over WebSocket (GET /v1/ws) ---------------------------------
 
 TEST_F(ClientE2eTest, WebSocketFetchAtABudgetEqualsDecodeOfTheSameTruncation) {

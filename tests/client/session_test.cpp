@@ -25,9 +25,10 @@ struct Harness {
   boost::asio::io_context io;
   std::shared_ptr<FakeServerLog> log = std::make_shared<FakeServerLog>();
   std::shared_ptr<FakeFaults> faults = std::make_shared<FakeFaults>();
+  SessionOptions options;  // the base of NewSession's
 
   std::unique_ptr<Session> NewSession(Progression order, int max_level = -1) {
-    SessionOptions o;
+    SessionOptions o = options;
     o.order = order;
     o.max_level = max_level;
     o.retry.initial_delay = std::chrono::milliseconds(1);
@@ -154,6 +155,51 @@ TEST(SessionTest, RefusesACorruptHeader) {
   h.faults->corrupt_at = 1;  // the magic
   const Status st = h.Run(*s, Budget::All());
   EXPECT_EQ(st.code(), StatusCode::kParseError) << st.ToString();
+}
+
+// The client's own limits on what a server may make it allocate: a header
+// longer than max_header_bytes, or one describing a mesh over the decoder's
+// max_faces, is refused without a retry and leaves the session empty.
+TEST(SessionTest, RefusesAHeaderOverTheClientsLimits) {
+  const auto& stream = ClientTestStream();
+  const proto::StreamHeader& header = stream.header;
+  // The header's length field (bytes 4-7) of what the server sends for
+  // Budget::All: its `present` field lists every packet.
+  const std::string all =
+      SerializeContainer(stream, PacketOrder(header, Progression::kQuality));
+  uint64_t header_bytes = 0;
+  for (int i = 7; i >= 4; --i)
+    header_bytes = (header_bytes << 8) | static_cast<uint8_t>(all[i]);
+  {
+    Harness h;
+    h.options.max_header_bytes = header_bytes - 1;
+    auto s = h.NewSession(Progression::kQuality);
+    const Status st = h.Run(*s, Budget::All());
+    EXPECT_EQ(st.code(), StatusCode::kParseError) << st.ToString();
+    EXPECT_NE(st.message().find("over this client's limit"), std::string::npos)
+        << st.message();
+    EXPECT_EQ(h.log->requests, 1);
+    EXPECT_FALSE(s->has_header());
+  }
+  {
+    Harness h;
+    h.options.decoder.max_faces = header.faces() - 1;
+    auto s = h.NewSession(Progression::kQuality);
+    const Status st = h.Run(*s, Budget::All());
+    EXPECT_FALSE(st.ok());
+    EXPECT_NE(st.message().find("faces"), std::string::npos) << st.message();
+    EXPECT_EQ(h.log->requests, 1);
+    EXPECT_FALSE(s->has_header());
+  }
+  {  // at the limits: the whole stream
+    Harness h;
+    h.options.max_header_bytes = header_bytes;
+    h.options.decoder.max_faces = header.faces();
+    auto s = h.NewSession(Progression::kQuality);
+    const Status st = h.Run(*s, Budget::All());
+    ASSERT_TRUE(st.ok()) << st.ToString();
+    EXPECT_TRUE(s->progress().complete());
+  }
 }
 
 TEST(SessionTest, RefusesAServerThatDisagreesOnTheCursor) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "cli_util.h"
 #include "meshwave/client/budget.h"
 
 namespace meshwave::cli {
@@ -52,6 +53,25 @@ Status ApplyClientOptions(const ClientArgs& args,
         std::max<uint64_t>(1, static_cast<uint64_t>(bits / 8));
   }
   retry.max_attempts = args.retries + 1;
+  return Status::Ok();
+}
+
+void AddDecodeLimitOptions(CLI::App* cmd, DecodeLimitArgs& args) {
+  cmd->add_option("--max-header", args.max_header,
+                  "Refuse a stream whose header (base mesh and packet index) "
+                  "is larger, before reading it (e.g. 16MiB)")
+      ->capture_default_str();
+  cmd->add_option("--max-faces", args.max_faces,
+                  "Refuse a mesh with more faces at its finest level, before "
+                  "allocating it")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+}
+
+Status ApplyDecodeLimitOptions(const DecodeLimitArgs& args,
+                               client::SessionOptions& session) {
+  MW_ASSIGN_OR_RETURN(session.max_header_bytes, ParseByteSize(args.max_header));
+  session.decoder.max_faces = args.max_faces;
   return Status::Ok();
 }
 

@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 
 #include "meshwave/client/backoff.h"
+#include "meshwave/client/session.h"
 #include "meshwave/client/transport.h"
 
 namespace meshwave::cli {
@@ -25,6 +26,17 @@ void AddClientOptions(CLI::App* cmd, ClientArgs& args);
 Status ApplyClientOptions(const ClientArgs& args,
                           client::TransportOptions& transport,
                           client::RetryPolicy& retry);
+
+// The limits of the commands that decode a server's stream (fetch, refine):
+// how big a header and a mesh the client accepts before allocating.
+struct DecodeLimitArgs {
+  std::string max_header = "64MiB";
+  uint64_t max_faces = uint64_t{1} << 27;
+};
+
+void AddDecodeLimitOptions(CLI::App* cmd, DecodeLimitArgs& args);
+Status ApplyDecodeLimitOptions(const DecodeLimitArgs& args,
+                               client::SessionOptions& session);
 
 }  // namespace meshwave::cli
 

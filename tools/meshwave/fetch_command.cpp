@@ -18,6 +18,7 @@ struct FetchArgs {
   bool websocket = false;
   FetchOutputOptions output;
   ClientArgs client;
+  DecodeLimitArgs limits;
 };
 
 Result<client::Budget> BudgetFrom(const FetchArgs& a) {
@@ -64,6 +65,7 @@ Status Run(const FetchArgs& args) {
   options.max_level = args.max_level;
   client::TransportOptions transport;
   MW_RETURN_IF_ERROR(ApplyClientOptions(args.client, transport, options.retry));
+  MW_RETURN_IF_ERROR(ApplyDecodeLimitOptions(args.limits, options));
   FetchOutputOptions output_options = args.output;
   output_options.max_level = args.max_level;
   MW_ASSIGN_OR_RETURN(auto output, FetchOutput::Create(output_options));
@@ -123,6 +125,7 @@ void AddFetchCommand(CLI::App& app, int& exit_code) {
                   "FILE.session) "
                   "for `meshwave refine`");
   AddClientOptions(cmd, args->client);
+  AddDecodeLimitOptions(cmd, args->limits);
   cmd->callback([args, &exit_code] {
     const Status s = Run(*args);
     if (!s.ok()) exit_code = Fail("fetch", s);

@@ -15,6 +15,7 @@ struct RefineArgs {
   std::string state, more;
   FetchOutputOptions output;
   ClientArgs client;
+  DecodeLimitArgs limits;
 };
 
 Status Run(const RefineArgs& args) {
@@ -25,6 +26,7 @@ Status Run(const RefineArgs& args) {
   options.max_level = state.max_level;
   client::TransportOptions transport;
   MW_RETURN_IF_ERROR(ApplyClientOptions(args.client, transport, options.retry));
+  MW_RETURN_IF_ERROR(ApplyDecodeLimitOptions(args.limits, options));
   FetchOutputOptions output_options = args.output;
   if (output_options.out.empty()) {
     output_options.out = std::filesystem::path(args.state).replace_extension(".ply").string();
@@ -66,6 +68,7 @@ void AddRefineCommand(CLI::App& app, int& exit_code) {
                         "Output mesh (.ply or .obj; default: STATE as .ply)",
                         /*out_required=*/false);
   AddClientOptions(cmd, args->client);
+  AddDecodeLimitOptions(cmd, args->limits);
   cmd->callback([args, &exit_code] {
     const Status s = Run(*args);
     if (!s.ok()) exit_code = Fail("refine", s);

@@ -23,6 +23,13 @@ struct SessionOptions {
   Progression order = Progression::kQuality;
   int max_level = -1;  // -1: all levels
   RetryPolicy retry;
+  // What the client accepts from a server, so that a hostile or broken one
+  // cannot make it allocate at will: the container header's size (checked
+  // on its length field, before the header is read) and the mesh the
+  // header describes (DecoderOptions::max_faces, max_base_vertices; checked
+  // before the decoder allocates).
+  uint64_t max_header_bytes = uint64_t{64} << 20;
+  DecoderOptions decoder;
 };
 
 // The state after a refinement.
