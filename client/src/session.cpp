@@ -102,7 +102,10 @@ class Session::Impl::ResponseSink final : public StreamSink,
  public:
   ResponseSink(Session::Impl& s, const Budget& budget,
                std::optional<size_t> target)
-      : s_(s), budget_(budget), target_(target), splitter_(!s.header, s.options.max_header_bytes, *this) {}
+      : s_(s),
+        budget_(budget),
+        target_(target),
+        splitter_(!s.header, s.options.max_header_bytes, *this) {}
 
   Status OnHead(const StreamHead& head) override {
     head_ = head;

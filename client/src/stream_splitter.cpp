@@ -18,10 +18,9 @@ uint64_t HeaderLength(std::string_view preamble) {
 }  // namespace
 
 Status HeaderTooLarge(uint64_t header_bytes, uint64_t limit) {
-  return ParseError("the server's stream header is " +
-                    std::to_string(header_bytes) +
-                    " bytes, over this client's limit of " +
-                    std::to_string(limit));
+  return ParseError(
+      "the server's stream header is " + std::to_string(header_bytes) +
+      " bytes, over this client's limit of " + std::to_string(limit));
 }
 
 Status StreamSplitter::Feed(std::string_view bytes) {

@@ -436,7 +436,8 @@ TEST_F(ClientE2eTest, ClientLimitsRefuseAnOversizeHeaderOrMesh) {
   TempDir dir;
   const auto out = dir / "x.ply";
   for (const std::string& url : {Url(elephant_), WsUrl(elephant_)}) {
-    auto r = RunCli({"fetch", url, "--max-header", "100", "--out", out.string()});
+    auto r =
+        RunCli({"fetch", url, "--max-header", "100", "--out", out.string()});
     EXPECT_EQ(r.exit_code, 1) << url;
     EXPECT_NE(r.err.find("over this client's limit of 100"), std::string::npos)
         << r.err;
@@ -447,8 +448,8 @@ TEST_F(ClientE2eTest, ClientLimitsRefuseAnOversizeHeaderOrMesh) {
         << r.err;
     EXPECT_FALSE(std::filesystem::exists(out)) << url;
   }
-  auto r = RunCli({"fetch", Url(elephant_), "--max-header", "lots", "--out",
-                   out.string()});
+  auto r = RunCli(
+      {"fetch", Url(elephant_), "--max-header", "lots", "--out", out.string()});
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_FALSE(std::filesystem::exists(out));
 }
