@@ -16,19 +16,17 @@ pch=${2:-pch}
 dir=${3:-/tmp/meshwave-build-time-$stage-$pch}
 case $pch in pch) pch_flag=ON ;; nopch) pch_flag=OFF ;; *) echo "pch or nopch, not $pch" >&2; exit 2 ;; esac
 
+source "$root/tools/sanitize_targets.sh"
 sanitizer_flags=(-DCMAKE_BUILD_TYPE=Release "-DCMAKE_CXX_FLAGS_RELEASE=-O1 -DNDEBUG")
 targets=()  # empty: everything
 case $stage in
   release) flags=(-DCMAKE_BUILD_TYPE=Release -DMESHWAVE_WERROR=ON) ;;
   asan)
     flags=("${sanitizer_flags[@]}" -DCMAKE_CXX_COMPILER=clang++ -DMESHWAVE_FUZZ=ON)
-    targets=(core_test mesh_test entropy_test stream_test server_test server_http_test
-             server_ws_test client_test client_e2e_test reliability_test ply_reader_fuzz
-             obj_reader_fuzz off_reader_fuzz container_fuzz packet_fuzz decoder_order_fuzz
-             http_request_fuzz ws_message_fuzz) ;;
+    targets=("${asan_suites[@]}" "${fuzz_targets[@]}") ;;
   tsan)
     flags=("${sanitizer_flags[@]}" -DCMAKE_CXX_COMPILER=clang++ -DMESHWAVE_SANITIZE=thread)
-    targets=(server_http_test server_ws_test reliability_test) ;;
+    targets=("${tsan_suites[@]}") ;;
   *) echo "unknown stage $stage (release, asan, tsan)" >&2; exit 2 ;;
 esac
 

@@ -23,6 +23,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 stage=${1:-all}
 jobs=${SANITIZE_JOBS:-2}
+source tools/sanitize_targets.sh
 bash deploy/install-deps.sh
 if ! command -v clang++ > /dev/null; then
   echo "sanitize: the sanitizer stages need clang (apt-get install clang libclang-rt-14-dev)" >&2
@@ -50,10 +51,8 @@ run_suites() {
 }
 
 if [[ $stage == all || $stage == asan ]]; then
-  suites=(core_test mesh_test entropy_test stream_test server_test server_http_test
-          server_ws_test client_test client_e2e_test reliability_test)
-  fuzz=(ply_reader_fuzz obj_reader_fuzz off_reader_fuzz container_fuzz packet_fuzz
-        decoder_order_fuzz http_request_fuzz ws_message_fuzz)
+  suites=("${asan_suites[@]}")
+  fuzz=("${fuzz_targets[@]}")
   dir=build-asan
   start=$SECONDS
   cmake -S . -B $dir "${flags[@]}" -DCMAKE_CXX_COMPILER=clang++ -DMESHWAVE_FUZZ=ON
@@ -68,7 +67,7 @@ if [[ $stage == all || $stage == asan ]]; then
 fi
 
 if [[ $stage == all || $stage == tsan ]]; then
-  suites=(server_http_test server_ws_test reliability_test)
+  suites=("${tsan_suites[@]}")
   dir=build-tsan
   start=$SECONDS
   cmake -S . -B $dir "${flags[@]}" -DCMAKE_CXX_COMPILER=clang++ -DMESHWAVE_SANITIZE=thread
