@@ -4,6 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
+#include <string_view>
+
 #include "codec/stream/stream_test_util.h"
 #include "meshwave/encoder.h"
 
@@ -16,6 +19,15 @@ inline const EncodedStream& ClientTestStream() {
     return *std::move(r);
   }();
   return s;
+}
+
+// The header length field of a container (bytes 4-7, little endian): what
+// the client's max_header_bytes is compared with.
+inline uint64_t HeaderLengthField(std::string_view container) {
+  uint64_t length = 0;
+  for (int i = 7; i >= 4; --i)
+    length = (length << 8) | static_cast<uint8_t>(container[i]);
+  return length;
 }
 
 }  // namespace meshwave::testing

@@ -167,9 +167,7 @@ TEST(SessionTest, RefusesAHeaderOverTheClientsLimits) {
   // Budget::All: its `present` field lists every packet.
   const std::string all =
       SerializeContainer(stream, PacketOrder(header, Progression::kQuality));
-  uint64_t header_bytes = 0;
-  for (int i = 7; i >= 4; --i)
-    header_bytes = (header_bytes << 8) | static_cast<uint8_t>(all[i]);
+  const uint64_t header_bytes = testing::HeaderLengthField(all);
   {
     Harness h;
     h.options.max_header_bytes = header_bytes - 1;

@@ -90,9 +90,7 @@ TEST(StreamSplitterTest, RefusesAHeaderOverTheLimitFromItsLengthField) {
   const auto order = PacketOrder(s.header, Progression::kQuality);
   const std::vector<uint32_t> ids(order.begin(), order.begin() + 3);
   const std::string body = SerializeContainer(s, ids);
-  uint32_t header_length = 0;
-  for (int i = 7; i >= 4; --i)
-    header_length = (header_length << 8) | static_cast<uint8_t>(body[i]);
+  const uint64_t header_length = testing::HeaderLengthField(body);
   {
     Collector c;
     StreamSplitter splitter(true, header_length - 1, c);
