@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The figures of docs/ANALYSIS.md for one mesh (default: the remeshed Stanford
-# bunny, as in the seed's Fig. 11):
+# bunny, as in Satti et al. 2011, Fig. 11):
 #   - `meshwave analyze --plots docs/analysis/<mesh>` with a Draco RD curve
 #     (draco_encoder -cl 10 -qp 6..12 on the semi-regular mesh, PSNR from
 #     `meshwave compare --match nearest`, rate = whole .drc file);

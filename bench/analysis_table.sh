@@ -34,7 +34,7 @@ source "$root/bench/lib.sh"
 names=()
 for path in "$meshes"/*.ply "$meshes"/*.obj; do [[ -f $path ]] && names+=("$(basename "$path")"); done
 
-echo "### Model fits (seed Tables 1-2)"
+echo "### Model fits (Satti et al. 2011, Tables 1-2)"
 echo
 echo "KL divergence in bits (ME in %), lifted butterfly, local frames; Table 1 columns average the"
 echo "analysed subbands (the five finest, or fewer when the mesh has fewer levels), Table 2 rows the"
@@ -90,7 +90,7 @@ echo "| Mesh | subband | SL | LM | GG |"
 echo "|---|---|---:|---:|---:|"
 cat "$tmp/t2.md"
 echo
-echo "### Mutual information (seed Table 3)"
+echo "### Mutual information (Satti et al. 2011, Table 3)"
 echo
 echo "Bits, averaged over the three components and the analysed subbands with a parent (d^1 and finer);"
 echo "intraband I(X;T), T = sum of squared same-subband neighbours; interband I(X;P); composite I(X;(P,T))."

@@ -91,15 +91,15 @@ run_cases() {
       echo "</details>"
       echo
     } > "$tmp/rate.md"
-    # The seed's own Bunny figures (3xC, Fig. 11, base excluded) beside ours
-    # at the seed's rates, interpolated between our packet points.
+    # The Bunny figures of Satti et al. 2011 (3xC, Fig. 11, base excluded) beside ours
+    # at its rates, interpolated between our packet points.
     if [[ $file == bunny* ]]; then
       {
-        echo "Beside the seed's Bunny (3xC, its Fig. 11, base mesh excluded; ours interpolated at its rates):"
+        echo "Beside the Bunny of Satti et al. 2011 (3xC, its Fig. 11, base mesh excluded; ours interpolated at its rates):"
         echo
         echo "| PSNR [dB] at bpv (base excluded) | 0.050 | 0.098 | 0.178 | 0.314 | 0.540 |"
         echo "|---|---:|---:|---:|---:|---:|"
-        echo "| seed 3xC (its Bunny remesh) | 47.6 | 51.4 | 55.4 | 59.2 | 63.1 |"
+        echo "| Satti et al. 2011, 3xC (their Bunny remesh) | 47.6 | 51.4 | 55.4 | 59.2 | 63.1 |"
         for coder in 3xc pgc; do
           jq -r --arg c "$coder" '.curves[] | select(.coder == $c) | .points[] | [.bpv_excl_base, .psnr_db] | @tsv' "$json" |
             awk -F'\t' -v coder="$coder" -v rates="0.050 0.098 0.178 0.314 0.540" '

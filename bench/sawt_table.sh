@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# SAWT (seed 2.3) against the default transform in rate-distortion, on every
+# SAWT (Denis et al. 2010a) against the default transform in rate-distortion, on every
 # shared mesh (docs/ANALYSIS.md, "SAWT"):
 #   1. each mesh is made semi-regular once (`meshwave remesh`, cached in
 #      $CACHE as bench/analysis_table.sh does; semi-regular files as they are);

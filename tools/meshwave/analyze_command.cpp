@@ -1,4 +1,4 @@
-// meshwave analyze IN [--json] [--plots DIR]: the seed's statistical
+// meshwave analyze IN [--json] [--plots DIR]: the statistical
 // analysis of one mesh's wavelet coefficients (sections 3-4): model fits
 // with KL and ME(%) (Tables 1-2), the deadzone `--quantizer auto` would
 // choose, mutual information (Table 3), and with --plots the figures.
@@ -60,7 +60,7 @@ void PrintTables(const AnalyzeArgs& args, const SemiRegularMesh& mesh,
                 c.lm_beta, c.lm_sigma2 / c.lm_sigma1, c.gg_alpha, c.em_iterations,
                 kZ[c.auto_deadzone]);
   }
-  std::printf("\nAs seed Table 1 (mean over the subbands above): KL (ME %%)\n");
+  std::printf("\nAs Satti et al. 2011, Table 1 (mean over the subbands above): KL (ME %%)\n");
   std::printf("%-10s %18s %18s %18s\n", "component", "SL", "LM", "GG");
   const char* names[3] = {"normal", "tangent 1", "tangent 2"};
   for (int comp = 0; comp < 3; ++comp) {
@@ -73,7 +73,7 @@ void PrintTables(const AnalyzeArgs& args, const SemiRegularMesh& mesh,
     }
     std::printf("\n");
   }
-  std::printf("\nAs seed Table 2 (mean over the components): KL (ME %%)\n");
+  std::printf("\nAs Satti et al. 2011, Table 2 (mean over the components): KL (ME %%)\n");
   std::printf("%-10s %18s %18s %18s\n", "subband", "SL", "LM", "GG");
   int last = -1;
   for (const ComponentAnalysis& c0 : a.components) {
@@ -89,7 +89,9 @@ void PrintTables(const AnalyzeArgs& args, const SemiRegularMesh& mesh,
     std::printf("\n");
   }
   if (!a.mutual_information.empty()) {
-    std::printf("\nAs seed Table 3: mutual information [bits], mean over components\n");
+    std::printf(
+        "\nAs Satti et al. 2011, Table 3: mutual information [bits], mean over "
+        "components\n");
     std::printf("%-10s %8s %10s %10s %10s\n", "subband", "samples", "intraband", "interband",
                 "composite");
     double sums[3] = {0, 0, 0};
@@ -254,7 +256,7 @@ Status Run(const AnalyzeArgs& given) {
 void AddAnalyzeCommand(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<AnalyzeArgs>();
   CLI::App* cmd = app.add_subcommand(
-      "analyze", "Statistical analysis of a mesh's wavelet coefficients (seed 3-4): "
+      "analyze", "Statistical analysis of a mesh's wavelet coefficients (as Satti et al. 2011): "
                  "SL/LM/GG fits with KL and ME, deadzone choice, mutual information; "
                  "--plots writes CSVs and PNG figures (gnuplot)");
   cmd->add_option("in", args->in, "Mesh file (.ply, .obj, .off); irregular meshes are remeshed")

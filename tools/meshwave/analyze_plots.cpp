@@ -105,7 +105,8 @@ Result<std::vector<std::string>> WritePlots(const std::string& dir, const PlotIn
       "set datafile separator ','\nset key top right font ',8'\nset grid\n"
       "set terminal pngcairo noenhanced size 1500,1100 font ',10'\n";
 
-  // Histograms with the three models (seed Fig. 5), D-R curves (Fig. 6).
+  // Histograms with the three models (Satti et al. 2011, Fig. 5), D-R
+  // curves (Fig. 6).
   for (int j : bands) {
     for (int c = 0; c < 3; ++c) {
       const ComponentAnalysis* x = Find(a, j, c);
@@ -161,7 +162,7 @@ Result<std::vector<std::string>> WritePlots(const std::string& dir, const PlotIn
        "(strcol(1) eq s ? $3 : 1/0):4 with linespoints title s\n");
   gp += "unset logscale\n";
 
-  // Seed Fig. 7.
+  // Satti et al. 2011, Fig. 7.
   std::string g = "ratio";
   for (const SnrGainCurve& c : in.snr_gain) g += ",z=" + Num(c.z);
   g += "\n";
@@ -180,7 +181,8 @@ Result<std::vector<std::string>> WritePlots(const std::string& dir, const PlotIn
   }
   MW_RETURN_IF_ERROR(WriteFileBytes(dir + "/fitted_ratios.csv", fitted));
   gp += "set terminal pngcairo noenhanced size 900,600 font ',10'\nset output 'snr_gain.png'\n"
-        "set title 'EDSQ SNR gain over UEQ, Laplacian mixture beta = 0.9 (seed Fig. 7); "
+        "set title 'EDSQ SNR gain over UEQ, Laplacian mixture beta = 0.9 "
+        "(Satti et al. 2011, Fig. 7); "
         "ticks: fitted sigma2/sigma1 of " + in.title + "'\n"
         "set xlabel 'sigma2 / sigma1'\nset ylabel 'mean delta SNR [dB]'\nset logscale x\n"
         "set key bottom left\n"

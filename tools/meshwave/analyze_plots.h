@@ -1,7 +1,7 @@
 // The files `meshwave analyze --plots DIR` writes: CSV tables of the
 // analysis and one gnuplot script that turns them into PNG figures
 // (histograms with the fitted models, D-R curves, the quantiser SNR gaps of
-// seed Fig. 7, rate-distortion curves of the coders).
+// Satti et al. 2011, Fig. 7; rate-distortion curves of the coders).
 #ifndef MESHWAVE_TOOLS_ANALYZE_PLOTS_H_
 #define MESHWAVE_TOOLS_ANALYZE_PLOTS_H_
 
@@ -14,7 +14,7 @@
 
 namespace meshwave::cli {
 
-// One curve of the seed's Fig. 7: SNR gain over UEQ against sigma2/sigma1.
+// One curve of Satti et al. 2011, Fig. 7: SNR gain over UEQ against sigma2/sigma1.
 struct SnrGainCurve {
   double z = 1;
   std::vector<double> ratio, gain_db;

@@ -71,7 +71,7 @@ void AddTransformOptions(CLI::App* cmd, std::string& predictor,
                          std::string& update, int& levels, int& precision) {
   cmd->add_option("--predictor,--transform", predictor,
                   "Wavelet prediction: butterfly, linear, loop, or sawt (spatially "
-                  "adaptive, seed 2.3: one of six filters per octree region and level, "
+                  "adaptive, Denis et al. 2010a: one of six filters per octree region and level, "
                   "the choices coded in the header)")
       ->check(CLI::IsMember({"butterfly", "linear", "loop", "sawt"}))
       ->capture_default_str();
@@ -106,7 +106,7 @@ Status ApplyTransformOptions(const std::string& predictor,
   MW_ASSIGN_OR_RETURN(options.transform.predictor, ParsePredictor(predictor));
   if (update.empty()) {
     // SAWT chooses its filters on prediction error alone: unlifted by
-    // default (CODEC_NOTES 3); every other predictor is lifted.
+    // default (docs/CODEC.md, "SAWT"); every other predictor is lifted.
     options.transform.update = options.transform.predictor == Predictor::kSawt
                                    ? UpdateWeights::kNone
                                    : UpdateWeights::kConstant;
@@ -120,7 +120,7 @@ Status ApplyTransformOptions(const std::string& predictor,
 void AddQuantizerOption(CLI::App* cmd, std::string& quantizer) {
   cmd->add_option("--quantizer", quantizer,
                   "Deadzone: saq (z = 2), ueq (z = 1), z1.5, z2.5, or auto (per subband "
-                  "and component from the fitted Laplacian mixture, seed 3.5)")
+                  "and component from the fitted Laplacian mixture, Satti et al. 2011)")
       ->check(CLI::IsMember({"saq", "ueq", "z1.5", "z2.5", "auto"}))
       ->capture_default_str();
 }

@@ -40,7 +40,7 @@ Status ApplyTransformOptions(const std::string& predictor,
 
 // --quantizer saq|ueq|z1.5|z2.5|auto: the deadzone of every (subband,
 // component), or `auto`, chosen per (subband, component) from the fitted
-// Laplacian mixture (seed 3.5).
+// Laplacian mixture (Satti et al. 2011).
 void AddQuantizerOption(CLI::App* cmd, std::string& quantizer);
 Status ApplyQuantizerOption(const std::string& quantizer, EncodeOptions& options);
 

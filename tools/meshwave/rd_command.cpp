@@ -1,6 +1,6 @@
 // meshwave rd IN --coders 3xc,sim,pgc [--csv OUT] [--json]: rate-distortion
 // curves of the bitplane coders on one mesh, and PSNR at the rates of the
-// seed's comparisons (base mesh excluded, as in its figures).
+// comparisons of Satti et al. 2011 (base mesh excluded, as in its figures).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

@@ -1,6 +1,6 @@
 // meshwave render MESH OUT.png [--reference ORIG]: an off-screen picture of a
 // mesh, coloured by each vertex's distance to the same vertex of a reference
-// as in the seed's Figs. 11-12: green (no error) to pure red at a threshold
+// as in Satti et al. 2011, Figs. 11-12: green (no error) to pure red at a threshold
 // given as a fraction of the reference's bounding-box diagonal.
 #include <cmath>
 #include <cstdio>
@@ -20,7 +20,7 @@ namespace {
 struct RenderArgs {
   std::string in, out, reference, view = "0,0";
   int width = 800, height = 800;
-  double threshold = 0.001;  // the seed's 0.1 % of the diagonal
+  double threshold = 0.001;  // 0.1 % of the diagonal, as Satti et al. 2011
 };
 
 Result<View> ParseView(const RenderArgs& args) {
@@ -88,7 +88,7 @@ void AddRenderCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--height", args->height, "Image height")->check(CLI::Range(16, 8192))->capture_default_str();
   cmd->add_option("--threshold", args->threshold,
                   "Distance shown pure red, as a fraction of the reference's diagonal "
-                  "(seed: 0.001 low rates, 0.0002 high rates)")
+                  "(Satti et al. 2011: 0.001 low rates, 0.0002 high rates)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   cmd->callback([args, &exit_code] {

@@ -1,6 +1,6 @@
-// Statistical analysis of a wavelet decomposition (seed sections 3-4): per
+// Statistical analysis of a wavelet decomposition (Satti et al. 2011): per
 // subband and component, fits of the single Laplacian (SL), the Laplacian
-// mixture (LM, EM as in seed 3.2) and the generalized Gaussian (GG) with
+// mixture (LM, EM as in Satti et al. 2011) and the generalized Gaussian (GG) with
 // their KL divergence and D-R modelling error ME(%) (eq. 21, Tables 1-2);
 // the SNR gap of embedded deadzone quantisers on the mixture (Fig. 7); and
 // intraband, interband and composite mutual information (Table 3).
@@ -70,7 +70,7 @@ struct MutualInformationResult {
 };
 
 struct AnalysisOptions {
-  // How many of the finest subbands are modelled (the seed's tables average
+  // How many of the finest subbands are modelled (Satti et al. 2011's tables average
   // the five finest); subbands with fewer than 64 coefficients are skipped.
   int subbands = 5;
   bool mutual_information = true;
@@ -88,14 +88,14 @@ struct PyramidAnalysis {
 Result<PyramidAnalysis> AnalyzePyramid(const Pyramid& pyramid,
                                        const AnalysisOptions& options = {});
 
-// Seed 3.5, Fig. 7: mean SNR gain in dB over rates [rate_lo, rate_hi] (bits
+// Satti et al. 2011, Fig. 7: mean SNR gain in dB over rates [rate_lo, rate_hi] (bits
 // per coefficient, log-spaced) of the EDSQ with deadzone ratio z over the
 // uniform one (z = 1), for a Laplacian mixture with weight `beta` on the
 // narrow component and sigma2 / sigma1 = `sigma_ratio`.
 double EdsqSnrGain(double beta, double sigma_ratio, double z, double rate_lo = 0.05,
                    double rate_hi = 2.0);
 
-// The deadzone code the seed's conclusion (3.5) gives a coefficient
+// The deadzone code Satti et al. 2011 conclude a coefficient
 // component with fitted ratio sigma2 / sigma1: UEQ below 120, z = 1.5 up to
 // 290, SAQ up to 600, z = 2.5 above.
 int DeadzoneCodeForSigmaRatio(double sigma_ratio);

@@ -27,13 +27,13 @@ struct EncodeOptions {
   // 2 and 8 at every rate on the four meshes of docs/RD_RESULTS.md.
   uint32_t octree_leaf_size = 32;
   int deadzone = 0;  // xi0 code (quant/deadzone_quantizer.h): 0 = SAQ
-  // `--quantizer auto` (seed 3.5): each (subband, component) gets the
+  // `--quantizer auto` (Satti et al. 2011): each (subband, component) gets the
   // deadzone its fitted Laplacian mixture calls for (sigma2/sigma1: UEQ
   // below 120, z = 1.5 to 290, SAQ to 600, z = 2.5 above); `deadzone` is
   // then only the fallback for tiny subbands. 3xC and SIM only: the PGC
   // baseline keeps one deadzone.
   bool auto_deadzone = false;
-  // SAWT (transform.predictor == kSawt, seed 2.3): octree cells split while
+  // SAWT (transform.predictor == kSawt, Denis et al. 2010a): octree cells split while
   // they hold >= sawt_alpha vertices, and the Lagrangian of each filter
   // choice weighs its index bits by lambda = sawt_lambda_scale * step^2,
   // step being the finest step above (docs/ANALYSIS.md for the tuning).

@@ -1,5 +1,5 @@
-// Rate-distortion curves of the bitplane coders (seed 5, Figs. 9-10;
-// CODEC_NOTES 8): PSNR against rate after each packet of the quality order.
+// Rate-distortion curves of the bitplane coders (Satti et al.
+// 2011, Figs. 9-10): PSNR against rate after each packet of the quality order.
 #ifndef MESHWAVE_RATE_DISTORTION_H_
 #define MESHWAVE_RATE_DISTORTION_H_
 
@@ -29,7 +29,7 @@ struct RdPoint {
   uint64_t bytes_total = 0;    // container: preamble, header with base mesh, payloads
   uint64_t payload_bytes = 0;  // the packets' payloads only
   double bpv_total = 0;        // 8 bytes_total / V_J
-  double bpv_excl_base = 0;    // 8 payload_bytes / V_J, as the seed's figures
+  double bpv_excl_base = 0;    // 8 payload_bytes / V_J, as Satti et al. 2011's figures
   double psnr_db = 0;          // 20 log10(diagonal / RMS), same-index vertices
   // b when this prefix holds every packet of bitplanes >= b and none below,
   // else -1. All coders quantise alike, so at the same b they reconstruct

@@ -1,4 +1,5 @@
-// Lifting wavelet transforms of semi-regular meshes (seed 2.2, eq. 13-14).
+// Lifting wavelet transforms of semi-regular meshes (Sweldens 1998; Satti et al.
+// 2011).
 //
 // Forward, for j = J-1 down to 0, in place on the level-ordered positions:
 //   predict  d^j_k = c^{j+1}_k - P_k(c^j)        (P reads level-j vertices only)
@@ -24,9 +25,9 @@ namespace meshwave {
 enum class Predictor {
   kLinear,     // midpoint of the split edge
   kButterfly,  // Zorin's modified butterfly: 8-point rule, extraordinary
-               // and boundary rules (CODEC_NOTES 2.3)
+               // and boundary rules (Zorin et al. 1996)
   kLoop,       // Loop's edge mask 3/8, 3/8, 1/8, 1/8; midpoint on boundaries
-  kSawt,       // spatially adaptive (seed 2.3): one of the filters f1..f6
+  kSawt,       // spatially adaptive (Denis et al. 2010a): one of the filters f1..f6
                // per (level, region), TransformSettings::sawt says which
 };
 
@@ -36,7 +37,7 @@ struct SawtPlan;
 enum class UpdateWeights {
   kNone,      // unlifted: coarse levels are plain subsamples
   kConstant,  // w = 1/8 per endpoint
-  kValence,   // w_a = n_f(k) / (8 n_f(a)), zero-moment rule (CODEC_NOTES 2.1)
+  kValence,   // w_a = n_f(k) / (8 n_f(a)), zero-moment rule (docs/CODEC.md)
 };
 
 enum class FrameMode {

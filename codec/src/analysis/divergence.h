@@ -1,5 +1,5 @@
 // Observed histograms of wavelet coefficients and their Kullback-Leibler
-// divergence from a fitted model (seed 3.4, Tables 1-2).
+// divergence from a fitted model (Satti et al. 2011, Tables 1-2).
 #ifndef MESHWAVE_ANALYSIS_DIVERGENCE_H_
 #define MESHWAVE_ANALYSIS_DIVERGENCE_H_
 

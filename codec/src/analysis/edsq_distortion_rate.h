@@ -1,8 +1,8 @@
 // Distortion and rate of embedded deadzone scalar quantisers (EDSQ, seed
 // eq. 16) on a source model or on observed data: the closed forms for a
-// Laplacian (seed appendix, eq. 28-29), the Laplacian mixture (eq. 20 and
+// Laplacian (Satti et al. 2011, appendix), the Laplacian mixture (eq. 20 and
 // the cell-mass sum of 3.3), the modelling error ME(%) of eq. 21 and the
-// SNR gap between quantisers of Fig. 7 (seed 3.5).
+// SNR gap between quantisers of Fig. 7 (Satti et al. 2011).
 #ifndef MESHWAVE_ANALYSIS_EDSQ_DISTORTION_RATE_H_
 #define MESHWAVE_ANALYSIS_EDSQ_DISTORTION_RATE_H_
 
@@ -74,7 +74,7 @@ struct DeltaSnrOptions {
   double rate_hi = 2.0;
   int points = 64;
 };
-// Seed 3.5: mean over the rate range of SNR_z(R) - SNR_{z=1}(R) for the
+// As in Satti et al. 2011: mean over the rate range of SNR_z(R) - SNR_{z=1}(R) for the
 // mixture `model` quantised by the EDSQ of deadzone ratio z, in dB.
 double DeltaSnr(const LaplacianMixture& model, double z,
                 const DeltaSnrOptions& options = {});

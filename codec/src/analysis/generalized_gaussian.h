@@ -1,6 +1,6 @@
 // The zero-mean generalized Gaussian model of wavelet coefficients (seed
 // eq. 17), the usual model the Laplacian mixture is compared with, and its
-// brute-force fit by minimum KL divergence (seed 3.2).
+// brute-force fit by minimum KL divergence (Satti et al. 2011).
 #ifndef MESHWAVE_ANALYSIS_GENERALIZED_GAUSSIAN_H_
 #define MESHWAVE_ANALYSIS_GENERALIZED_GAUSSIAN_H_
 

@@ -73,7 +73,7 @@ MixtureFit FitLaplacianMixture(std::span<const double> x, const Histogram& histo
   const double var = std::max(0.0, square / n - mean * mean);
   const double floor = std::max(1e-300, std::sqrt(var) * options.min_sigma_fraction);
 
-  // Seed 3.2's start.
+  // The start of Satti et al. 2011.
   double beta = 0.9;
   double s1 = std::max(floor, std::sqrt(0.5 * var));
   double s2 = std::max(floor, std::sqrt(2.0 * var));

@@ -1,5 +1,6 @@
 // Laplacian and two-component Laplacian mixture models of wavelet
-// coefficients and their EM fit (seed 3.2, eq. 18-19; CODEC_NOTES 5.2).
+// coefficients and their EM fit (Satti et al. 2011; EM:
+// Dempster et al. 1977).
 #ifndef MESHWAVE_ANALYSIS_LAPLACIAN_MIXTURE_H_
 #define MESHWAVE_ANALYSIS_LAPLACIAN_MIXTURE_H_
 
@@ -60,7 +61,8 @@ struct MixtureFitOptions {
   double tolerance = 1e-10;
   // Smallest sigma either component may take, relative to the sample
   // standard deviation: a block of exact zeros (flat regions) would
-  // otherwise drive one component's sigma to 0 (CODEC_NOTES 5.2).
+  // otherwise drive one component's sigma to 0 (a floor on each
+  // variance).
   double min_sigma_fraction = 1e-6;
 };
 
@@ -71,10 +73,10 @@ struct MixtureFit {
   double kl = 0;       // KL(histogram || model) of the returned model, bits
 };
 
-// EM fit of the mixture (seed 3.2): starts from sigma1^2 = sigma_E^2 / 2,
+// EM fit of the mixture (Satti et al. 2011): starts from sigma1^2 = sigma_E^2 / 2,
 // sigma2^2 = 2 sigma_E^2, beta = 0.9; E- and M-steps in tandem until the
 // likelihood converges, returning the iterate with the smallest KL
-// divergence from `histogram` (the seed's stopping criterion; the start
+// divergence from `histogram` (Satti et al. 2011's stopping criterion; the start
 // counts as iterate 0). Densities are evaluated in the log domain. `x` must
 // be non-empty and finite; all-zero data give sigma = the floor.
 MixtureFit FitLaplacianMixture(std::span<const double> x, const Histogram& histogram,

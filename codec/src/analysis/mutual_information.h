@@ -1,5 +1,6 @@
 // Mutual information estimated by adaptive partitioning of the observation
-// space (Darbellay & Vajda 1999; seed 4.1, CODEC_NOTES 9): no bin size to
+// space (Darbellay & Vajda 1999, as used by
+// Satti et al. 2011): no bin size to
 // choose, every final cell holds enough points for its estimate.
 #ifndef MESHWAVE_ANALYSIS_MUTUAL_INFORMATION_H_
 #define MESHWAVE_ANALYSIS_MUTUAL_INFORMATION_H_

@@ -1,5 +1,5 @@
 // AnalyzePyramid: the per-subband fits and estimates behind `meshwave
-// analyze` (seed Tables 1-3, Figs. 5-6).
+// analyze` (Satti et al. 2011, Tables 1-3, Figs. 5-6).
 #include <algorithm>
 #include <cmath>
 #include <memory>

@@ -1,5 +1,5 @@
 // The one interface every fitted source model of a wavelet coefficient
-// (single Laplacian, Laplacian mixture, generalized Gaussian; seed 3.1-3.2)
+// (single Laplacian, Laplacian mixture, generalized Gaussian; Satti et al. 2011)
 // offers to the histogram and distortion-rate code: a zero-mean symmetric
 // density known through its mass and squared error on intervals of x >= 0.
 #ifndef MESHWAVE_ANALYSIS_SOURCE_MODEL_H_

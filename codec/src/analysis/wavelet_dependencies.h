@@ -1,4 +1,5 @@
-// The samples behind the seed's dependency analysis (4.1): each coefficient
+// The samples behind the dependency analysis of Satti et al.
+// 2011: each coefficient
 // X of a subband with its parent P_X (interband) and the summary
 // T = sum n_i^2 of its neighbours in the same subband (intraband, eq. 25).
 #ifndef MESHWAVE_ANALYSIS_WAVELET_DEPENDENCIES_H_
@@ -18,8 +19,8 @@ struct DependencySamples {
 // Component `component` of subband j >= 1 of `pyramid`. Neighbours of the
 // coefficient on edge k of M^j: the coefficients of the same subband in its
 // one-ring in M^{j+1}, i.e. on the other edges of the faces beside edge k
-// (4 inside, 2 on a boundary; CODEC_NOTES 9). The parent is
-// hierarchy.Parent(j, k) (CODEC_NOTES 6.4), same component, signed. With
+// (4 inside, 2 on a boundary). The parent is
+// hierarchy.Parent(j, k) (docs/CODEC.md), same component, signed. With
 // more than `max_samples` coefficients, every ceil(n / max_samples)-th one
 // is taken.
 DependencySamples GatherDependencies(const Pyramid& pyramid, int j, int component,

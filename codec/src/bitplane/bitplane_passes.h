@@ -1,5 +1,5 @@
 // The three passes of one bitplane of one (subband, component) — SIM's octree
-// set partitioning with 3xC's optional parent contexts (CODEC_NOTES 6.2,
+// set partitioning with 3xC's optional parent contexts (Denis et al. 2010;
 // 6.5). Written once as a template over the symbol I/O so that the encoder
 // (which knows every coefficient) and the decoder (which learns them from
 // the stream) run the very same steps and keep identical state.

@@ -1,4 +1,4 @@
-// The octree that SIM and 3xC partition a subband with (CODEC_NOTES 6.2):
+// The octree that SIM and 3xC partition a subband with (Denis et al. 2010):
 // coefficients sorted by the Morton code of an integer reference position
 // that encoder and decoder derive bit-exactly from the quantised base mesh,
 // so every octree cell is a contiguous range of that order.

@@ -1,5 +1,5 @@
-// PGC's zerotree bitplane coder (seed 5.1, CODEC_NOTES 6.6): SPIHT-style set
-// partitioning over the coefficient trees of the hierarchy (CODEC_NOTES 6.4,
+// PGC's zerotree bitplane coder (Khodakovsky et al. 2000): SPIHT-style set
+// partitioning over the coefficient trees of the hierarchy (docs/CODEC.md,
 // docs/CODEC.md), one tree per coefficient of d^0 and per component, each
 // node with the 4 (3 on a boundary) children of SemiRegularHierarchy. A tree
 // spans every level, so one bitplane touches all subbands: no resolution

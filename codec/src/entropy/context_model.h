@@ -1,6 +1,6 @@
 // What the arithmetic encoder and decoder must agree on: the adaptive
 // probability state of one binary context, the coder's constants, and the
-// byte format of a packet (CODEC_NOTES 7, option A with the minimal flush).
+// byte format of a packet (an LZMA-style binary range coder with a minimal flush; docs/FORMAT.md).
 //
 // Packet byte format (one packet = one codeword; copied into docs/FORMAT.md)
 // --------------------------------------------------------------------------

@@ -11,7 +11,7 @@ namespace meshwave {
 int ChooseDeadzoneCode(std::span<const double> coefficients, int fallback) {
   if (coefficients.size() < 64) return fallback;
   // The fit only needs the shape of the distribution: 2^16 samples pin
-  // sigma2 / sigma1 well within the seed's threshold bands and keep the
+  // sigma2 / sigma1 well within Satti et al. 2011's threshold bands and keep the
   // encoder's cost to a few EM passes per component.
   constexpr size_t kMaxSamples = 65536;
   const size_t stride = (coefficients.size() + kMaxSamples - 1) / kMaxSamples;

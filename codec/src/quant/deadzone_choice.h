@@ -1,4 +1,4 @@
-// `--quantizer auto` (seed 3.5): the deadzone of each (subband, component)
+// `--quantizer auto` (Satti et al. 2011): the deadzone of each (subband, component)
 // from the Laplacian mixture fitted to its coefficients.
 #ifndef MESHWAVE_QUANT_DEADZONE_CHOICE_H_
 #define MESHWAVE_QUANT_DEADZONE_CHOICE_H_
@@ -8,7 +8,7 @@
 namespace meshwave {
 
 // Fits the mixture by EM (analysis/laplacian_mixture.h) and maps the fitted
-// sigma2 / sigma1 to a deadzone code with the seed's thresholds
+// sigma2 / sigma1 to a deadzone code with Satti et al. 2011's thresholds
 // (DeadzoneCodeForSigmaRatio). At most 65536 evenly spaced coefficients are
 // used for the fit. Fewer than 64 coefficients (or all zero): `fallback`.
 int ChooseDeadzoneCode(std::span<const double> coefficients, int fallback);

@@ -1,4 +1,5 @@
-// Embedded deadzone scalar quantisation (seed eq. 16, CODEC_NOTES 5.1).
+// Embedded deadzone scalar quantisation (Taubman & Marcellin 2002;
+// the EDSQ family of Satti et al. 2011).
 // With Q0 = max(0, floor(|X| / step + xi0)), the coarser quantisers of the
 // family are its bitplane truncations q_n = Q0 >> n, so bitplane coding of Q0
 // and a sign realises every EDSQ of the family at once.

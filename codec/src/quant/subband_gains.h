@@ -1,4 +1,4 @@
-// Synthesis energy gains of the subbands (CODEC_NOTES 5.1, "subband
+// Synthesis energy gains of the subbands (docs/CODEC.md, "subband
 // weighting"): an error e in one coefficient of d^j spreads over many
 // vertices of M^J; its energy there is G_j e^2. Coding every subband with the
 // step Δ0 / sqrt(G_j) puts all coefficients on one distortion scale, which is

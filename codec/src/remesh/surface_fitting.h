@@ -1,7 +1,7 @@
 // Surface fitting: places the vertices of every level of a semi-regular
 // hierarchy on the input surface, level by level, as normal meshes do
 // (Guskov et al. 2000) with the fit-relax-repair loop of V-DMC
-// (CODEC_NOTES 1.4).
+// (MPEG V-DMC, ISO/IEC 23090-29).
 #ifndef MESHWAVE_REMESH_SURFACE_FITTING_H_
 #define MESHWAVE_REMESH_SURFACE_FITTING_H_
 

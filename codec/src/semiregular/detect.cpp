@@ -1,5 +1,5 @@
 // DetectSemiRegular: undo 1-to-4 splits level by level by labelling every
-// vertex even (kept) or odd (created on an edge), CODEC_NOTES 1.3, then
+// vertex even (kept) or odd (created on an edge), docs/CODEC.md "Detection", then
 // renumber the recovered hierarchy canonically.
 #include <algorithm>
 #include <deque>

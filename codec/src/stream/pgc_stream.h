@@ -1,4 +1,4 @@
-// The PGC baseline (seed 5.1, CODEC_NOTES 6.6) as a whole codec: the same
+// The PGC baseline (Khodakovsky et al. 2000) as a whole codec: the same
 // transform, base mesh coding, quantisers (per (subband, component), steps
 // step0 / sqrt(G_j)) and arithmetic coder as EncodeMesh, but the bitplanes
 // coded by the zerotree coder of bitplane/zerotree_coder.h, one packet per

@@ -1,4 +1,5 @@
-// Local frames of the coefficients of one level (CODEC_NOTES 4): for the odd
+// Local frames of the coefficients of one level (Khodakovsky et al.
+// 2000): for the odd
 // vertex on edge (c1 -> c2) of M^j, n = normalised sum of the area-weighted
 // normals of the edge's faces, t1 = the edge direction made orthogonal to
 // n, t2 = n x t1. Built from level-j positions only, so the decoder can build

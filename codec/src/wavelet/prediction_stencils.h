@@ -1,5 +1,6 @@
 // Prediction stencils of one level: for every odd vertex of M^{j+1} the
-// level-j vertices and weights that predict it (CODEC_NOTES 2.2-2.3).
+// level-j vertices and weights that predict it (Dyn et al. 1990,
+// Zorin et al. 1996, Loop 1987; docs/CODEC.md).
 #ifndef MESHWAVE_WAVELET_PREDICTION_STENCILS_H_
 #define MESHWAVE_WAVELET_PREDICTION_STENCILS_H_
 
@@ -46,7 +47,7 @@ StencilTable BuildPredictionStencils(const SemiRegularHierarchy& hierarchy,
                                      int j, const VertexRings& rings,
                                      Predictor predictor);
 
-// SAWT stencils: edge k of M^j is predicted by filter_of_edge[k] (seed 2.3).
+// SAWT stencils: edge k of M^j is predicted by filter_of_edge[k] (SAWT, Denis et al. 2010a).
 // Interior edges: the filter as written, wings reflected where missing.
 // Boundary edges (no c4): f1 and f2 become their curve rules along the
 // boundary, 1/2 + w on the endpoints and -w on the boundary neighbours

@@ -1,4 +1,5 @@
-// The encoder's choice of SAWT filters (seed eq. 15): per (level, region),
+// The encoder's choice of SAWT filters (the rate-distortion criterion of Denis
+// et al. 2010a): per (level, region),
 // the filter l minimising E_k[|c_p - f_l(c)|^2] + lambda R_k(f_l), with E_k
 // the mean squared prediction error (x + y + z) over the region's odd
 // vertices and R_k the bits the adaptive index code would spend on l at

@@ -2,7 +2,7 @@
 // "SAWT filter choices"): one context per octree depth for the split
 // flags, and a truncated unary code of the filter index (0..5) with one
 // context per unary position. The encoder's Lagrangian choice reads the
-// same models for the rate of each index (CODEC_NOTES 3: -log2 p).
+// same models for the rate of each index (-log2 p).
 #ifndef MESHWAVE_WAVELET_SAWT_INDEX_MODEL_H_
 #define MESHWAVE_WAVELET_SAWT_INDEX_MODEL_H_
 

@@ -1,5 +1,5 @@
-// The spatially adaptive wavelet transform's side information (seed 2.3,
-// CODEC_NOTES 3): the regions of the mesh and, per (level, region), which
+// The spatially adaptive wavelet transform's side information (SAWT,
+// Denis et al. 2010a): the regions of the mesh and, per (level, region), which
 // of the six prediction filters f1..f6 predicts the odd vertices there.
 #ifndef MESHWAVE_WAVELET_SAWT_PLAN_H_
 #define MESHWAVE_WAVELET_SAWT_PLAN_H_
@@ -9,7 +9,8 @@
 
 namespace meshwave {
 
-// The six candidate predictors of seed 2.3, in the seed's order; the index
+// The six candidate predictors of SAWT, in the order Satti et al. 2011
+// list them; the index
 // coded in the stream is the enumerator's value.
 enum class SawtFilter : uint8_t {
   kButterfly = 0,      // f1: 1/2 (c1+c2) + 1/8 (c3+c4) - 1/16 wings

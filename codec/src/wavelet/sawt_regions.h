@@ -1,4 +1,5 @@
-// SAWT regions (seed 2.3, CODEC_NOTES 3 [corrected]): an octree over the
+// SAWT regions (SAWT, Denis et al. 2010a as summarised
+// by Satti et al. 2011; docs/REFERENCES.md): an octree over the
 // base faces, split while a cell holds at least alpha vertices. Every
 // quantity that decides membership is an integer the decoder holds too:
 // cells live on the integer grid of the quantised base mesh (scaled by 3),
@@ -19,7 +20,7 @@
 
 namespace meshwave {
 
-inline constexpr uint32_t kDefaultSawtAlpha = 400;  // seed Fig. 4
+inline constexpr uint32_t kDefaultSawtAlpha = 400;  // Satti et al. 2011, Fig. 4
 // Octree depth at which cells stop splitting whatever they hold.
 inline constexpr int kSawtMaxDepth = 20;
 

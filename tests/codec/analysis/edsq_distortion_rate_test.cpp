@@ -19,7 +19,7 @@ double Integrate(const auto& f, double a, double b) {
 }
 
 // D and R of an EDSQ on a Laplacian by numerical integration of the pdf
-// over every cell (the definitions in the seed's appendix).
+// over every cell (the definitions in Satti et al. 2011's appendix).
 DrPoint NumericLaplacian(double lambda, const EdsqLevel& q) {
   const auto pdf = [lambda](double x) { return 0.5 * lambda * std::exp(-lambda * x); };
   const double dz = q.delta() * q.step;

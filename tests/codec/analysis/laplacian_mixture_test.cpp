@@ -29,7 +29,7 @@ TEST_P(EmRecoveryTest, RecoversKnownParametersWithinFivePercent) {
   EXPECT_LT(fit.kl, 0.05);
 }
 
-// The seed's usual weight 0.9 with small and large ratios (non-normal and
+// Satti et al. 2011's usual weight 0.9 with small and large ratios (non-normal and
 // normal meshes), an even mix, and a tiny scale.
 INSTANTIATE_TEST_SUITE_P(Mixtures, EmRecoveryTest,
                          ::testing::Values(MixtureCase{0.9, 1.0, 10.0},

@@ -542,7 +542,7 @@ TEST(ArithmeticCoderTest, SkewedSourceCostsItsModelEntropy) {
   }
 }
 
-// CODEC_NOTES 7: LZMA's 5-byte flush costs about 4 bytes more than the
+// LZMA's 5-byte flush costs about 4 bytes more than the
 // minimal one. Measured here: about 0.3 bytes beyond the ideal code length.
 TEST(ArithmeticCoderTest, FlushCostsUnderTwoBytesPerPacket) {
   std::mt19937_64 rng(22);

@@ -14,7 +14,7 @@ namespace meshwave {
 namespace {
 
 TEST(DeadzoneChoiceTest, PicksFromTheFittedSigmaRatio) {
-  // beta 0.9 as in the seed's Fig. 7: ratio 10 -> UEQ, 400 -> SAQ, 2000 -> z = 2.5.
+  // beta 0.9 as in Satti et al. 2011, Fig. 7: ratio 10 -> UEQ, 400 -> SAQ, 2000 -> z = 2.5.
   EXPECT_EQ(ChooseDeadzoneCode(testing::LaplacianMixtureSamples(100000, 0.9, 1, 10, 1), 0), 1);
   EXPECT_EQ(ChooseDeadzoneCode(testing::LaplacianMixtureSamples(100000, 0.9, 1, 400, 2), 1), 0);
   EXPECT_EQ(ChooseDeadzoneCode(testing::LaplacianMixtureSamples(100000, 0.9, 1, 2000, 3), 0), 3);

@@ -1,4 +1,4 @@
-// SAWT (seed 2.3): regions, filters, the encoder's choice, and perfect
+// SAWT (Denis et al. 2010a): regions, filters, the encoder's choice, and perfect
 // reconstruction with any choice, on synthetic meshes and a shared one.
 #include <gtest/gtest.h>
 
