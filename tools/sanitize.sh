@@ -4,7 +4,8 @@
 # -O1 without debug information, only the targets the suites below need,
 # tests by ctest label two at a time.
 #   asan: clang, ASan + UBSan with libFuzzer's coverage (-DMESHWAVE_FUZZ=ON,
-#     build-asan): the codec's core, mesh I/O, entropy and stream suites,
+#     build-asan): the codec's core, mesh I/O, entropy, stream, wavelet,
+#     metrics and remeshing suites,
 #     the server (unit, HTTP, WebSocket), the client (unit, end to end), the
 #     fault and abuse tests, every fuzz replay (seeds + regression
 #     corpus) and a 10-second libFuzzer run of every target. The servers and CLIs these tests start are ASan builds too.
@@ -14,8 +15,8 @@
 #     whose meshwave-server processes (2 io threads) are TSan builds.
 # Both stages build with clang, whose precompiled headers pay off
 # (cmake/MeshwavePch.cmake); the Release stage is gcc's.
-# Left out for time: the remeshing, wavelet, metrics, analysis and CLI
-# suites (inputs are our own meshes; the readers get the fuzz replays).
+# Left out for time: the analysis and CLI suites (the CLI's code is the
+# libraries' that the suites above run, plus argument parsing).
 # A report from any process (test, server, CLI) fails the stage: the
 # sanitizers write them to BUILD/sanitizer-reports/, printed here.
 # Usage: bash tools/sanitize.sh [asan|tsan|all]  (default all)
@@ -25,6 +26,7 @@ stage=${1:-all}
 jobs=${SANITIZE_JOBS:-2}
 source tools/sanitize_targets.sh
 bash deploy/install-deps.sh
+source tools/compiler_cache.sh
 if ! command -v clang++ > /dev/null; then
   echo "sanitize: the sanitizer stages need clang (apt-get install clang libclang-rt-14-dev)" >&2
   exit 1

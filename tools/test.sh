@@ -6,6 +6,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash deploy/install-deps.sh
+source tools/compiler_cache.sh
+[[ ${CMAKE_CXX_COMPILER_LAUNCHER:-} == ccache ]] && ccache --zero-stats > /dev/null
 start=$SECONDS
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DMESHWAVE_WERROR=ON
 cmake --build build -j2
@@ -13,5 +15,8 @@ ctest --test-dir build --output-on-failure -j2 --timeout 900
 echo "test: Release stage passed ($((SECONDS - start)) s)"
 if [[ ${SANITIZE:-1} != 0 ]]; then
   bash tools/sanitize.sh all
+fi
+if [[ ${CMAKE_CXX_COMPILER_LAUNCHER:-} == ccache ]]; then
+  echo "test: compiler cache: $(ccache --print-stats | awk -F'\t' '$1 ~ /^(direct_cache_hit|preprocessed_cache_hit|cache_miss)$/ {printf "%s %s ", $1, $2}')"
 fi
 echo "test: all stages passed ($((SECONDS - start)) s)"
