@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include "codec/remesh/fit_cases_testonly.h"
+#include "remesh/fit_projection.h"
+#include "remesh/qem_simplifier.h"
+#include "remesh/remesh_quality.h"
 
 namespace meshwave::remesh {
 namespace {
@@ -86,6 +89,62 @@ TEST(FoldRepairTest, LeavesBoundaryVerticesOfTheRemeshWhereTheyAre) {
       EXPECT_EQ(fit.positions[v], before[v]) << v;
     }
   }
+}
+
+TEST(FoldRepairTest, SlidesABoundaryVertexAlongAJaggedInputBoundary) {
+  // Input: the square [0, 2]^2 with a notch x in [1, 1.5], y in [0, 1.5]
+  // cut into its bottom side. Base: the corners (0, 0), (2, 0), (0, 2).
+  // Level 1 puts the middle of the bottom edge at the arc-length midpoint
+  // of the notched stretch, the notch's top corner (1, 1.5), in line with
+  // the other two new vertices: the middle face has no area, and only
+  // boundary vertices (which slide along the loop) can fix it.
+  TriMesh input = testing::FlatGrid(4, 0, 0, 2);
+  std::vector<Face> kept;
+  for (size_t f = 0; f < input.faces.size(); ++f) {
+    const size_t cell = f / 2, i = cell % 4, j = cell / 4;
+    if (!(i == 2 && j < 3)) kept.push_back(input.faces[f]);
+  }
+  input.faces = kept;
+  SimplifiedMesh base;
+  base.mesh.positions = {{0, 0, 0}, {2, 0, 0}, {0, 2, 0}};
+  base.mesh.faces = {{0, 1, 2}};
+  base.source_vertex = {0, 4, 20};
+  base.component = {0, 0, 0};
+  FitCase fit(input, base.mesh, 1);
+  std::vector<Vec3> base_positions;
+  std::vector<SurfaceAnchor> base_anchors;
+  PlaceBaseVertices(base, *fit.surface, {}, base_positions, base_anchors);
+  std::copy(base_positions.begin(), base_positions.end(),
+            fit.positions.begin());
+  std::copy(base_anchors.begin(), base_anchors.end(), fit.anchors.begin());
+  fit.PlaceAtMidpoints(0);
+  PlaceNewVertices(fit.state(), 0);
+  const uint32_t bottom = fit.Splitting(0, 0, 1);
+  ASSERT_LT((fit.positions[bottom] - Vec3(1, 1.5, 0)).norm(), 1e-12);
+  const Face middle = {bottom, fit.Splitting(0, 1, 2), fit.Splitting(0, 2, 0)};
+  ASSERT_LT(Compactness(fit.positions[middle[0]], fit.positions[middle[1]],
+                        fit.positions[middle[2]]),
+            kDegenerateCompactness);
+  const std::vector<SurfaceAnchor> before = fit.anchors;
+  fit.options.repair_rounds = 0;
+
+  EXPECT_EQ(FoldRepair(fit.state()).Run(1, fit.Rings(1)), 0u);
+
+  EXPECT_GT(Compactness(fit.positions[middle[0]], fit.positions[middle[1]],
+                        fit.positions[middle[2]]),
+            kDegenerateCompactness);
+  EXPECT_EQ(FacesTurnedOver(fit), 0u);
+  // Whatever moved slid along the loop: it is where its arc length says.
+  size_t slid = 0;
+  for (uint32_t v = 0; v < 6; ++v) {
+    ASSERT_EQ(fit.anchors[v].loop, 0u) << v;
+    EXPECT_EQ(fit.positions[v],
+              fit.surface->loops().At(0, fit.anchors[v].s).position)
+        << v;
+    slid += fit.anchors[v].s != before[v].s ? 1 : 0;
+  }
+  EXPECT_GT(slid, 0u);
+  EXPECT_EQ(fit.stats.repair_moves, slid);
 }
 
 }  // namespace
