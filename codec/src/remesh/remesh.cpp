@@ -14,6 +14,7 @@
 #include "remesh/base_flips.h"
 #include "remesh/coincident_vertices.h"
 #include "remesh/components.h"
+#include "remesh/fit_projection.h"
 #include "remesh/input_surface.h"
 #include "remesh/level_plan.h"
 #include "remesh/manifold_repair.h"
@@ -54,9 +55,9 @@ constexpr int kMaxAttempts = 3;
 constexpr double kCheckStart = 0.95;
 constexpr double kSimplifyPart = 0.5;
 
-// Retries (see Run): another attempt runs while the best result misses
-// an input vertex by more than kAcceptableMiss of the diagonal; it keeps in
-// the base the farthest vertex beyond kRefineThreshold of every
+// Retries (see FitBestAttempt): another attempt runs while the best result
+// misses an input vertex by more than kAcceptableMiss of the diagonal; it keeps
+// in the base the farthest vertex beyond kRefineThreshold of every
 // kLockSpacing-wide neighbourhood (at most kMaxLockShare times the planned
 // base faces of them, accumulated over attempts). Vertex misses of attempts
 // 0 / 1 / 2 in % of the diagonal on the shared meshes: horse 0.56 / 0.59 /
@@ -121,15 +122,51 @@ class Pipeline {
  public:
   explicit Pipeline(const RemeshOptions& options) : options_(options) {}
 
+  // The named steps below, in order; each ends its stage of
+  // result_.stage_seconds and reports its progress.
   Result<RemeshResult> Run(const TriMesh& input) {
     const Clock::time_point start = Clock::now();
     stage_start_ = start;
-    MW_RETURN_IF_ERROR(CheckInput(input));
-    // Validate the options before any work.
-    MW_RETURN_IF_ERROR(remesh::PlanLevels(input.positions.size(),
-                                          options_.levels, options_.base_faces)
-                           .status());
+    MW_RETURN_IF_ERROR(Validate(input));
+    MW_ASSIGN_OR_RETURN(TriMesh mesh, Repair(input));
+    MW_ASSIGN_OR_RETURN(const remesh::LevelPlan plan, Plan(mesh));
+    remesh::Components components = remesh::LabelComponents(mesh);
+    remesh::SimplifyOptions simplify =
+        PlanSimplification(mesh, components, plan);
+    const auto surface = std::make_unique<remesh::InputSurface>(
+        std::move(mesh), std::move(components));
+    MW_ASSIGN_OR_RETURN(Attempt attempt,
+                        FitBestAttempt(*surface, plan, std::move(simplify)));
+    Measure(*surface, std::move(attempt));
+    AddResultWarnings();
+    Report("done", 1);
+    result_.seconds =
+        std::chrono::duration<double>(Clock::now() - start).count();
+    return std::move(result_);
+  }
 
+ private:
+  // One simplification and fitting of the whole input.
+  struct Attempt {
+    SemiRegularMesh mesh;
+    std::vector<remesh::SurfaceAnchor> anchors;
+    remesh::FitStats stats;
+    size_t base_vertices = 0;
+    size_t base_faces = 0;
+  };
+
+  // The input's indices and coordinates, and the options, before any work.
+  Status Validate(const TriMesh& input) const {
+    MW_RETURN_IF_ERROR(CheckInput(input));
+    return remesh::PlanLevels(input.positions.size(), options_.levels,
+                              options_.base_faces)
+        .status();
+  }
+
+  // Stage "repair": the input cleaned (CleanMesh), made an oriented
+  // manifold (RepairManifold) and rid of components without area (and of
+  // tiny ones if asked); what was done goes into result_ and its warnings.
+  Result<TriMesh> Repair(const TriMesh& input) {
     TriMesh mesh = input;
     result_.cleaning = CleanMesh(mesh);
     if (mesh.faces.empty()) {
@@ -159,14 +196,26 @@ class Pipeline {
            " turned over to agree with their neighbours");
     }
     EndStage("repair");
+    return mesh;
+  }
 
+  // Levels J and base faces N for the repaired input (level_plan.h).
+  Result<remesh::LevelPlan> Plan(const TriMesh& mesh) {
     MW_ASSIGN_OR_RETURN(
         const remesh::LevelPlan plan,
         remesh::PlanLevels(mesh.positions.size(), options_.levels,
                            options_.base_faces));
     result_.levels = plan.levels;
     result_.target_base_faces = plan.base_faces;
-    remesh::Components components = remesh::LabelComponents(mesh);
+    return plan;
+  }
+
+  // How far simplification may go: the planned base faces, a longest base
+  // edge, and per component a floor of faces and a share for put-off
+  // collapses.
+  static remesh::SimplifyOptions PlanSimplification(
+      const TriMesh& mesh, const remesh::Components& components,
+      const remesh::LevelPlan& plan) {
     std::vector<uint32_t> faces_per_component(components.count, 0);
     for (uint32_t c : components.of_face) ++faces_per_component[c];
     remesh::SimplifyOptions simplify;
@@ -192,25 +241,29 @@ class Pipeline {
           std::round(kLateFloorShare * static_cast<double>(plan.base_faces) *
                      faces_per_component[c] / faces_total)));
     }
-    const auto surface = std::make_unique<remesh::InputSurface>(
-        std::move(mesh), std::move(components));
+    return simplify;
+  }
 
-    // First attempt; then, while the best result misses some input vertex
-    // by more than kAcceptableMiss (a tip or corner that simplification let
-    // go), another with the vertices farther than kRefineThreshold found so
-    // far kept in the base. The best is kept:
-    // within kAcceptableMiss of the diagonal, the one with fewer folds;
-    // beyond, the nearer one. Small changes of the base move thin parts
-    // (ogre's ear tips) between "caught" and "missed", so a single retry
-    // can trade one miss for another; the locks accumulate.
-    const double diagonal = surface->diagonal();
+  // Stages "simplify", "fit", "check features" and, when features were
+  // missed, "refine": the first attempt; then, while the best result misses
+  // some input vertex by more than kAcceptableMiss (a tip or corner that
+  // simplification let go), another with the vertices farther than
+  // kRefineThreshold found so far kept in the base. The best is kept:
+  // within kAcceptableMiss of the diagonal, the one with fewer folds;
+  // beyond, the nearer one. Small changes of the base move thin parts
+  // (ogre's ear tips) between "caught" and "missed", so a single retry
+  // can trade one miss for another; the locks accumulate.
+  Result<Attempt> FitBestAttempt(const remesh::InputSurface& surface,
+                                 const remesh::LevelPlan& plan,
+                                 remesh::SimplifyOptions simplify) {
+    const double diagonal = surface.diagonal();
     const size_t max_locks =
         static_cast<size_t>(kMaxLockShare *
                             static_cast<double>(plan.base_faces)) +
         1;
     const auto measure = [&](const Attempt& a) {
       return remesh::FindMissedVertices(
-          surface->mesh(), a.mesh.Finest(), kRefineThreshold * diagonal,
+          surface.mesh(), a.mesh.Finest(), kRefineThreshold * diagonal,
           kLockSpacing * diagonal, max_locks, options_.threads);
     };
     const auto score = [&](const remesh::MissedVertices& m, const Attempt& a) {
@@ -221,11 +274,11 @@ class Pipeline {
                              unacceptable ? folds : m.max_distance);
     };
     MW_ASSIGN_OR_RETURN(Attempt attempt,
-                        Build(*surface, simplify, plan, 0, "simplify", "fit"));
+                        Build(surface, simplify, plan, 0, "simplify", "fit"));
     remesh::MissedVertices missed = measure(attempt);
     EndStage("check features");
     auto best_score = score(missed, attempt);
-    simplify.locked.assign(surface->mesh().positions.size(), 0);
+    simplify.locked.assign(surface.mesh().positions.size(), 0);
     size_t locks = 0;
     for (int index = 1; index < kMaxAttempts && !missed.vertices.empty();
          ++index) {
@@ -235,7 +288,7 @@ class Pipeline {
         if (!simplify.locked[v]) ++locks;
         simplify.locked[v] = 1;
       }
-      MW_ASSIGN_OR_RETURN(Attempt next, Build(*surface, simplify, plan, index,
+      MW_ASSIGN_OR_RETURN(Attempt next, Build(surface, simplify, plan, index,
                                               "refine", "refine"));
       missed = measure(next);
       const auto next_score = score(missed, next);
@@ -246,6 +299,12 @@ class Pipeline {
       }
     }
     if (locks > 0) EndStage("refine");
+    return attempt;
+  }
+
+  // Stage "check": keeps the attempt as the result and measures its finest
+  // level against the input (MeasureQuality).
+  void Measure(const remesh::InputSurface& surface, Attempt attempt) {
     result_.base_vertices = attempt.base_vertices;
     result_.base_faces = attempt.base_faces;
     result_.normal_hits = attempt.stats.normal_hits;
@@ -262,29 +321,14 @@ class Pipeline {
       face_component[f] = anchors[finest.faces[f][0]].component;
     }
     const remesh::QualityFigures quality = remesh::MeasureQuality(
-        finest, face_component, *surface, options_.threads);
+        finest, face_component, surface, options_.threads);
     result_.flipped_faces = quality.flipped_faces;
     result_.degenerate_faces = quality.degenerate_faces;
     result_.min_angle_degrees = quality.min_angle_degrees;
     result_.finest_vertices = finest.positions.size();
     result_.finest_faces = finest.faces.size();
     EndStage("check");
-    AddResultWarnings();
-    Report("done", 1);
-    result_.seconds =
-        std::chrono::duration<double>(Clock::now() - start).count();
-    return std::move(result_);
   }
-
- private:
-  // One simplification and fitting of the whole input.
-  struct Attempt {
-    SemiRegularMesh mesh;
-    std::vector<remesh::SurfaceAnchor> anchors;
-    remesh::FitStats stats;
-    size_t base_vertices = 0;
-    size_t base_faces = 0;
-  };
 
   // Progress: attempt i runs over [kAttemptStart[i], kAttemptStart[i + 1]).
   Result<Attempt> Build(const remesh::InputSurface& surface,
