@@ -14,6 +14,7 @@
 #include "client_state.pb.h"
 #include "e2e/cli_runner.h"
 #include "meshwave/client/blocking_session.h"
+#include "meshwave.pb.h"
 #include "meshwave/container.h"
 #include "server/http_client_testonly.h"
 #include "server/server_process_testonly.h"
@@ -261,6 +262,18 @@ TEST_F(ClientE2eTest, TruePsnrWithAReference) {
   const auto report = ParseReport(r.out);
   EXPECT_GT(report.true_psnr_db(), 20);
   for (const auto& s : report.steps()) EXPECT_GT(s.true_psnr_db(), 0);
+  // The "true" PSNR is the symmetric surface distance to the reference,
+  // exactly what `meshwave compare REFERENCE DECODED` reports (up to the
+  // float rounding of the written mesh), not a vertex-to-vertex match.
+  const auto c = RunCli({"compare", testing::SampleMesh("holes.off").string(),
+                         (dir / "h.ply").string(), "--json"});
+  ASSERT_EQ(c.exit_code, 0) << c.err;
+  proto::CompareReport compare;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(c.out, &compare).ok())
+      << c.out;
+  EXPECT_NEAR(report.true_psnr_db(), compare.surface().rms().psnr_db(), 0.01);
+  EXPECT_NEAR(report.steps(report.steps_size() - 1).true_psnr_db(),
+              report.true_psnr_db(), 1e-9);
 }
 
 TEST_F(ClientE2eTest, RefineTwiceEqualsOneLargerFetchAndNoPacketIsSentTwice) {

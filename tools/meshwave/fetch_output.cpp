@@ -18,7 +18,9 @@ void AddFetchOutputOptions(CLI::App* cmd, FetchOutputOptions& options,
   cmd->add_option("--lods", options.lods,
                   "Directory for one mesh per refinement (lod_NNNN.ply)");
   cmd->add_option("--reference", options.reference,
-                  "Original mesh: print the true PSNR at every step");
+                  "Original mesh (the one uploaded): print at every step the "
+                  "PSNR of the symmetric surface distance to it, as "
+                  "`meshwave compare ORIGINAL DECODED` gives it");
   cmd->add_flag("--json", options.json,
                 "Print one JSON object (steps, bytes, PSNR, timings)");
 }
@@ -58,7 +60,6 @@ Result<std::unique_ptr<FetchOutput>> FetchOutput::Create(
   std::unique_ptr<FetchOutput> out(new FetchOutput(options));
   if (!options.reference.empty()) {
     MW_ASSIGN_OR_RETURN(TriMesh ref, ReadMesh(options.reference));
-    out->reference_diagonal_ = BoundingBox(ref.positions).Diagonal();
     out->reference_ = std::move(ref);
   }
   if (!options.lods.empty()) {
@@ -71,12 +72,14 @@ Result<std::unique_ptr<FetchOutput>> FetchOutput::Create(
   return out;
 }
 
-double FetchOutput::TruePsnr(const ProgressiveDecoder& decoder) const {
+// The distance a user judges a decoded mesh by: to the surface they
+// uploaded, both ways (a remeshed stream has other vertices than the
+// original, so no vertex-to-vertex matching measures it).
+double FetchOutput::SurfacePsnr(const ProgressiveDecoder& decoder) const {
   if (!reference_) return 0;
-  auto e = VertexErrorByNearest(reference_->positions,
-                                decoder.Positions(options_.max_level),
-                                reference_diagonal_);
-  return e.ok() ? e->psnr_db : 0;
+  auto d =
+      SymmetricSurfaceDistance(*reference_, decoder.Mesh(options_.max_level));
+  return d.ok() ? d->PsnrDb(d->rms) : 0;
 }
 
 void FetchOutput::OnProgress(const client::Progress& p,
@@ -87,7 +90,7 @@ void FetchOutput::OnProgress(const client::Progress& p,
   step->set_bytes(p.bytes);
   step->set_level(p.level);
   step->set_estimated_psnr_db(p.estimated_psnr_db);
-  if (reference_) step->set_true_psnr_db(TruePsnr(decoder));
+  if (reference_) step->set_true_psnr_db(SurfacePsnr(decoder));
   if (!options_.lods.empty() && lod_error_.ok()) {
     char name[32];
     std::snprintf(name, sizeof name, "lod_%04zu.ply", p.packets);
@@ -102,7 +105,7 @@ void FetchOutput::OnProgress(const client::Progress& p,
                  HumanBytes(p.bytes).c_str(), p.packets, p.order_packets,
                  p.level, p.levels, Db(p.estimated_psnr_db).c_str());
     if (reference_)
-      std::fprintf(stderr, " (true %s)", Db(step->true_psnr_db()).c_str());
+      std::fprintf(stderr, " (surface %s)", Db(step->true_psnr_db()).c_str());
     if (p.retries > 0) std::fprintf(stderr, "  %d retries", p.retries);
     std::fprintf(stderr, "\033[K");
     std::fflush(stderr);
@@ -139,7 +142,7 @@ Status FetchOutput::Finish(const client::Session& session,
   report_.set_level(p.level);
   report_.set_levels(p.levels);
   report_.set_estimated_psnr_db(p.estimated_psnr_db);
-  if (reference_) report_.set_true_psnr_db(TruePsnr(*decoder));
+  if (reference_) report_.set_true_psnr_db(SurfacePsnr(*decoder));
   report_.set_complete(p.complete());
   report_.set_retries(static_cast<uint32_t>(p.retries));
   report_.set_output(options_.out);
@@ -159,13 +162,14 @@ Status FetchOutput::Finish(const client::Session& session,
   }
   std::printf(
       "%zu of %zu packets in %s order, %llu bytes (%llu received), estimated "
-      "PSNR %s",
+      "PSNR %s (against the encoded mesh)",
       p.packets, p.order_packets, ProgressionName(session.options().order),
       static_cast<unsigned long long>(p.bytes),
       static_cast<unsigned long long>(p.received_bytes),
       Db(p.estimated_psnr_db).c_str());
   if (reference_)
-    std::printf(", true PSNR %s", Db(report_.true_psnr_db()).c_str());
+    std::printf(", surface PSNR %s against %s",
+                Db(report_.true_psnr_db()).c_str(), options_.reference.c_str());
   std::printf("\n");
   if (!state.empty())
     std::printf("state in %s (refine with: meshwave refine %s --more SIZE)\n",

@@ -1,6 +1,6 @@
 // What `meshwave fetch` and `meshwave refine` show and write while a
 // session refines a mesh: a progress line on a terminal, one mesh per
-// refinement in --lods, the true PSNR against --reference, the final mesh
+// refinement in --lods, the surface PSNR against --reference, the final mesh
 // and a summary (text or --json).
 #ifndef MESHWAVE_TOOLS_FETCH_OUTPUT_H_
 #define MESHWAVE_TOOLS_FETCH_OUTPUT_H_
@@ -21,7 +21,7 @@ namespace meshwave::cli {
 struct FetchOutputOptions {
   std::string out;        // final mesh (.ply or .obj)
   std::string lods;       // directory for one mesh per refinement, or empty
-  std::string reference;  // original mesh for the true PSNR, or empty
+  std::string reference;  // original mesh for the surface PSNR, or empty
   bool json = false;
   int max_level = -1;
 };
@@ -49,12 +49,11 @@ class FetchOutput {
  private:
   explicit FetchOutput(FetchOutputOptions options)
       : options_(std::move(options)) {}
-  double TruePsnr(const ProgressiveDecoder& decoder) const;
+  double SurfacePsnr(const ProgressiveDecoder& decoder) const;
   void OnProgress(const client::Progress& p, const ProgressiveDecoder& decoder);
 
   FetchOutputOptions options_;
   std::optional<TriMesh> reference_;
-  double reference_diagonal_ = 0;
   bool terminal_ = false;
   bool line_open_ = false;
   Status lod_error_;
