@@ -25,6 +25,7 @@ test=(
   nginx-light                  # the replica test's load balancer and cache
   docker-compose               # `docker-compose config`: compose file validation, no engine
   clang libclang-rt-14-dev     # the ASan + UBSan stage and the libFuzzer targets (tools/sanitize.sh)
+  emscripten                   # the WebAssembly decoder (web/build_decoder.sh) and its test
 )
 
 case "${1:-all}" in

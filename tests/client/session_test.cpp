@@ -162,7 +162,7 @@ TEST(SessionTest, RefusesACorruptHeader) {
 // max_faces, is refused without a retry and leaves the session empty.
 TEST(SessionTest, RefusesAHeaderOverTheClientsLimits) {
   const auto& stream = ClientTestStream();
-  const proto::StreamHeader& header = stream.header;
+  const StreamHeader& header = stream.header;
   // The header's length field (bytes 4-7) of what the server sends for
   // Budget::All: its `present` field lists every packet.
   const std::string all =

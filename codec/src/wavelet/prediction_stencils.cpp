@@ -1,9 +1,10 @@
 #include "wavelet/prediction_stencils.h"
 
 #include <cmath>
-#include <bit>
-#include <unordered_map>
 #include <numbers>
+#include <unordered_map>
+
+#include "core/bit_cast.h"
 
 namespace meshwave {
 namespace {
@@ -27,7 +28,7 @@ class StencilBuilder {
     uint64_t hash = terms_.size();
     for (const auto& [v, x] : terms_) {
       table.indices.push_back(v);
-      hash = (hash ^ std::bit_cast<uint64_t>(x)) * 0x9E3779B97F4A7C15ull;
+      hash = (hash ^ BitCast<uint64_t>(x)) * 0x9E3779B97F4A7C15ull;
     }
     table.offsets.push_back(static_cast<uint32_t>(table.indices.size()));
     table.weight_start.push_back(FindOrAddRun(table, hash));
@@ -38,7 +39,7 @@ class StencilBuilder {
   uint32_t InternRun(StencilTable& table) {
     uint64_t hash = terms_.size();
     for (const auto& [v, x] : terms_) {
-      hash = (hash ^ std::bit_cast<uint64_t>(x)) * 0x9E3779B97F4A7C15ull;
+      hash = (hash ^ BitCast<uint64_t>(x)) * 0x9E3779B97F4A7C15ull;
     }
     const uint32_t start = FindOrAddHashedRun(table, hash);
     terms_.clear();

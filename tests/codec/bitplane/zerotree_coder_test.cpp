@@ -82,13 +82,13 @@ TEST(ZerotreeCoderTest, UsesTheQuantizersAndVertexOrderOfEncodeMesh) {
 TEST(ZerotreeCoderTest, HasOnePacketPerBitplane) {
   const Fixture& f = Encoded();
   int top = -1;
-  for (const auto& q : f.stream.header.quantizers()) top = std::max(top, q.top_bitplane());
+  for (const auto& q : f.stream.header.quantizers) top = std::max(top, q.top_bitplane);
   ASSERT_EQ(f.stream.packets.size(), static_cast<size_t>(top + 1));
-  EXPECT_EQ(f.stream.header.packets().check().size(), 2 * f.stream.packets.size());
-  EXPECT_EQ(f.stream.header.packets().distortion_step().size(), f.stream.packets.size());
-  EXPECT_EQ(f.stream.header.packets().chain_distortion_size(), 1);
+  EXPECT_EQ(f.stream.header.packets.check.size(), 2 * f.stream.packets.size());
+  EXPECT_EQ(f.stream.header.packets.distortion_step.size(), f.stream.packets.size());
+  EXPECT_EQ(f.stream.header.packets.chain_distortion.size(), 1u);
   for (int i = 0; i <= top; ++i) {
-    EXPECT_EQ(f.stream.header.packets().length(i), f.stream.packets[i].size());
+    EXPECT_EQ(f.stream.header.packets.length[static_cast<size_t>(i)], f.stream.packets[i].size());
   }
 }
 
@@ -231,8 +231,8 @@ TEST(ZerotreeCoderTest, HeaderIsRefusedByTheMwvDecoderAndViceVersa) {
   auto sim = EncodeMesh(f.mesh, EncodeOptions{});
   ASSERT_TRUE(sim.ok());
   EXPECT_FALSE(PgcDecoder::Create(sim->header).ok());
-  proto::StreamHeader wrong = f.stream.header;
-  wrong.mutable_packets()->mutable_distortion_step()->push_back('\0');
+  StreamHeader wrong = f.stream.header;
+  wrong.packets.distortion_step.push_back('\0');
   EXPECT_EQ(PgcDecoder::Create(wrong).status().code(), StatusCode::kParseError);
 }
 
