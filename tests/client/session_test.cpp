@@ -181,7 +181,7 @@ TEST(SessionTest, RefusesAHeaderOverTheClientsLimits) {
   }
   {
     Harness h;
-    h.options.decoder.max_faces = header.faces() - 1;
+    h.options.decoder.max_faces = header.faces - 1;
     auto s = h.NewSession(Progression::kQuality);
     const Status st = h.Run(*s, Budget::All());
     EXPECT_FALSE(st.ok());
@@ -192,7 +192,7 @@ TEST(SessionTest, RefusesAHeaderOverTheClientsLimits) {
   {  // at the limits: the whole stream
     Harness h;
     h.options.max_header_bytes = header_bytes;
-    h.options.decoder.max_faces = header.faces();
+    h.options.decoder.max_faces = header.faces;
     auto s = h.NewSession(Progression::kQuality);
     const Status st = h.Run(*s, Budget::All());
     ASSERT_TRUE(st.ok()) << st.ToString();

@@ -272,7 +272,7 @@ TEST_F(ServerHttpTest, StreamContinuesFromCursor) {
     std::string_view body = r.body;
     for (size_t k = cursor; k < next; ++k) {
       const uint32_t pid = order[k];
-      const size_t length = header.packets().length(static_cast<int>(pid));
+      const size_t length = header.packets.length[pid];
       ASSERT_GE(body.size(), length);
       ASSERT_TRUE((*decoder)->AddPacket(pid, body.substr(0, length)).ok());
       body.remove_prefix(length);
