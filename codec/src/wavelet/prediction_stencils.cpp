@@ -5,6 +5,7 @@
 #include <unordered_map>
 
 #include "core/bit_cast.h"
+#include "core/correctly_rounded_cos.h"
 
 namespace meshwave {
 namespace {
@@ -143,7 +144,8 @@ class LevelView {
 
 // Zorin's weight of ring neighbour i of a vertex of valence k >= 5, from a
 // table filled once per valence (cosines are most of the set-up time
-// otherwise).
+// otherwise). The cosines are correctly rounded, so that every platform
+// (the WebAssembly decoder too) has the same weights to the bit.
 double ZorinWeight(int k, int i) {
   thread_local std::vector<std::vector<double>> table;
   if (static_cast<size_t>(k) >= table.size()) table.resize(k + 1);
@@ -152,7 +154,7 @@ double ZorinWeight(int k, int i) {
     row.resize(k);
     for (int n = 0; n < k; ++n) {
       const double a = 2 * std::numbers::pi * n / k;
-      row[n] = (0.25 + std::cos(a) + 0.5 * std::cos(2 * a)) / k;
+      row[n] = (0.25 + CorrectlyRoundedCos(a) + 0.5 * CorrectlyRoundedCos(2 * a)) / k;
     }
   }
   return row[i];
