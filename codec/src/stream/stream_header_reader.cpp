@@ -273,7 +273,7 @@ Field ReadTransform(uint32_t number, uint32_t wire, WireReader& r, int depth,
     case 5:
       if (wire != kLengthDelimited) return Field::kUnknown;
       // A repeated embedded message merges into the one already read.
-      if (!t.sawt) t.sawt.emplace();
+      if (!t.sawt) t.sawt = StreamHeader::SawtChoices();
       return ReadEmbedded(r, depth, [&](uint32_t n, uint32_t w, WireReader& f, int) {
         return ReadSawt(n, w, f, *t.sawt);
       });
