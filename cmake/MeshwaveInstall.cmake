@@ -1,13 +1,15 @@
-# `cmake --install`: the codec and client libraries, their public headers,
+# `cmake --install`: the decoder, codec and client libraries, their public headers,
 # the generated protobuf headers they include, and a CMake package so that
 # another project can find_package(meshwave) and link meshwave::client.
 include(CMakePackageConfigHelpers)
 include(GNUInstallDirs)
 
 # Include directories as seen from the build tree and from an install.
-set_property(TARGET meshwave_codec PROPERTY INTERFACE_INCLUDE_DIRECTORIES
-  "$<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/codec/include>"
-  "$<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>")
+foreach(_mw_lib meshwave_decoder meshwave_codec)
+  set_property(TARGET ${_mw_lib} PROPERTY INTERFACE_INCLUDE_DIRECTORIES
+    "$<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/codec/include>"
+    "$<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>")
+endforeach()
 set_property(TARGET meshwave_proto PROPERTY INTERFACE_INCLUDE_DIRECTORIES
   "$<BUILD_INTERFACE:${PROJECT_BINARY_DIR}/proto>"
   "$<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>")
@@ -16,6 +18,7 @@ set_property(TARGET meshwave_client_proto PROPERTY INTERFACE_INCLUDE_DIRECTORIES
   "$<BUILD_INTERFACE:${PROJECT_BINARY_DIR}/client/proto>"
   "$<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>")
 
+set_target_properties(meshwave_decoder PROPERTIES EXPORT_NAME decoder)
 set_target_properties(meshwave_codec PROPERTIES EXPORT_NAME codec)
 set_target_properties(meshwave_proto PROPERTIES EXPORT_NAME proto)
 set_target_properties(meshwave_client PROPERTIES EXPORT_NAME client)
@@ -24,7 +27,7 @@ set_target_properties(meshwave_client_proto PROPERTIES EXPORT_NAME client_proto)
 # warning flags of meshwave_options do not reach consumers.
 set_target_properties(meshwave_options PROPERTIES EXPORT_NAME options)
 
-install(TARGETS meshwave_codec meshwave_proto meshwave_client meshwave_client_proto
+install(TARGETS meshwave_decoder meshwave_codec meshwave_proto meshwave_client meshwave_client_proto
                 meshwave_options
   EXPORT meshwaveTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}

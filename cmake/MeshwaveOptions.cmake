@@ -3,6 +3,8 @@
 option(MESHWAVE_TESTS "Build the unit and end-to-end tests" ON)
 option(MESHWAVE_BENCH "Build the Google Benchmark programs in bench/" OFF)
 option(MESHWAVE_WERROR "Treat compiler warnings as errors" OFF)
+option(MESHWAVE_DECODER_ONLY
+  "Build only the decoder library (and with emscripten its WebAssembly module, web/decoder)" OFF)
 set(MESHWAVE_SANITIZE "" CACHE STRING
     "Semicolon list of sanitizers, e.g. address;undefined or thread")
 option(MESHWAVE_FUZZ
@@ -37,10 +39,10 @@ if(MESHWAVE_SANITIZE)
     # Clang 14's -fsanitize=function (part of undefined) cannot compile the
     # Asio coroutines of the client, the server and their tests: "Cannot
     # represent a difference across sections" (llvm/llvm-project#49689).
-    # The codec has no coroutines and keeps the check (calls through a
-    # function pointer of the wrong type).
+    # The codec libraries have no coroutines and keep the check (calls
+    # through a function pointer of the wrong type).
     target_compile_options(meshwave_options INTERFACE
-      $<$<NOT:$<STREQUAL:$<TARGET_PROPERTY:NAME>,meshwave_codec>>:-fno-sanitize=function>)
+      $<$<NOT:$<IN_LIST:$<TARGET_PROPERTY:NAME>,meshwave_codec;meshwave_decoder>>:-fno-sanitize=function>)
   endif()
 endif()
 if(MESHWAVE_FUZZ)

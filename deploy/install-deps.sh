@@ -26,6 +26,7 @@ test=(
   docker-compose               # `docker-compose config`: compose file validation, no engine
   clang libclang-rt-14-dev     # the ASan + UBSan stage and the libFuzzer targets (tools/sanitize.sh)
   ccache                       # tools/compiler_cache.sh: a clone rebuilds only what changed
+  emscripten                   # the WebAssembly decoder (web/build_decoder.sh) and its test
 )
 
 case "${1:-all}" in

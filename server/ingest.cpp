@@ -27,16 +27,16 @@ int64_t NowUnix() {
 }
 
 Result<IngestResult> Store(Catalog& catalog, const std::string& container,
-                           const proto::StreamHeader& header, size_t packets,
+                           const StreamHeader& header, size_t packets,
                            const std::string& name, const std::string& source) {
   CatalogEntry e;
   e.sha256 = Sha256Hex(container);
   e.id = MeshIdFromSha256(e.sha256);
   e.name = name;
   e.source = source;
-  e.vertices = header.vertices();
-  e.faces = header.faces();
-  e.levels = header.transform().levels();
+  e.vertices = header.vertices;
+  e.faces = header.faces;
+  e.levels = header.transform.levels;
   e.packets = static_cast<uint32_t>(packets);
   e.bytes = container.size();
   e.container = "containers/" + e.sha256 + ".mwv";
@@ -70,7 +70,7 @@ Result<IngestResult> IngestContainer(Catalog& catalog, std::string container,
                                      const std::string& source) {
   MW_ASSIGN_OR_RETURN(ParsedContainer parsed, ParseContainer(container));
   MW_RETURN_IF_ERROR(ValidateStreamHeader(parsed.header));
-  if (static_cast<int>(parsed.ids.size()) != parsed.header.packets().length_size()) {
+  if (parsed.ids.size() != parsed.header.packets.length.size()) {
     return ParseError("ingest: the container does not hold every packet");
   }
   return Store(catalog, container, parsed.header, parsed.ids.size(), name, source);

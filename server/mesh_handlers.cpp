@@ -100,8 +100,8 @@ Response DescribeMesh(ServerContext& ctx, const Request& req, const std::string&
   ToProto(m.entry(), *d.mutable_mesh());
   d.set_header_bytes(m.entry().bytes - m.payload_bytes());
   d.set_payload_bytes(m.payload_bytes());
-  d.set_base_vertices(m.header().base().vertex_count());
-  d.set_base_faces(m.header().base().face_count());
+  d.set_base_vertices(m.header().base.vertex_count);
+  d.set_base_faces(m.header().base.face_count);
   for (Progression p : {Progression::kQuality, Progression::kResolution, Progression::kRd}) {
     auto* o = d.add_orders();
     o->set_name(ProgressionName(p));

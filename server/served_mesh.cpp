@@ -19,7 +19,7 @@ Result<std::shared_ptr<const ServedMesh>> ServedMesh::Load(
   }
   MW_ASSIGN_OR_RETURN(ParsedContainer parsed, ParseContainer(m->map_->bytes()));
   MW_RETURN_IF_ERROR(ValidateStreamHeader(parsed.header));
-  const size_t count = static_cast<size_t>(parsed.header.packets().length_size());
+  const size_t count = parsed.header.packets.length.size();
   if (parsed.ids.size() != count) {
     return ParseError(file.string() + ": the container does not hold every packet");
   }
@@ -29,8 +29,7 @@ Result<std::shared_ptr<const ServedMesh>> ServedMesh::Load(
     m->payload_bytes_ += parsed.payloads[i].size();
   }
   m->header_ = std::move(parsed.header);
-  m->header_.clear_present();
-  m->header_bytes_ = m->header_.SerializeAsString();
+  m->header_.present.clear();
   const int levels = static_cast<int>(m->levels());
   for (int max_level = -1; max_level <= levels; ++max_level) {
     for (Progression p : {Progression::kQuality, Progression::kResolution, Progression::kRd}) {

@@ -14,7 +14,7 @@
 #include "mapped_file.h"
 #include "meshwave/progression.h"
 #include "meshwave/status.h"
-#include "stream.pb.h"
+#include "meshwave/stream_header.h"
 
 namespace meshwave::server {
 
@@ -35,9 +35,9 @@ class ServedMesh {
   const CatalogEntry& entry() const { return entry_; }
   const std::shared_ptr<const MappedFile>& map() const { return map_; }
   // The StreamHeader with `present` cleared: the same for every truncation.
-  const proto::StreamHeader& header() const { return header_; }
-  const std::string& header_bytes() const { return header_bytes_; }
-  uint32_t levels() const { return header_.transform().levels(); }
+  const StreamHeader& header() const { return header_; }
+  const std::string& header_bytes() const { return header_.bytes_without_present; }
+  uint32_t levels() const { return header_.transform.levels; }
   size_t packet_count() const { return payloads_.size(); }
   // Payload of packet `id` (< packet_count()), a view into the map.
   std::string_view payload(uint32_t id) const { return payloads_[id]; }
@@ -50,8 +50,7 @@ class ServedMesh {
   ServedMesh() = default;
   CatalogEntry entry_;
   std::shared_ptr<const MappedFile> map_;
-  proto::StreamHeader header_;
-  std::string header_bytes_;
+  StreamHeader header_;
   std::vector<std::string_view> payloads_;
   uint64_t payload_bytes_ = 0;
   // orders_[3 * (max_level + 1) + progression]

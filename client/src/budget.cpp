@@ -103,7 +103,7 @@ Result<uint64_t> RateBudgetBytes(double bits_per_second, double seconds) {
   return static_cast<uint64_t>(bytes);
 }
 
-size_t TargetCursor(const proto::StreamHeader& header,
+size_t TargetCursor(const StreamHeader& header,
                     const std::vector<uint32_t>& order, const Budget& budget) {
   switch (budget.kind) {
     case Budget::Kind::kAll:

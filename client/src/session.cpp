@@ -14,7 +14,7 @@ namespace meshwave::client {
 struct Session::Impl {
   std::unique_ptr<Transport> transport;
   SessionOptions options;
-  std::optional<proto::StreamHeader> header;  // `present` cleared
+  std::optional<StreamHeader> header;  // `present` cleared
   std::unique_ptr<ProgressiveDecoder> decoder;
   std::vector<uint32_t> order;
   std::vector<std::string> payloads;  // of order[0 .. cursor)
@@ -38,7 +38,7 @@ struct Session::Impl {
     p.order_packets = order.size();
     p.bytes = ContainerSize(*header, Held());
     p.level = decoder->CompleteLevels();
-    p.levels = static_cast<int>(header->transform().levels());
+    p.levels = static_cast<int>(header->transform.levels);
     p.estimated_psnr_db = decoder->EstimatedPsnr();
     return p;
   }
@@ -47,17 +47,17 @@ struct Session::Impl {
     if (on_progress) on_progress(MakeProgress(), *decoder);
   }
 
-  Status SetHeader(const proto::StreamHeader& h) {
+  Status SetHeader(const StreamHeader& h) {
     auto d = ProgressiveDecoder::Create(h, options.decoder);
     if (!d.ok()) return d.status().WithContext("the server's stream header");
-    const int levels = static_cast<int>(h.transform().levels());
+    const int levels = static_cast<int>(h.transform.levels);
     if (options.max_level > levels) {
       return InvalidArgument("max_level " + std::to_string(options.max_level) +
                              " exceeds the " + std::to_string(levels) +
                              " levels of the mesh");
     }
     header = h;
-    header->clear_present();
+    header->present.clear();
     decoder = std::move(*d);
     order = PacketOrder(*header, options.order, options.max_level);
     payloads.clear();
@@ -115,7 +115,7 @@ class Session::Impl::ResponseSink final : public StreamSink,
     s_.received_bytes += bytes.size();
     return splitter_.Feed(bytes);
   }
-  Status OnHeader(const proto::StreamHeader& received) override {
+  Status OnHeader(const StreamHeader& received) override {
     MW_RETURN_IF_ERROR(s_.SetHeader(received));
     target_ = TargetCursor(*s_.header, s_.order, budget_);
     return CheckHead();
@@ -137,11 +137,9 @@ class Session::Impl::ResponseSink final : public StreamSink,
     if (bytes.size() > s_.options.max_header_bytes) {
       return HeaderTooLarge(bytes.size(), s_.options.max_header_bytes);
     }
-    proto::StreamHeader parsed;
-    if (!parsed.ParseFromArray(bytes.data(), static_cast<int>(bytes.size()))) {
-      return ParseError("the server's stream header does not parse");
-    }
-    return OnHeader(parsed);
+    auto parsed = ReadStreamHeader(bytes);
+    if (!parsed.ok()) return ParseError("the server's stream header does not parse");
+    return OnHeader(*parsed);
   }
   Status OnPacketMessage(size_t cursor, uint32_t id,
                          std::string_view payload) override {
@@ -236,10 +234,9 @@ net::awaitable<Result<bool>> Session::Impl::Step(const Budget& budget) {
     auto bytes = co_await transport->GetHeader();
     if (!bytes.ok()) co_return bytes.status();
     received_bytes += bytes->size();
-    proto::StreamHeader h;
-    if (!h.ParseFromString(*bytes))
-      co_return ParseError("the server's stream header does not parse");
-    MWC_CO_RETURN_IF_ERROR(SetHeader(h));
+    auto h = ReadStreamHeader(*bytes);
+    if (!h.ok()) co_return ParseError("the server's stream header does not parse");
+    MWC_CO_RETURN_IF_ERROR(SetHeader(*h));
     co_return false;
   }
   const size_t target = TargetCursor(*header, order, budget);

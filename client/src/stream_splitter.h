@@ -11,7 +11,7 @@
 #include <string_view>
 
 #include "meshwave/status.h"
-#include "stream.pb.h"
+#include "meshwave/stream_header.h"
 
 namespace meshwave::client {
 
@@ -23,7 +23,7 @@ class StreamSplitter {
   class Events {
    public:
     virtual ~Events() = default;
-    virtual Status OnHeader(const proto::StreamHeader& header) = 0;
+    virtual Status OnHeader(const StreamHeader& header) = 0;
     // Payload length of the next packet expected; nullopt when no more are.
     virtual std::optional<uint64_t> NextPacketLength() = 0;
     virtual Status OnPacket(std::string_view payload) = 0;

@@ -2,6 +2,7 @@
 // a byte budget, printing each refinement, and writes the result.
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 
 #include "meshwave/client/blocking_session.h"
 #include "meshwave/mesh.h"
@@ -29,8 +30,13 @@ int main(int argc, char** argv) {
             p.packets, static_cast<unsigned long long>(p.bytes), p.level,
             p.estimated_psnr_db);
       });
-  if (s.ok())
-    s = meshwave::WriteMesh(session.session().decoder()->Mesh(), argv[3]);
+  if (s.ok()) {
+    // meshwave::client links the decoder library only: PLY bytes from it,
+    // written here (WriteMesh, with its atomic rename, is meshwave::codec's).
+    std::ofstream out(argv[3], std::ios::binary);
+    out << meshwave::SerializePly(session.session().decoder()->Mesh());
+    if (!out) s = meshwave::IoError(std::string(argv[3]) + ": cannot write");
+  }
   if (!s.ok()) {
     std::fprintf(stderr, "%s\n", s.ToString().c_str());
     return 1;

@@ -44,9 +44,7 @@ class FakeTransport final : public client::Transport {
 
   boost::asio::awaitable<Result<std::string>> GetHeader() override {
     ++log_->requests;
-    proto::StreamHeader h = stream_.header;
-    h.clear_present();
-    co_return h.SerializeAsString();
+    co_return stream_.header.bytes_without_present;
   }
 
   boost::asio::awaitable<Result<std::string>> GetPacket(uint32_t id) override {

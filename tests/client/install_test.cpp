@@ -1,6 +1,7 @@
 // `cmake --install` to a temporary prefix, then docs/client-example built
 // against it with find_package(meshwave) and run: the package is usable
-// from outside the source tree.
+// from outside the source tree, the client links the decoder library and
+// not the codec, and the decoder links alone, without protobuf.
 #include <gtest/gtest.h>
 
 #include "e2e/cli_runner.h"
@@ -50,6 +51,30 @@ TEST(ClientInstallTest, ExampleProjectBuildsAgainstTheInstalledPackage) {
   EXPECT_NE(testing::ReadBytes(log).find("expected http://, https://, ws:// or wss://"),
             std::string::npos)
       << testing::ReadBytes(log);
+
+  // What each example links (CMake's link line for it).
+  const std::string fetch_link =
+      testing::ReadBytes(build / "CMakeFiles/fetch_example.dir/link.txt");
+  const std::string decode_link =
+      testing::ReadBytes(build / "CMakeFiles/decode_example.dir/link.txt");
+  EXPECT_NE(fetch_link.find("libmeshwave_decoder.a"), std::string::npos) << fetch_link;
+  EXPECT_EQ(fetch_link.find("libmeshwave_codec.a"), std::string::npos) << fetch_link;
+  EXPECT_NE(decode_link.find("libmeshwave_decoder.a"), std::string::npos) << decode_link;
+  for (const char* other : {"libmeshwave_codec.a", "libmeshwave_proto.a", "protobuf", "boost"}) {
+    EXPECT_EQ(decode_link.find(other), std::string::npos) << other << " in " << decode_link;
+  }
+  // The decoder alone decodes a real stream.
+  const auto ply = dir / "decoded.ply";
+  ASSERT_EQ(RunShell(ShellQuote((build / "decode_example").string()) + " " +
+                         ShellQuote(std::string(MESHWAVE_TEST_DATA) +
+                                    "/../fuzz/data/tetrahedron_sr2.mwv") +
+                         " 100000 " + ShellQuote(ply.string()),
+                     log),
+            0)
+      << testing::ReadBytes(log);
+  EXPECT_NE(testing::ReadBytes(log).find("34 vertices, 64 faces"), std::string::npos)
+      << testing::ReadBytes(log);
+  EXPECT_EQ(testing::ReadBytes(ply).rfind("ply\n", 0), 0u);
 }
 
 }  // namespace

@@ -162,7 +162,7 @@ TEST(SessionTest, RefusesACorruptHeader) {
 // max_faces, is refused without a retry and leaves the session empty.
 TEST(SessionTest, RefusesAHeaderOverTheClientsLimits) {
   const auto& stream = ClientTestStream();
-  const proto::StreamHeader& header = stream.header;
+  const StreamHeader& header = stream.header;
   // The header's length field (bytes 4-7) of what the server sends for
   // Budget::All: its `present` field lists every packet.
   const std::string all =
@@ -181,7 +181,7 @@ TEST(SessionTest, RefusesAHeaderOverTheClientsLimits) {
   }
   {
     Harness h;
-    h.options.decoder.max_faces = header.faces() - 1;
+    h.options.decoder.max_faces = header.faces - 1;
     auto s = h.NewSession(Progression::kQuality);
     const Status st = h.Run(*s, Budget::All());
     EXPECT_FALSE(st.ok());
@@ -192,7 +192,7 @@ TEST(SessionTest, RefusesAHeaderOverTheClientsLimits) {
   {  // at the limits: the whole stream
     Harness h;
     h.options.max_header_bytes = header_bytes;
-    h.options.decoder.max_faces = header.faces();
+    h.options.decoder.max_faces = header.faces;
     auto s = h.NewSession(Progression::kQuality);
     const Status st = h.Run(*s, Budget::All());
     ASSERT_TRUE(st.ok()) << st.ToString();

@@ -16,7 +16,7 @@ constexpr uint64_t kNoLimit = uint64_t{64} << 20;
 // Collects the packets of the quality order.
 class Collector : public StreamSplitter::Events {
  public:
-  Status OnHeader(const proto::StreamHeader& h) override {
+  Status OnHeader(const StreamHeader& h) override {
     header = h;
     order = PacketOrder(h, Progression::kQuality);
     return Status::Ok();
@@ -29,7 +29,7 @@ class Collector : public StreamSplitter::Events {
     payloads.emplace_back(p);
     return Status::Ok();
   }
-  proto::StreamHeader header;
+  StreamHeader header;
   std::vector<uint32_t> order;
   std::vector<std::string> payloads;
   size_t expected = 0;

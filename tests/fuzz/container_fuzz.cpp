@@ -21,11 +21,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   fuzz::Require(!strict.ok() || parsed.ok(), "a whole container also parses as truncated");
   if (!parsed.ok()) return 0;
   fuzz::Require(parsed->ids.size() == parsed->payloads.size(), "one payload per id");
-  const proto::StreamHeader& h = parsed->header;
+  const StreamHeader& h = parsed->header;
   if (!ValidateStreamHeader(h).ok()) return 0;
   for (Progression p : {Progression::kQuality, Progression::kResolution, Progression::kRd}) {
     const std::vector<uint32_t> order = PacketOrder(h, p);
-    fuzz::Require(order.size() == static_cast<size_t>(h.packets().length_size()),
+    fuzz::Require(order.size() == h.packets.length.size(),
                   "an order holds every packet");
     const Selection s = SelectPackets(h, order, size * 2);
     fuzz::Require(s.next_cursor <= order.size(), "the cursor stays in the order");

@@ -26,7 +26,7 @@ namespace meshwave::fuzz {
 
 struct Fixture {
   std::string bytes;                  // the whole container
-  proto::StreamHeader header;         // present cleared
+  StreamHeader header;                // present cleared
   std::vector<std::string> payloads;  // by packet id
   std::vector<Vec3> full;             // positions with every packet decoded
 };
@@ -53,8 +53,8 @@ inline const Fixture& GetFixture() {
       std::abort();
     }
     f.header = parsed->header;
-    f.header.clear_present();
-    f.payloads.resize(static_cast<size_t>(f.header.packets().length_size()));
+    f.header.present.clear();
+    f.payloads.resize(f.header.packets.length.size());
     for (size_t i = 0; i < parsed->ids.size(); ++i) {
       f.payloads[parsed->ids[i]] = std::string(parsed->payloads[i]);
     }

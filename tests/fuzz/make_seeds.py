@@ -151,6 +151,23 @@ def protobuf_field(number, wire_type, payload):
     return key + varint(payload)
 
 
+def header_seeds():
+    """StreamHeader bytes for stream_header_fuzz: the fixtures' headers (with
+    and without `present`) and records protobuf treats specially."""
+    f = protobuf_field
+    for name in ("octahedron_sr3", "tetrahedron_sr2"):
+        data = open(os.path.join(HERE, "data", name + ".mwv"), "rb").read()
+        (length,) = struct.unpack("<I", data[4:8])
+        header = data[8:8 + length]
+        put("stream_header_fuzz", name + "_header", header)
+        put("stream_header_fuzz", name + "_header_cut", header[:length // 2])
+    put("stream_header_fuzz", "unknown_and_group",
+        f(99, 0, 5) + f(100, 2, b"xy") + bytes([0x9b, 0x06]) + f(1, 0, 4) + bytes([0x9c, 0x06]))
+    put("stream_header_fuzz", "unpacked_and_merged",
+        f(14, 0, 3) + f(14, 0, 1) + f(7, 2, f(4, 0, 2)) + f(7, 2, f(5, 2, f(1, 0, 9))))
+    put("stream_header_fuzz", "utf8_name", f(2, 2, "caf\u00e9".encode()))
+
+
 def ws_seeds():
     """ClientMessage frames of proto/websocket.proto: start, refine, resume."""
     f = protobuf_field
@@ -168,4 +185,5 @@ if __name__ == "__main__":
         shutil.rmtree(SEEDS)
     mesh_seeds()
     http_seeds(container_seeds())
+    header_seeds()
     ws_seeds()

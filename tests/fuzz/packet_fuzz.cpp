@@ -21,11 +21,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const uint32_t n = static_cast<uint32_t>(f.payloads.size());
   const uint32_t id = data[0] % n;
   const std::string_view payload(reinterpret_cast<const char*>(data + 1), size - 1);
-  proto::StreamHeader h = f.header;
-  h.mutable_packets()->set_length(static_cast<int>(id), static_cast<uint32_t>(payload.size()));
+  StreamHeader h = f.header;
+  h.packets.length[id] = static_cast<uint32_t>(payload.size());
   const uint16_t check = PacketCheck(payload);
-  (*h.mutable_packets()->mutable_check())[2 * id] = static_cast<char>(check >> 8);
-  (*h.mutable_packets()->mutable_check())[2 * id + 1] = static_cast<char>(check & 0xff);
+  h.packets.check[2 * id] = static_cast<char>(check >> 8);
+  h.packets.check[2 * id + 1] = static_cast<char>(check & 0xff);
   auto dec = ProgressiveDecoder::Create(h);
   fuzz::Require(dec.ok(), "the fixture header is valid");
   for (uint32_t k = 0; k < id; ++k) {

@@ -51,7 +51,7 @@ TEST_P(IngestTest, StoresAContentAddressedContainer) {
   auto parsed = ParseContainer(bytes);
   ASSERT_TRUE(parsed.ok());
   EXPECT_EQ(parsed->ids.size(), e.packets);
-  EXPECT_EQ(parsed->header.vertices(), e.vertices);
+  EXPECT_EQ(parsed->header.vertices, e.vertices);
   EXPECT_TRUE(catalog->Find(e.id)->has_value());
 }
 

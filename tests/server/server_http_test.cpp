@@ -18,6 +18,7 @@
 #include "meshwave/progression.h"
 #include "meshwave/progressive_decoder.h"
 #include "server_process_testonly.h"
+#include "stream.pb.h"
 #include "sha256.h"
 #include "test_data.h"
 
@@ -54,9 +55,9 @@ std::vector<Vec3> Decode(std::string_view bytes, double* estimated_psnr = nullpt
   return (*decoder)->Positions();
 }
 
-double Diagonal(const proto::StreamHeader& h) {
+double Diagonal(const StreamHeader& h) {
   double d = 0;
-  for (int a = 0; a < 3; ++a) d += std::pow(h.bbox_max(a) - h.bbox_min(a), 2);
+  for (size_t a = 0; a < 3; ++a) d += std::pow(h.bbox_max[a] - h.bbox_min[a], 2);
   return std::sqrt(d);
 }
 
@@ -169,9 +170,13 @@ TEST_F(ServerHttpTest, HeaderIsTheContainersStreamHeader) {
     const std::string bytes = Container(id);
     auto parsed = ParseContainer(bytes);
     ASSERT_TRUE(parsed.ok());
-    parsed->header.clear_present();
-    EXPECT_EQ(served.SerializeAsString(), parsed->header.SerializeAsString()) << name;
-    EXPECT_TRUE(ValidateStreamHeader(served).ok());
+    proto::StreamHeader stored;
+    ASSERT_TRUE(stored.ParseFromString(parsed->header.bytes_without_present));
+    EXPECT_EQ(served.SerializeAsString(), stored.SerializeAsString()) << name;
+    EXPECT_EQ(r.body, parsed->header.bytes_without_present) << name;
+    auto read = ReadStreamHeader(r.body);
+    ASSERT_TRUE(read.ok());
+    EXPECT_TRUE(ValidateStreamHeader(*read).ok());
   }
 }
 
@@ -180,8 +185,8 @@ TEST_F(ServerHttpTest, StreamDecodesLikeALocalTruncation) {
     const std::string full = Container(id);
     auto parsed = ParseContainer(full);
     ASSERT_TRUE(parsed.ok());
-    proto::StreamHeader header = parsed->header;
-    header.clear_present();
+    StreamHeader header = parsed->header;
+    header.present.clear();
     std::map<uint32_t, std::string_view> payloads;
     for (size_t i = 0; i < parsed->ids.size(); ++i) payloads[parsed->ids[i]] = parsed->payloads[i];
     const std::vector<Vec3> reference = Decode(full);
@@ -235,8 +240,8 @@ TEST_F(ServerHttpTest, StreamContinuesFromCursor) {
   const std::string full = Container(id);
   auto parsed = ParseContainer(full);
   ASSERT_TRUE(parsed.ok());
-  proto::StreamHeader header = parsed->header;
-  header.clear_present();
+  StreamHeader header = parsed->header;
+  header.present.clear();
   const auto order = PacketOrder(header, Progression::kRd);
   const uint64_t head = ContainerSize(header, {});
 
@@ -267,7 +272,7 @@ TEST_F(ServerHttpTest, StreamContinuesFromCursor) {
     std::string_view body = r.body;
     for (size_t k = cursor; k < next; ++k) {
       const uint32_t pid = order[k];
-      const size_t length = header.packets().length(static_cast<int>(pid));
+      const size_t length = header.packets.length[pid];
       ASSERT_GE(body.size(), length);
       ASSERT_TRUE((*decoder)->AddPacket(pid, body.substr(0, length)).ok());
       body.remove_prefix(length);

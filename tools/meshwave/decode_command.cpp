@@ -44,12 +44,12 @@ Status Run(const DecodeArgs& args) {
   }
   auto decoder = ProgressiveDecoder::Create(parsed->header);
   if (!decoder.ok()) return decoder.status().WithContext(args.in);
-  const int levels = static_cast<int>(parsed->header.transform().levels());
+  const int levels = static_cast<int>(parsed->header.transform.levels);
   const int max_level = args.max_level < 0 ? levels : std::min(args.max_level, levels);
 
   // Present packets by id; follow the order while packets are present and
   // the budget (container size) allows.
-  std::vector<int> slot(parsed->header.packets().length_size(), -1);
+  std::vector<int> slot(parsed->header.packets.length.size(), -1);
   for (size_t i = 0; i < parsed->ids.size(); ++i) slot[parsed->ids[i]] = static_cast<int>(i);
   const auto order = PacketOrder(parsed->header, progression, max_level);
   std::vector<uint32_t> available;

@@ -13,6 +13,7 @@
 #include "meshwave/mesh.h"
 #include "meshwave/semiregular.h"
 #include "meshwave/semiregular_input.h"
+#include "stream.pb.h"
 
 namespace meshwave::cli {
 namespace {
@@ -64,20 +65,26 @@ Status Run(const EncodeArgs& args) {
   MW_RETURN_IF_ERROR(WriteFileBytes(args.out, bytes));
   uint64_t payload = 0;
   for (const auto& p : stream.packets) payload += p.size();
-  const double v = static_cast<double>(stream.header.vertices());
+  const double v = static_cast<double>(stream.header.vertices);
   std::printf("wrote %s: %zu bytes (header %zu incl. base mesh %zu, %zu packets %llu)\n",
               args.out.c_str(), bytes.size(), bytes.size() - payload,
-              stream.header.base().coded().size(), stream.packets.size(),
+              stream.header.base.coded.size(), stream.packets.size(),
               static_cast<unsigned long long>(payload));
   std::printf("%llu vertices, %u levels, %s/%s %s: %.3f bits per vertex in all\n",
-              static_cast<unsigned long long>(stream.header.vertices()),
-              stream.header.transform().levels(),
+              static_cast<unsigned long long>(stream.header.vertices),
+              stream.header.transform.levels,
               PredictorName(options.transform.predictor),
               UpdateWeightsName(options.transform.update),
               CoderKindName(options.coder), 8.0 * static_cast<double>(bytes.size()) / v);
   if (!stream.sawt_filter_usage.empty()) {
     // The field as the header carries it: tag, length and message.
-    const size_t field = stream.header.transform().sawt().ByteSizeLong();
+    const StreamHeader::SawtChoices& sawt = *stream.header.transform.sawt;
+    proto::SawtChoices message;
+    message.set_alpha(sawt.alpha);
+    message.set_region_count(sawt.region_count);
+    message.set_coded(sawt.coded);
+    message.set_crc32c(sawt.crc32c);
+    const size_t field = message.ByteSizeLong();
     std::printf("sawt: %u regions (alpha %u), header field %zu bytes; choices per filter",
                 stream.sawt_regions, options.sawt_alpha, field + 1 + (field < 128 ? 1 : 2));
     for (size_t l = 0; l < stream.sawt_filter_usage.size(); ++l) {

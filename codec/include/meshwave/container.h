@@ -5,31 +5,25 @@
 #ifndef MESHWAVE_CONTAINER_H_
 #define MESHWAVE_CONTAINER_H_
 
-#include <span>
 #include <concepts>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
-#include "meshwave/encoder.h"
 #include "meshwave/status.h"
-#include "stream.pb.h"
+#include "meshwave/stream_header.h"
 
 namespace meshwave {
 
-// Writes a container holding the packets `ids` (payloads from `stream`).
-std::string SerializeContainer(const EncodedStream& stream,
-                               std::span<const uint32_t> ids);
-// All packets in canonical order.
-std::string SerializeFullContainer(const EncodedStream& stream);
-
-// The preamble and header of the container holding the packets `ids`:
-// SerializeContainer's output up to the first payload, so that a server can
-// send the payloads from elsewhere (a memory map) after it.
-std::string SerializeContainerHead(const proto::StreamHeader& header,
+// The preamble and header of the container holding the packets `ids`: a
+// container's bytes up to the first payload (SerializeContainer in
+// meshwave/encoder.h), so that a server can send the payloads from
+// elsewhere (a memory map) after it, and a client can save what it holds.
+std::string SerializeContainerHead(const StreamHeader& header,
                                    std::span<const uint32_t> ids);
-// The same from the header's bytes serialized once without `present` (a
-// server keeps them per mesh): no header copy or re-serialization per call.
+// The same from the header's bytes without `present` (a server keeps them
+// per mesh; StreamHeader::bytes_without_present).
 std::string SerializeContainerHead(std::string_view header_without_present,
                                    std::span<const uint32_t> ids);
 
@@ -38,7 +32,7 @@ std::string SerializeContainerHead(std::string_view header_without_present,
 uint64_t PresentFieldSize(uint64_t id_bytes);
 
 // The size SerializeContainer would produce, without building it.
-uint64_t ContainerSize(const proto::StreamHeader& header,
+uint64_t ContainerSize(const StreamHeader& header,
                        std::span<const uint32_t> ids);
 
 // Estimated PSNR (dB, peak = bounding-box diagonal) after each prefix of
@@ -46,11 +40,11 @@ uint64_t ContainerSize(const proto::StreamHeader& header,
 // figure ProgressiveDecoder::EstimatedPsnr gives (+infinity when no error
 // is left). The header must have passed ValidateStreamHeader and `order`
 // must hold ids of its index.
-std::vector<double> EstimatedPsnrCurve(const proto::StreamHeader& header,
+std::vector<double> EstimatedPsnrCurve(const StreamHeader& header,
                                        std::span<const uint32_t> order);
 
 struct ParsedContainer {
-  proto::StreamHeader header;
+  StreamHeader header;
   std::vector<uint32_t> ids;               // packets whose payload is whole
   std::vector<std::string_view> payloads;  // views into the parsed bytes
   uint64_t missing_bytes = 0;  // > 0: the container was cut short

@@ -3,13 +3,14 @@
 #ifndef MESHWAVE_ENCODER_H_
 #define MESHWAVE_ENCODER_H_
 
+#include <span>
 #include <string>
 #include <vector>
 
 #include "meshwave/semiregular.h"
 #include "meshwave/status.h"
+#include "meshwave/stream_header.h"
 #include "meshwave/wavelet.h"
-#include "stream.pb.h"
 
 namespace meshwave {
 
@@ -43,9 +44,11 @@ struct EncodeOptions {
 };
 
 // The complete stream: a header whose packet index lists every packet, and
-// the packets' payloads in the same (canonical) order.
+// the packets' payloads in the same (canonical) order. The header is as a
+// decoder reads it back from the bytes the encoder wrote (with protobuf):
+// its bytes_without_present are the stream's header bytes.
 struct EncodedStream {
-  proto::StreamHeader header;
+  StreamHeader header;
   std::vector<std::string> packets;
   // The encoded mesh as the stream numbers it: the encoder reorders the base
   // mesh so that it codes compactly, and a decoder returns vertices in this
@@ -59,6 +62,12 @@ struct EncodedStream {
 
 Result<EncodedStream> EncodeMesh(const SemiRegularMesh& mesh,
                                  const EncodeOptions& options);
+
+// The .mwv container (meshwave/container.h) holding the packets `ids`.
+std::string SerializeContainer(const EncodedStream& stream,
+                               std::span<const uint32_t> ids);
+// All packets in canonical order.
+std::string SerializeFullContainer(const EncodedStream& stream);
 
 }  // namespace meshwave
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "meshwave/status.h"
-#include "stream.pb.h"
+#include "meshwave/stream_header.h"
 
 namespace meshwave {
 
@@ -24,11 +24,11 @@ const char* ProgressionName(Progression p);
 // The packets (ids into the header's index) of subbands below max_level
 // (-1: all) in the given order. The header must have passed validation
 // (ProgressiveDecoder::Create or ValidateStreamHeader).
-std::vector<uint32_t> PacketOrder(const proto::StreamHeader& header,
+std::vector<uint32_t> PacketOrder(const StreamHeader& header,
                                   Progression progression, int max_level = -1);
 
 // The packets that packet `id` needs first (at most two).
-std::vector<uint32_t> PacketDependencies(const proto::StreamHeader& header,
+std::vector<uint32_t> PacketDependencies(const StreamHeader& header,
                                          uint32_t id);
 
 struct Selection {
@@ -40,25 +40,25 @@ struct Selection {
 // The longest run of `order` starting at `cursor` that fits `budget` bytes:
 // counting the whole container (header included) when cursor is 0, and the
 // packets' payloads only when continuing from a cursor.
-Selection SelectPackets(const proto::StreamHeader& header,
+Selection SelectPackets(const StreamHeader& header,
                         const std::vector<uint32_t>& order, uint64_t budget,
                         size_t cursor = 0);
 
 // The longest run of `order` starting at `cursor` (0 included) whose
 // payloads fit `budget` bytes: for a client that already holds the header.
-Selection SelectPayloads(const proto::StreamHeader& header,
+Selection SelectPayloads(const StreamHeader& header,
                          const std::vector<uint32_t>& order, uint64_t budget,
                          size_t cursor);
 
 // The payload length in bytes of packet `id` (an id of the header's index;
 // the header must have passed validation). Lets a client split a stream of
 // concatenated payloads without reading the packet index itself.
-uint64_t PacketLength(const proto::StreamHeader& header, uint32_t id);
+uint64_t PacketLength(const StreamHeader& header, uint32_t id);
 
 // Checks that an untrusted header is complete and consistent: version,
 // transform, quantizers, and a packet index holding exactly the packets
 // (j, b), b from the subband's top bitplane down to 0, in that order.
-Status ValidateStreamHeader(const proto::StreamHeader& header);
+Status ValidateStreamHeader(const StreamHeader& header);
 
 }  // namespace meshwave
 

@@ -12,7 +12,7 @@
 
 #include "meshwave/mesh.h"
 #include "meshwave/status.h"
-#include "stream.pb.h"
+#include "meshwave/stream_header.h"
 
 namespace meshwave {
 
@@ -30,10 +30,11 @@ struct DecoderOptions {
 class ProgressiveDecoder {
  public:
   static Result<std::unique_ptr<ProgressiveDecoder>> Create(
-      const proto::StreamHeader& header, const DecoderOptions& options = {});
+      const StreamHeader& header, const DecoderOptions& options = {});
   ~ProgressiveDecoder();
 
-  const proto::StreamHeader& header() const;
+  // The header given to Create, `present` cleared.
+  const StreamHeader& header() const;
   size_t packet_count() const;
   bool HasPacket(uint32_t id) const;
   // True when every packet `id` depends on has been added.
@@ -65,6 +66,8 @@ class ProgressiveDecoder {
   // (dequantisation and the inverse transform: a few ms per 100 k vertices),
   // so call it when a mesh is needed, not after every packet by default.
   std::vector<Vec3> Positions(int max_level = -1) const;
+  // The faces of level max_level (-1 or beyond J: J), which need no packet.
+  std::vector<Face> Faces(int max_level = -1) const;
   TriMesh Mesh(int max_level = -1) const;
 
  private:

@@ -85,7 +85,7 @@ Result<BaseMeshOrder> ChooseTransmissionOrder(uint32_t vertex_count,
   return TraverseBaseMesh(vertex_count, faces, nullptr);
 }
 
-Result<proto::BaseMesh> EncodeBaseMesh(const std::vector<Vec3>& positions,
+Result<StreamHeader::BaseMesh> EncodeBaseMesh(const std::vector<Vec3>& positions,
                                        const std::vector<Face>& faces,
                                        double step) {
   if (positions.empty() || faces.empty()) return InvalidArgument("empty base mesh");
@@ -120,17 +120,17 @@ Result<proto::BaseMesh> EncodeBaseMesh(const std::vector<Vec3>& positions,
     const IntVec3 p = predictor.Predict(v, grid);
     for (int a = 0; a < 3; ++a) EncodeSignedGolomb(enc, pc.residual[a], grid[v][a] - p[a]);
   }
-  proto::BaseMesh out;
-  out.set_vertex_count(static_cast<uint32_t>(positions.size()));
-  out.set_face_count(static_cast<uint32_t>(faces.size()));
-  for (int a = 0; a < 3; ++a) out.add_origin(origin[a]);
-  out.set_step(step);
-  out.set_coded(enc.Finish());
+  StreamHeader::BaseMesh out;
+  out.vertex_count = static_cast<uint32_t>(positions.size());
+  out.face_count = static_cast<uint32_t>(faces.size());
+  for (int a = 0; a < 3; ++a) out.origin.push_back(origin[a]);
+  out.step = step;
+  out.coded = enc.Finish();
   return out;
 }
 
-Result<DecodedBase> DecodeBaseMesh(const proto::BaseMesh& base, uint32_t max_vertices) {
-  const uint64_t v = base.vertex_count(), f = base.face_count();
+Result<DecodedBase> DecodeBaseMesh(const StreamHeader::BaseMesh& base, uint32_t max_vertices) {
+  const uint64_t v = base.vertex_count, f = base.face_count;
   if (v < 3 || f == 0) return ParseError("base mesh: too few vertices or no faces");
   if (v > max_vertices) {
     return ParseError("base mesh: " + std::to_string(v) + " vertices exceed the limit of " +
@@ -142,13 +142,13 @@ Result<DecodedBase> DecodeBaseMesh(const proto::BaseMesh& base, uint32_t max_ver
     return ParseError("base mesh: " + std::to_string(f) + " faces for " +
                       std::to_string(v) + " vertices");
   }
-  if (base.origin_size() != 3 || !(base.step() > 0) || !std::isfinite(base.step())) {
+  if (base.origin.size() != 3 || !(base.step > 0) || !std::isfinite(base.step)) {
     return ParseError("base mesh: bad origin or step");
   }
-  for (double o : base.origin()) {
+  for (double o : base.origin) {
     if (!std::isfinite(o)) return ParseError("base mesh: origin is not finite");
   }
-  ArithmeticDecoder dec(base.coded());
+  ArithmeticDecoder dec(base.coded);
   DecodedBase out;
   MW_ASSIGN_OR_RETURN(out.faces,
                       DecodeBaseConnectivity(dec, static_cast<uint32_t>(v), f));
@@ -165,7 +165,7 @@ Result<DecodedBase> DecodeBaseMesh(const proto::BaseMesh& base, uint32_t max_ver
         return ParseError("base mesh: vertex " + std::to_string(i) + " leaves the grid");
       }
       out.grid[i][a] = q;
-      out.positions[i][a] = base.origin(a) + base.step() * static_cast<double>(q);
+      out.positions[i][a] = base.origin[static_cast<size_t>(a)] + base.step * static_cast<double>(q);
     }
   }
   if (dec.overrun()) return ParseError("base mesh: coded bytes truncated");

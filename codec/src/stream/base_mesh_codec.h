@@ -9,7 +9,7 @@
 #include "meshwave/mesh.h"
 #include "meshwave/status.h"
 #include "stream/base_connectivity.h"
-#include "stream.pb.h"
+#include "meshwave/stream_header.h"
 
 namespace meshwave {
 
@@ -28,12 +28,12 @@ struct DecodedBase {
 
 // Quantises `positions` with `step` and codes them and the faces, which must
 // be in transmission order (vertices numbered by first appearance).
-Result<proto::BaseMesh> EncodeBaseMesh(const std::vector<Vec3>& positions,
+Result<StreamHeader::BaseMesh> EncodeBaseMesh(const std::vector<Vec3>& positions,
                                        const std::vector<Face>& faces,
                                        double step);
 
 // Safe on untrusted input: counts are capped and checked as decoding goes.
-Result<DecodedBase> DecodeBaseMesh(const proto::BaseMesh& base,
+Result<DecodedBase> DecodeBaseMesh(const StreamHeader::BaseMesh& base,
                                    uint32_t max_vertices);
 
 }  // namespace meshwave

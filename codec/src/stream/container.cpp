@@ -1,8 +1,5 @@
 #include "meshwave/container.h"
 
-#include <google/protobuf/io/coded_stream.h>
-#include <google/protobuf/wire_format_lite.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -11,6 +8,7 @@
 
 #include "stream/packet_index.h"
 #include "stream/stream_format.h"
+#include "stream/varint.h"
 
 namespace meshwave {
 namespace {
@@ -28,34 +26,25 @@ uint32_t GetU32(std::string_view b) {
 }  // namespace
 
 uint64_t PresentFieldSize(uint64_t id_bytes) {
-  return id_bytes == 0 ? 0
-                       : 1 + google::protobuf::io::CodedOutputStream::VarintSize64(id_bytes) +
-                             id_bytes;
+  return id_bytes == 0 ? 0 : 1 + VarintSize(id_bytes) + id_bytes;
 }
 
-uint64_t ContainerSize(const proto::StreamHeader& header,
+uint64_t ContainerSize(const StreamHeader& header,
                        std::span<const uint32_t> ids) {
-  // The header's size with its own `present` list swapped for `ids`,
-  // without copying the header (this runs once per packet when a budget
-  // is fitted).
-  uint64_t own_id_bytes = 0;
-  for (uint32_t id : header.present()) {
-    own_id_bytes += google::protobuf::io::CodedOutputStream::VarintSize32(id);
-  }
-  uint64_t size = 8 + header.ByteSizeLong() - PresentFieldSize(own_id_bytes);
+  // Sizes are added, not serialized: this runs once per packet when a
+  // budget is fitted.
+  uint64_t size = 8 + header.bytes_without_present.size();
   uint64_t id_bytes = 0;
   for (uint32_t id : ids) {
-    id_bytes += google::protobuf::io::CodedOutputStream::VarintSize32(id);
-    size += header.packets().length(static_cast<int>(id));
+    id_bytes += VarintSize(id);
+    size += header.packets.length[id];
   }
   return size + PresentFieldSize(id_bytes);
 }
 
-std::string SerializeContainerHead(const proto::StreamHeader& stream_header,
+std::string SerializeContainerHead(const StreamHeader& header,
                                    std::span<const uint32_t> ids) {
-  proto::StreamHeader header = stream_header;
-  header.clear_present();
-  return SerializeContainerHead(header.SerializeAsString(), ids);
+  return SerializeContainerHead(header.bytes_without_present, ids);
 }
 
 std::string SerializeContainerHead(std::string_view header_without_present,
@@ -63,21 +52,13 @@ std::string SerializeContainerHead(std::string_view header_without_present,
   // `present` (field 14, packed varints) has the highest field number, so
   // protobuf's own serializer would write it last: appending it gives the
   // same bytes as serializing the header with the list set.
-  const auto put_varint = [](std::string& out, uint64_t v) {
-    while (v >= 0x80) {
-      out.push_back(static_cast<char>((v & 0x7f) | 0x80));
-      v >>= 7;
-    }
-    out.push_back(static_cast<char>(v));
-  };
+  constexpr uint32_t kPresentTag = 14 << 3 | 2;  // field 14, length-delimited
   std::string present;
-  for (uint32_t id : ids) put_varint(present, id);
+  for (uint32_t id : ids) PutVarint(present, id);
   std::string field;
   if (!ids.empty()) {
-    put_varint(field, google::protobuf::internal::WireFormatLite::MakeTag(
-                          proto::StreamHeader::kPresentFieldNumber,
-                          google::protobuf::internal::WireFormatLite::WIRETYPE_LENGTH_DELIMITED));
-    put_varint(field, present.size());
+    PutVarint(field, kPresentTag);
+    PutVarint(field, present.size());
   }
   std::string out(kContainerMagic, 4);
   PutU32(out, static_cast<uint32_t>(header_without_present.size() + field.size() +
@@ -89,23 +70,16 @@ std::string SerializeContainerHead(std::string_view header_without_present,
   return out;
 }
 
-std::string SerializeContainer(const EncodedStream& stream,
-                               std::span<const uint32_t> ids) {
-  std::string out = SerializeContainerHead(stream.header, ids);
-  for (uint32_t id : ids) out += stream.packets[id];
-  return out;
-}
-
-std::vector<double> EstimatedPsnrCurve(const proto::StreamHeader& header,
+std::vector<double> EstimatedPsnrCurve(const StreamHeader& header,
                                        std::span<const uint32_t> order) {
   // Mirrors ProgressiveDecoder::EstimatedPsnr, packet by packet.
   double diagonal = 0;
-  for (int a = 0; a < 3 && a < header.bbox_min_size() && a < header.bbox_max_size(); ++a) {
-    const double d = header.bbox_max(a) - header.bbox_min(a);
+  for (size_t a = 0; a < 3 && a < header.bbox_min.size() && a < header.bbox_max.size(); ++a) {
+    const double d = header.bbox_max[a] - header.bbox_min[a];
     diagonal += d * d;
   }
   diagonal = std::sqrt(diagonal);
-  const double vertices = static_cast<double>(std::max<uint64_t>(header.vertices(), 1));
+  const double vertices = static_cast<double>(std::max<uint64_t>(header.vertices, 1));
   auto psnr = [&](double distortion) {
     const double mse = std::max(distortion, 0.0) / vertices;
     if (mse <= 0) return std::numeric_limits<double>::infinity();
@@ -126,12 +100,6 @@ std::vector<double> EstimatedPsnrCurve(const proto::StreamHeader& header,
     out.push_back(psnr(distortion));
   }
   return out;
-}
-
-std::string SerializeFullContainer(const EncodedStream& stream) {
-  std::vector<uint32_t> ids(stream.packets.size());
-  for (uint32_t i = 0; i < ids.size(); ++i) ids[i] = i;
-  return SerializeContainer(stream, ids);
 }
 
 Result<ParsedContainer> ParseContainer(std::string_view bytes,
@@ -156,23 +124,22 @@ Result<ParsedContainer> ParseContainer(std::string_view bytes,
                       " follow");
   }
   ParsedContainer out;
-  if (!out.header.ParseFromArray(bytes.data() + 8,
-                                 static_cast<int>(header_length))) {
-    return ParseError("container: the stream header does not parse");
-  }
-  if (out.header.format_version() != kFormatVersion) {
+  auto header = ReadStreamHeader(bytes.substr(8, header_length));
+  if (!header.ok()) return ParseError("container: the stream header does not parse");
+  out.header = std::move(*header);
+  if (out.header.format_version != kFormatVersion) {
     return Status(StatusCode::kUnsupported,
                   "container: format version " +
-                      std::to_string(out.header.format_version()) +
+                      std::to_string(out.header.format_version) +
                       " (this build reads version " +
                       std::to_string(kFormatVersion) + ")");
   }
-  const auto& index = out.header.packets();
-  const int count = index.length_size();
+  const auto& index = out.header.packets;
+  const size_t count = index.length.size();
   std::unordered_set<uint32_t> seen;
   std::string_view rest = bytes.substr(8 + header_length);
-  for (uint32_t id : out.header.present()) {
-    if (id >= static_cast<uint32_t>(count)) {
+  for (uint32_t id : out.header.present) {
+    if (id >= count) {
       return ParseError("container: packet id " + std::to_string(id) +
                         " is not in the index of " + std::to_string(count));
     }
@@ -180,7 +147,7 @@ Result<ParsedContainer> ParseContainer(std::string_view bytes,
       return ParseError("container: packet " + std::to_string(id) +
                         " is listed twice");
     }
-    const uint32_t length = index.length(static_cast<int>(id));
+    const uint32_t length = index.length[id];
     if (length > rest.size()) {
       if (!allow_truncated) {
         return ParseError("container: truncated inside packet " +

@@ -11,10 +11,12 @@
 #include "quant/deadzone_quantizer.h"
 #include "quant/subband_gains.h"
 #include "stream/base_mesh_codec.h"
+#include "stream/distortion_index_writer.h"
 #include "stream/packet_index.h"
 #include "stream/stream_preparation.h"
 #include "wavelet/sawt_choice.h"
 #include "stream/stream_format.h"
+#include "stream/stream_format_writer.h"
 
 namespace meshwave {
 namespace {
@@ -53,7 +55,6 @@ Result<EncodedStream> EncodeMesh(const SemiRegularMesh& input,
   MW_ASSIGN_OR_RETURN(PreparedStream prepared, PrepareStream(input, options));
   EncodedStream out;
   out.mesh = std::move(prepared.mesh);
-  out.header = std::move(prepared.header);
   if (prepared.transform.sawt) {
     const auto usage = SawtFilterUsage(*out.mesh.hierarchy, *prepared.transform.sawt);
     out.sawt_filter_usage.assign(usage.begin(), usage.end());
@@ -66,7 +67,7 @@ Result<EncodedStream> EncodeMesh(const SemiRegularMesh& input,
   const SubbandGains& gains = prepared.gains;
   const Pyramid& pyramid = prepared.pyramid;
   const DecodedBase& base = prepared.base;
-  proto::StreamHeader& header = out.header;
+  proto::StreamHeader& header = prepared.header;
   header.set_coder(options.coder == CoderKind::k3xC ? proto::CODER_3XC
                                                     : proto::CODER_SIM);
   header.set_octree_leaf_size(options.octree_leaf_size);
@@ -151,6 +152,7 @@ Result<EncodedStream> EncodeMesh(const SemiRegularMesh& input,
     }
   }
   WriteDistortionIndex(model, prepared.zero_packet_distortion, header);
+  MW_ASSIGN_OR_RETURN(out.header, ToStreamHeader(header));
   return out;
 }
 

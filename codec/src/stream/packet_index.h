@@ -22,9 +22,13 @@
 #include <vector>
 
 #include "meshwave/status.h"
-#include "stream.pb.h"
+#include "meshwave/stream_header.h"
 
 namespace meshwave {
+
+// The value of StreamHeader.coder in a PGC header (stream/pgc_stream.h):
+// its packets form one distortion chain.
+inline constexpr int32_t kPgcCoderValue = 2;
 
 // Steps of the per-packet distortion code per octave.
 inline constexpr double kDistortionCodesPerOctave = 32;
@@ -36,14 +40,14 @@ inline constexpr double kDistortionCodesPerOctave = 32;
 uint16_t PacketCheck(std::string_view payload);
 // Whether `payload` matches packet `id`'s check in the index (the index
 // must have passed validation: 2 check bytes per packet).
-bool PacketCheckMatches(const proto::PacketIndex& index, uint32_t id,
+bool PacketCheckMatches(const StreamHeader::PacketIndex& index, uint32_t id,
                         std::string_view payload);
 
 // Packet ids <-> (subband, bitplane), from the quantizers' top bitplanes:
 // ids run subband by subband, bitplanes descending (FORMAT.md 2.1).
 class PacketLayout {
  public:
-  explicit PacketLayout(const proto::StreamHeader& h);
+  explicit PacketLayout(const StreamHeader& h);
   // Id of packet (j, b), -1 when it does not exist.
   int Id(int j, int b) const;
   int Top(int j) const { return top_[static_cast<size_t>(j)]; }
@@ -71,26 +75,6 @@ class PacketLayout {
   int count_ = 0;
 };
 
-// What an encoder measured, in the model's units, before the index is
-// written: chain of every packet (ids in index order, each chain's packets
-// in decoding order) and each packet's estimated distortion reduction.
-struct DistortionModel {
-  double base = 0;                  // error of the decoded base alone
-  std::vector<double> chain_start;  // per chain, nothing of it decoded
-  std::vector<uint32_t> chain;      // per packet
-  std::vector<double> reduction;    // per packet
-};
-
-// Writes base_distortion, chain_distortion and distortion_step, scaling
-// every figure so that the estimate with no packet equals
-// `true_start_distortion` (when it and the model's are positive). Why the
-// scale: the encoders estimate with subband gains, as if the synthesis were
-// orthogonal. It is not (Loop's predictor least of all: the model was 3 to
-// 4.5 dB pessimistic at low rates), so anchoring the start to the truth
-// keeps every PSNR read off the index close to it.
-void WriteDistortionIndex(const DistortionModel& model, double true_start_distortion,
-                          proto::StreamHeader& header);
-
 // The estimates a reader derives from a validated header. For any set of
 // packets closed under the dependencies the estimate is base + the sum over
 // chains of the chain's term after its last packet held (chain_start when
@@ -106,14 +90,14 @@ struct DistortionEstimates {
   // `current`: every chain's term (chain_start, or `after` of its last packet).
   double Estimate(const std::vector<double>& current) const;
 };
-DistortionEstimates ReadDistortionIndex(const proto::StreamHeader& header,
+DistortionEstimates ReadDistortionIndex(const StreamHeader& header,
                                         std::span<const uint32_t> chain_of);
 // The chain of each packet: its subband for 3xC and SIM, 0 for PGC.
-std::vector<uint32_t> PacketChains(const proto::StreamHeader& header);
-int ChainCount(const proto::StreamHeader& header);
+std::vector<uint32_t> PacketChains(const StreamHeader& header);
+int ChainCount(const StreamHeader& header);
 
 // Shape checks of the compact fields against `packet_count` packets.
-Status ValidateCompactIndex(const proto::StreamHeader& header, int packet_count,
+Status ValidateCompactIndex(const StreamHeader& header, int packet_count,
                             int chains);
 
 }  // namespace meshwave

@@ -11,33 +11,33 @@ namespace meshwave {
 namespace {
 
 // The header checks that matter before anything is built from it.
-Status ValidatePgcHeader(const proto::StreamHeader& h) {
-  if (h.format_version() != kFormatVersion) {
+Status ValidatePgcHeader(const StreamHeader& h) {
+  if (h.format_version != kFormatVersion) {
     return Status(StatusCode::kUnsupported,
-                  "PGC header: format version " + std::to_string(h.format_version()));
+                  "PGC header: format version " + std::to_string(h.format_version));
   }
-  if (static_cast<int>(h.coder()) != kPgcCoderValue) {
-    return ParseError("PGC header: coder " + std::to_string(h.coder()) +
+  if (static_cast<int32_t>(h.coder) != kPgcCoderValue) {
+    return ParseError("PGC header: coder " + std::to_string(static_cast<int32_t>(h.coder)) +
                       " is not PGC");
   }
-  const uint32_t levels = h.transform().levels();
+  const uint32_t levels = h.transform.levels;
   if (levels > 12) {
     return ParseError("PGC header: " + std::to_string(levels) + " levels (at most 12)");
   }
-  if (h.quantizers_size() != static_cast<int>(3 * levels)) {
-    return ParseError("PGC header: " + std::to_string(h.quantizers_size()) +
+  if (h.quantizers.size() != 3 * static_cast<size_t>(levels)) {
+    return ParseError("PGC header: " + std::to_string(h.quantizers.size()) +
                       " quantizers for " + std::to_string(levels) + " subbands");
   }
   int top = -1;
-  for (const auto& q : h.quantizers()) {
-    if (!(q.step() > 0) || !std::isfinite(q.step()) || q.deadzone() > 3 ||
-        q.top_bitplane() < -1 || q.top_bitplane() > kMaxBitplane) {
+  for (const auto& q : h.quantizers) {
+    if (!(q.step > 0) || !std::isfinite(q.step) || q.deadzone > 3 || q.top_bitplane < -1 ||
+        q.top_bitplane > kMaxBitplane) {
       return ParseError("PGC header: a quantizer is out of range");
     }
-    top = std::max(top, q.top_bitplane());
+    top = std::max(top, q.top_bitplane);
   }
   MW_RETURN_IF_ERROR(ValidateCompactIndex(h, top + 1, 1));
-  if (h.bbox_min_size() != 3 || h.bbox_max_size() != 3) {
+  if (h.bbox_min.size() != 3 || h.bbox_max.size() != 3) {
     return ParseError("PGC header: bounding box needs 3 coordinates");
   }
   return Status::Ok();
@@ -46,32 +46,31 @@ Status ValidatePgcHeader(const proto::StreamHeader& h) {
 }  // namespace
 
 Result<std::unique_ptr<PgcDecoder>> PgcDecoder::Create(
-    const proto::StreamHeader& header, const DecoderOptions& options) {
+    const StreamHeader& header, const DecoderOptions& options) {
   MW_RETURN_IF_ERROR(ValidatePgcHeader(header));
   std::unique_ptr<PgcDecoder> d(new PgcDecoder());
   d->header_ = header;
   d->options_ = options;
-  MW_ASSIGN_OR_RETURN(TransformSettings settings, FromProto(header.transform()));
-  MW_ASSIGN_OR_RETURN(d->base_, DecodeBaseMesh(header.base(), options.max_base_vertices));
-  const int levels = static_cast<int>(header.transform().levels());
+  MW_ASSIGN_OR_RETURN(TransformSettings settings, ReadTransformSettings(header.transform));
+  MW_ASSIGN_OR_RETURN(d->base_, DecodeBaseMesh(header.base, options.max_base_vertices));
+  const int levels = static_cast<int>(header.transform.levels);
   auto hierarchy = SemiRegularHierarchy::Build(
       static_cast<uint32_t>(d->base_.positions.size()), d->base_.faces, levels);
   if (!hierarchy.ok()) return hierarchy.status().WithContext("PGC base mesh");
   d->hierarchy_ = *hierarchy;
   const auto& h = *d->hierarchy_;
-  if (header.vertices() != h.vertex_count(levels) ||
-      header.faces() != h.faces(levels).size()) {
+  if (header.vertices != h.vertex_count(levels) || header.faces != h.faces(levels).size()) {
     return ParseError("PGC header: vertex or face count does not match the hierarchy");
   }
   if (settings.predictor == Predictor::kSawt) {
     MW_ASSIGN_OR_RETURN(settings.sawt,
-                        DecodeSawtChoices(header.transform().sawt(), h, d->base_.grid));
+                        DecodeSawtChoices(*header.transform.sawt, h, d->base_.grid));
   }
   MW_ASSIGN_OR_RETURN(WaveletTransform t, WaveletTransform::Create(d->hierarchy_, settings));
   d->transform_ = std::make_unique<WaveletTransform>(std::move(t));
   for (int c = 0; c < 3; ++c) {
     std::vector<int> top(levels);
-    for (int j = 0; j < levels; ++j) top[j] = header.quantizers(3 * j + c).top_bitplane();
+    for (int j = 0; j < levels; ++j) top[j] = header.quantizers[static_cast<size_t>(3 * j + c)].top_bitplane;
     d->states_[c].Init(h, top);
     d->top_ = std::max(d->top_, d->states_[c].top());
   }
@@ -88,12 +87,12 @@ Status PgcDecoder::AddPacket(std::string_view payload) {
   }
   const int i = static_cast<int>(decoded_);
   const int b = top_ - i;
-  const auto& index = header_.packets();
+  const auto& index = header_.packets;
   const std::string what = "PGC packet " + std::to_string(i) + " (bitplane " +
                            std::to_string(b) + ")";
-  if (payload.size() != index.length(i)) {
+  if (payload.size() != index.length[decoded_]) {
     return ParseError(what + ": " + std::to_string(payload.size()) +
-                      " bytes, index says " + std::to_string(index.length(i)));
+                      " bytes, index says " + std::to_string(index.length[decoded_]));
   }
   if (!PacketCheckMatches(index, static_cast<uint32_t>(i), payload)) {
     return ParseError(what + ": CRC-16 check mismatch (corrupt payload)");
@@ -124,10 +123,10 @@ std::vector<Vec3> PgcDecoder::Positions() const {
     const ZerotreeState& s = states_[c];
     const int n = s.known_from();
     for (const TreeNode& node : s.lsp()) {
-      const proto::Quantizer& q = header_.quantizers(static_cast<int>(3 * node.j) + c);
+      const StreamHeader::Quantizer& q = header_.quantizers[3 * static_cast<size_t>(node.j) + static_cast<size_t>(c)];
       p.subbands[node.j][node.k][c] =
-          Dequantize(s.mag(node.j)[node.k] >> n, n, s.negative(node.j)[node.k], q.step(),
-                     DeadzoneXi(static_cast<int>(q.deadzone())), options_.gamma);
+          Dequantize(s.mag(node.j)[node.k] >> n, n, s.negative(node.j)[node.k], q.step,
+                     DeadzoneXi(static_cast<int>(q.deadzone)), options_.gamma);
     }
   }
   return transform_->Inverse(p);

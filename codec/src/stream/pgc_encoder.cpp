@@ -5,10 +5,12 @@
 
 #include "quant/deadzone_quantizer.h"
 #include "quant/subband_gains.h"
+#include "stream/distortion_index_writer.h"
 #include "stream/packet_index.h"
 #include "stream/pgc_stream.h"
 #include "stream/stream_preparation.h"
 #include "stream/stream_format.h"
+#include "stream/stream_format_writer.h"
 
 namespace meshwave {
 namespace {
@@ -38,14 +40,13 @@ Result<PgcStream> EncodePgc(const SemiRegularMesh& input,
   MW_ASSIGN_OR_RETURN(PreparedStream prepared, PrepareStream(input, options));
   PgcStream out;
   out.mesh = std::move(prepared.mesh);
-  out.header = std::move(prepared.header);
   const SemiRegularMesh& mesh = out.mesh;
   const SemiRegularHierarchy& h = *mesh.hierarchy;
   const int levels = h.levels();
   const double step0 = prepared.step0;
   const SubbandGains& gains = prepared.gains;
   const Pyramid& pyramid = prepared.pyramid;
-  proto::StreamHeader& header = out.header;
+  proto::StreamHeader& header = prepared.header;
   header.set_coder(static_cast<proto::Coder>(kPgcCoderValue));
   DistortionModel model;
   model.base = prepared.base_distortion;
@@ -123,6 +124,7 @@ Result<PgcStream> EncodePgc(const SemiRegularMesh& input,
     out.packets.push_back(std::move(payload));
   }
   WriteDistortionIndex(model, prepared.zero_packet_distortion, header);
+  MW_ASSIGN_OR_RETURN(out.header, ToStreamHeader(header));
   return out;
 }
 

@@ -20,16 +20,16 @@
 #include "meshwave/semiregular.h"
 #include "meshwave/status.h"
 #include "meshwave/wavelet.h"
-#include "stream.pb.h"
 #include "stream/base_mesh_codec.h"
+#include "stream/packet_index.h"
 
 namespace meshwave {
 
-// The value of StreamHeader.coder in a PGC header. Deliberately not in
-// stream.proto: PGC headers never go into a .mwv stream, and with this value
-// ValidateStreamHeader (hence ProgressiveDecoder) refuses them as an unknown
-// coder instead of misreading their packets.
-inline constexpr int kPgcCoderValue = 2;
+// kPgcCoderValue (stream/packet_index.h) is the value of StreamHeader.coder
+// in a PGC header. Deliberately not in stream.proto: PGC headers never go
+// into a .mwv stream, and with this value ValidateStreamHeader (hence
+// ProgressiveDecoder) refuses them as an unknown coder instead of misreading
+// their packets.
 
 // A PGC encoding. `header` is a StreamHeader as EncodeMesh fills it (base
 // mesh, transform, quantizers, bounding box, base distortion) except that
@@ -40,7 +40,7 @@ inline constexpr int kPgcCoderValue = 2;
 // ContainerSize(header, ids) therefore counts a PGC stream as it counts a
 // 3xC one.
 struct PgcStream {
-  proto::StreamHeader header;
+  StreamHeader header;
   std::vector<std::string> packets;  // packets[i] codes bitplane top - i
   // The encoded mesh as the stream numbers it (base in transmission order,
   // as EncodedStream::mesh): PgcDecoder returns vertices in this order.
@@ -61,9 +61,9 @@ Result<PgcStream> EncodePgc(const SemiRegularMesh& mesh,
 class PgcDecoder {
  public:
   static Result<std::unique_ptr<PgcDecoder>> Create(
-      const proto::StreamHeader& header, const DecoderOptions& options = {});
+      const StreamHeader& header, const DecoderOptions& options = {});
 
-  size_t packet_count() const { return static_cast<size_t>(header_.packets().length_size()); }
+  size_t packet_count() const { return header_.packets.length.size(); }
   size_t packets_decoded() const { return decoded_; }
   // Packet i codes bitplane top_bitplane() - i.
   int top_bitplane() const { return top_; }
@@ -81,7 +81,7 @@ class PgcDecoder {
  private:
   PgcDecoder() = default;
 
-  proto::StreamHeader header_;
+  StreamHeader header_;
   DecoderOptions options_;
   std::shared_ptr<const SemiRegularHierarchy> hierarchy_;
   std::unique_ptr<WaveletTransform> transform_;

@@ -1,7 +1,5 @@
 #include "meshwave/progression.h"
 
-#include <google/protobuf/io/coded_stream.h>
-
 #include <algorithm>
 #include <cmath>
 
@@ -9,12 +7,9 @@
 #include "quant/deadzone_quantizer.h"
 #include "stream/packet_index.h"
 #include "stream/stream_format.h"
+#include "stream/varint.h"
 
 namespace meshwave {
-namespace {
-
-}  // namespace
-
 Result<Progression> ParseProgression(const std::string& name) {
   if (name == "quality") return Progression::kQuality;
   if (name == "resolution") return Progression::kResolution;
@@ -32,49 +27,49 @@ const char* ProgressionName(Progression p) {
   return "?";
 }
 
-Status ValidateStreamHeader(const proto::StreamHeader& h) {
-  if (h.format_version() != kFormatVersion) {
+Status ValidateStreamHeader(const StreamHeader& h) {
+  if (h.format_version != kFormatVersion) {
     return Status(StatusCode::kUnsupported,
-                  "stream format version " + std::to_string(h.format_version()) +
+                  "stream format version " + std::to_string(h.format_version) +
                       " (this build reads version " + std::to_string(kFormatVersion) + ")");
   }
-  const uint32_t levels = h.transform().levels();
+  const uint32_t levels = h.transform.levels;
   if (levels > 12) return ParseError("header: " + std::to_string(levels) + " levels (at most 12)");
-  MW_RETURN_IF_ERROR(FromProto(h.transform()).status());
-  if (h.coder() != proto::CODER_3XC && h.coder() != proto::CODER_SIM) {
-    return ParseError("header: unknown coder " + std::to_string(h.coder()));
+  MW_RETURN_IF_ERROR(ReadTransformSettings(h.transform).status());
+  if (h.coder != StreamCoder::k3xC && h.coder != StreamCoder::kSim) {
+    return ParseError("header: unknown coder " + std::to_string(static_cast<int32_t>(h.coder)));
   }
-  if (h.octree_leaf_size() == 0 || h.octree_leaf_size() > (1u << 20)) {
+  if (h.octree_leaf_size == 0 || h.octree_leaf_size > (1u << 20)) {
     return ParseError("header: octree leaf size out of range");
   }
-  if (h.quantizers_size() != static_cast<int>(3 * levels)) {
-    return ParseError("header: " + std::to_string(h.quantizers_size()) +
+  if (h.quantizers.size() != 3 * static_cast<size_t>(levels)) {
+    return ParseError("header: " + std::to_string(h.quantizers.size()) +
                       " quantizers for " + std::to_string(levels) + " subbands");
   }
-  for (const auto& q : h.quantizers()) {
-    if (!(q.step() > 0) || !std::isfinite(q.step()) || q.deadzone() > 3 ||
-        q.top_bitplane() < -1 || q.top_bitplane() > kMaxBitplane) {
+  for (const auto& q : h.quantizers) {
+    if (!(q.step > 0) || !std::isfinite(q.step) || q.deadzone > 3 || q.top_bitplane < -1 ||
+        q.top_bitplane > kMaxBitplane) {
       return ParseError("header: a quantizer is out of range");
     }
   }
-  const auto& index = h.packets();
+  const auto& index = h.packets;
   const PacketLayout map(h);
   MW_RETURN_IF_ERROR(ValidateCompactIndex(h, map.count(), static_cast<int>(levels)));
   for (int id = 0; id < map.count(); ++id) {
-    if (index.length(id) > (1u << 30)) {
+    if (index.length[static_cast<size_t>(id)] > (1u << 30)) {
       return ParseError("header: packet " + std::to_string(id) + " is too long");
     }
   }
   return Status::Ok();
 }
 
-std::vector<uint32_t> PacketDependencies(const proto::StreamHeader& h,
+std::vector<uint32_t> PacketDependencies(const StreamHeader& h,
                                          uint32_t id) {
-  const PacketLayout::Needs needs = PacketLayout(h).Dependencies(id, h.coder() == proto::CODER_3XC);
+  const PacketLayout::Needs needs = PacketLayout(h).Dependencies(id, h.coder == StreamCoder::k3xC);
   return {needs.begin(), needs.end()};
 }
 
-std::vector<uint32_t> PacketOrder(const proto::StreamHeader& h,
+std::vector<uint32_t> PacketOrder(const StreamHeader& h,
                                   Progression progression, int max_level) {
   const PacketLayout map(h);
   const int levels = map.levels();
@@ -102,7 +97,7 @@ std::vector<uint32_t> PacketOrder(const proto::StreamHeader& h,
       for (int j = 0; j < used; ++j) {
         for (int b = map.Top(j); b >= 0; --b) candidates.push_back(static_cast<uint32_t>(map.Id(j, b)));
       }
-      std::vector<char> sent(h.packets().length_size(), 0);
+      std::vector<char> sent(h.packets.length.size(), 0);
       const std::vector<uint32_t> chains = PacketChains(h);
       const DistortionEstimates estimates = ReadDistortionIndex(h, chains);
       while (order.size() < candidates.size()) {
@@ -111,12 +106,12 @@ std::vector<uint32_t> PacketOrder(const proto::StreamHeader& h,
         for (uint32_t id : candidates) {
           if (sent[id]) continue;
           bool ready = true;
-          for (uint32_t d : map.Dependencies(id, h.coder() == proto::CODER_3XC)) {
+          for (uint32_t d : map.Dependencies(id, h.coder == StreamCoder::k3xC)) {
             ready = ready && sent[d];
           }
           if (!ready) continue;
           const double value = estimates.reduction[id] /
-                               (h.packets().length(static_cast<int>(id)) + 4.0);
+                               (h.packets.length[id] + 4.0);
           // The first ready packet is taken whatever its value: an untrusted
           // header may give reductions below -1 or NaN (fuzz_replay_container_fuzz).
           if (best < 0 || value > best_value ||
@@ -135,18 +130,18 @@ std::vector<uint32_t> PacketOrder(const proto::StreamHeader& h,
   return order;
 }
 
-uint64_t PacketLength(const proto::StreamHeader& h, uint32_t id) {
-  return h.packets().length(static_cast<int>(id));
+uint64_t PacketLength(const StreamHeader& h, uint32_t id) {
+  return h.packets.length[id];
 }
 
-Selection SelectPayloads(const proto::StreamHeader& h,
+Selection SelectPayloads(const StreamHeader& h,
                          const std::vector<uint32_t>& order, uint64_t budget,
                          size_t cursor) {
   Selection s;
   s.next_cursor = std::min(cursor, order.size());
   while (s.next_cursor < order.size()) {
     const uint32_t id = order[s.next_cursor];
-    const uint64_t next = s.bytes + h.packets().length(static_cast<int>(id));
+    const uint64_t next = s.bytes + h.packets.length[id];
     if (next > budget) break;
     s.bytes = next;
     s.ids.push_back(id);
@@ -155,7 +150,7 @@ Selection SelectPayloads(const proto::StreamHeader& h,
   return s;
 }
 
-Selection SelectPackets(const proto::StreamHeader& h,
+Selection SelectPackets(const StreamHeader& h,
                         const std::vector<uint32_t>& order, uint64_t budget,
                         size_t cursor) {
   if (cursor > 0) return SelectPayloads(h, order, budget, cursor);
@@ -170,8 +165,8 @@ Selection SelectPackets(const proto::StreamHeader& h,
   s.bytes = empty;
   while (s.next_cursor < order.size()) {
     const uint32_t id = order[s.next_cursor];
-    const uint64_t length = h.packets().length(static_cast<int>(id));
-    const uint64_t ids = id_bytes + google::protobuf::io::CodedOutputStream::VarintSize32(id);
+    const uint64_t length = h.packets.length[id];
+    const uint64_t ids = id_bytes + VarintSize(id);
     const uint64_t next = empty + payload + length + PresentFieldSize(ids);
     if (next > budget) break;
     id_bytes = ids;

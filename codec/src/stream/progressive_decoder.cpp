@@ -19,7 +19,7 @@
 namespace meshwave {
 
 struct ProgressiveDecoder::Impl {
-  proto::StreamHeader header;
+  StreamHeader header;
   DecoderOptions options;
   std::shared_ptr<const SemiRegularHierarchy> hierarchy;
   std::unique_ptr<WaveletTransform> transform;
@@ -36,7 +36,7 @@ struct ProgressiveDecoder::Impl {
   bool broken = false;
   double diagonal = 0;
 
-  bool parent_contexts() const { return header.coder() == proto::CODER_3XC; }
+  bool parent_contexts() const { return header.coder == StreamCoder::k3xC; }
 };
 
 ProgressiveDecoder::ProgressiveDecoder(std::unique_ptr<Impl> impl)
@@ -44,46 +44,45 @@ ProgressiveDecoder::ProgressiveDecoder(std::unique_ptr<Impl> impl)
 ProgressiveDecoder::~ProgressiveDecoder() = default;
 
 Result<std::unique_ptr<ProgressiveDecoder>> ProgressiveDecoder::Create(
-    const proto::StreamHeader& header, const DecoderOptions& options) {
+    const StreamHeader& header, const DecoderOptions& options) {
   MW_RETURN_IF_ERROR(ValidateStreamHeader(header));
-  if (header.faces() > options.max_faces) {
+  if (header.faces > options.max_faces) {
     return Status(StatusCode::kUnsupported,
-                  "header: " + std::to_string(header.faces()) +
+                  "header: " + std::to_string(header.faces) +
                       " faces, more than this decoder's limit of " +
                       std::to_string(options.max_faces));
   }
   auto impl = std::make_unique<Impl>();
   impl->header = header;
-  impl->header.clear_present();
+  impl->header.present.clear();
   impl->options = options;
-  MW_ASSIGN_OR_RETURN(TransformSettings settings, FromProto(header.transform()));
+  MW_ASSIGN_OR_RETURN(TransformSettings settings, ReadTransformSettings(header.transform));
   MW_ASSIGN_OR_RETURN(impl->base,
-                      DecodeBaseMesh(header.base(), options.max_base_vertices));
-  const int levels = static_cast<int>(header.transform().levels());
+                      DecodeBaseMesh(header.base, options.max_base_vertices));
+  const int levels = static_cast<int>(header.transform.levels);
   auto hierarchy = SemiRegularHierarchy::Build(
       static_cast<uint32_t>(impl->base.positions.size()), impl->base.faces, levels);
   if (!hierarchy.ok()) return hierarchy.status().WithContext("stream base mesh");
   impl->hierarchy = *hierarchy;
   const auto& h = *impl->hierarchy;
-  if (header.vertices() != h.vertex_count(levels) ||
-      header.faces() != h.faces(levels).size()) {
+  if (header.vertices != h.vertex_count(levels) || header.faces != h.faces(levels).size()) {
     return ParseError("header: vertex or face count does not match the hierarchy");
   }
-  if (header.bbox_min_size() != 3 || header.bbox_max_size() != 3) {
+  if (header.bbox_min.size() != 3 || header.bbox_max.size() != 3) {
     return ParseError("header: bounding box needs 3 coordinates");
   }
-  for (int a = 0; a < 3; ++a) {
-    const double d = header.bbox_max(a) - header.bbox_min(a);
+  for (size_t a = 0; a < 3; ++a) {
+    const double d = header.bbox_max[a] - header.bbox_min[a];
     impl->diagonal += d * d;
   }
   impl->diagonal = std::sqrt(impl->diagonal);
   if (settings.predictor == Predictor::kSawt) {
     MW_ASSIGN_OR_RETURN(settings.sawt,
-                        DecodeSawtChoices(header.transform().sawt(), h, impl->base.grid));
+                        DecodeSawtChoices(*header.transform.sawt, h, impl->base.grid));
   }
   MW_ASSIGN_OR_RETURN(WaveletTransform t, WaveletTransform::Create(impl->hierarchy, settings));
   impl->transform = std::make_unique<WaveletTransform>(std::move(t));
-  impl->layouts = BuildSubbandLayouts(h, impl->base.grid, header.octree_leaf_size());
+  impl->layouts = BuildSubbandLayouts(h, impl->base.grid, header.octree_leaf_size);
   impl->packets = std::make_unique<PacketLayout>(header);
   impl->estimates = ReadDistortionIndex(header, PacketChains(header));
   std::unique_ptr<ProgressiveDecoder> decoder(new ProgressiveDecoder(std::move(impl)));
@@ -97,10 +96,11 @@ void ProgressiveDecoder::Reset() {
   m.states.resize(levels);  // Init reuses the lists' memory
   for (int j = 0; j < levels; ++j) {
     for (int c = 0; c < 3; ++c) {
-      m.states[j][c].Init(m.layouts[j].tree, m.header.quantizers(3 * j + c).top_bitplane());
+      m.states[j][c].Init(m.layouts[j].tree,
+                          m.header.quantizers[static_cast<size_t>(3 * j + c)].top_bitplane);
     }
   }
-  m.have.assign(m.header.packets().length_size(), 0);
+  m.have.assign(m.header.packets.length.size(), 0);
   m.chain_now = m.estimates.chain_start;
   m.distortion = m.estimates.start();
   m.decoded = 0;
@@ -108,7 +108,7 @@ void ProgressiveDecoder::Reset() {
   m.broken = false;
 }
 
-const proto::StreamHeader& ProgressiveDecoder::header() const { return impl_->header; }
+const StreamHeader& ProgressiveDecoder::header() const { return impl_->header; }
 size_t ProgressiveDecoder::packet_count() const { return impl_->have.size(); }
 bool ProgressiveDecoder::HasPacket(uint32_t id) const {
   return id < impl_->have.size() && impl_->have[id];
@@ -134,8 +134,7 @@ Status ProgressiveDecoder::AddPacket(uint32_t id, std::string_view payload) {
     return InvalidArgument("packet " + std::to_string(id) + " is not in the index of " +
                            std::to_string(m.have.size()) + " packets");
   }
-  const auto& index = m.header.packets();
-  const int i = static_cast<int>(id);
+  const auto& index = m.header.packets;
   const int j = m.packets->Subband(id);
   const int b = m.packets->Bitplane(id);
   // The packet's name, for errors only: built on the way out (it was a
@@ -152,9 +151,9 @@ Status ProgressiveDecoder::AddPacket(uint32_t id, std::string_view payload) {
                              std::to_string(m.packets->Bitplane(d)) + ") first");
     }
   }
-  if (payload.size() != index.length(i)) {
+  if (payload.size() != index.length[id]) {
     return ParseError(what() + ": " + std::to_string(payload.size()) + " bytes, index says " +
-                      std::to_string(index.length(i)));
+                      std::to_string(index.length[id]));
   }
   if (!PacketCheckMatches(index, id, payload)) {
     return ParseError(what() + ": CRC-16 check mismatch (corrupt payload)");
@@ -202,7 +201,7 @@ int ProgressiveDecoder::CompleteLevels() const {
 
 double ProgressiveDecoder::EstimatedPsnr() const {
   const Impl& m = *impl_;
-  const double mse = std::max(m.distortion, 0.0) / static_cast<double>(m.header.vertices());
+  const double mse = std::max(m.distortion, 0.0) / static_cast<double>(m.header.vertices);
   if (mse <= 0) return std::numeric_limits<double>::infinity();
   return 20 * std::log10(m.diagonal / std::sqrt(mse));
 }
@@ -220,14 +219,14 @@ std::vector<Vec3> ProgressiveDecoder::Positions(int max_level) const {
     band.assign(h.subband_size(j), Vec3::Zero());
     for (int c = 0; c < 3; ++c) {
       const ComponentState& s = m.states[j][c];
-      const proto::Quantizer& q = m.header.quantizers(3 * j + c);
+      const StreamHeader::Quantizer& q = m.header.quantizers[static_cast<size_t>(3 * j + c)];
       const int n = s.known_from();
       if (n > s.top) continue;
-      const double xi0 = DeadzoneXi(static_cast<int>(q.deadzone()));
-      // Dequantize(s.mag[k] >> n, n, s.negative[k], q.step(), xi0, gamma)
+      const double xi0 = DeadzoneXi(static_cast<int>(q.deadzone));
+      // Dequantize(s.mag[k] >> n, n, s.negative[k], q.step, xi0, gamma)
       // with its two ldexp calls, the same for every k, taken out of the
       // loop (the same operations in the same order: bit-identical).
-      const double scale = std::ldexp(q.step(), n);
+      const double scale = std::ldexp(q.step, n);
       const double xi_n = std::ldexp(xi0, -n);
       const double gamma = m.options.gamma;
       for (uint32_t k : s.lsc) {
@@ -241,12 +240,17 @@ std::vector<Vec3> ProgressiveDecoder::Positions(int max_level) const {
   return m.transform->Inverse(p, max_level);
 }
 
+std::vector<Face> ProgressiveDecoder::Faces(int max_level) const {
+  const auto& h = *impl_->hierarchy;
+  return h.faces((max_level < 0 || max_level > h.levels()) ? h.levels() : max_level);
+}
+
 TriMesh ProgressiveDecoder::Mesh(int max_level) const {
   const auto& h = *impl_->hierarchy;
   const int level = (max_level < 0 || max_level > h.levels()) ? h.levels() : max_level;
   TriMesh mesh;
   mesh.positions = Positions(level);
-  mesh.faces = h.faces(level);
+  mesh.faces = Faces(level);
   return mesh;
 }
 

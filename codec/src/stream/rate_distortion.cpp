@@ -19,14 +19,14 @@ namespace {
 // Adds the point of a prefix: `ids` decoded, `positions` reconstructed.
 // `complete`: the bitplane this prefix completes, or -1.
 Status AddPoint(const SemiRegularMesh& mesh, double diagonal,
-                const proto::StreamHeader& header, std::span<const uint32_t> ids,
+                const StreamHeader& header, std::span<const uint32_t> ids,
                 int complete, const std::vector<Vec3>& positions, RdCurve& curve) {
   MW_ASSIGN_OR_RETURN(VertexErrorStats error,
                       VertexError(mesh.positions, positions, diagonal));
   RdPoint p;
   p.packets = ids.size();
   p.bytes_total = ContainerSize(header, ids);
-  for (uint32_t id : ids) p.payload_bytes += header.packets().length(static_cast<int>(id));
+  for (uint32_t id : ids) p.payload_bytes += header.packets.length[id];
   const auto v = static_cast<double>(curve.vertices);
   p.bpv_total = 8.0 * static_cast<double>(p.bytes_total) / v;
   p.bpv_excl_base = 8.0 * static_cast<double>(p.payload_bytes) / v;
@@ -47,7 +47,7 @@ Status MeasureEmbedded(const SemiRegularMesh& input, double diagonal,
   const SemiRegularMesh& mesh = stream.mesh;
   MW_ASSIGN_OR_RETURN(std::unique_ptr<ProgressiveDecoder> decoder,
                       ProgressiveDecoder::Create(stream.header));
-  curve.vertices = stream.header.vertices();
+  curve.vertices = stream.header.vertices;
   const std::vector<uint32_t> order = PacketOrder(stream.header, Progression::kQuality);
   MW_RETURN_IF_ERROR(
       AddPoint(mesh, diagonal, stream.header, {}, -1, decoder->Positions(), curve));
@@ -72,7 +72,7 @@ Status MeasurePgc(const SemiRegularMesh& input, double diagonal,
   const SemiRegularMesh& mesh = stream.mesh;
   MW_ASSIGN_OR_RETURN(std::unique_ptr<PgcDecoder> decoder,
                       PgcDecoder::Create(stream.header));
-  curve.vertices = stream.header.vertices();
+  curve.vertices = stream.header.vertices;
   std::vector<uint32_t> ids(stream.packets.size());
   for (uint32_t i = 0; i < ids.size(); ++i) ids[i] = i;
   MW_RETURN_IF_ERROR(

@@ -11,7 +11,7 @@
 
 namespace meshwave {
 
-proto::SawtChoices EncodeSawtChoices(const SemiRegularHierarchy& h,
+StreamHeader::SawtChoices EncodeSawtChoices(const SemiRegularHierarchy& h,
                                      std::span<const IntVec3> base_grid,
                                      const SawtPlan& plan, uint32_t alpha) {
   ArithmeticEncoder encoder;
@@ -27,30 +27,30 @@ proto::SawtChoices EncodeSawtChoices(const SemiRegularHierarchy& h,
     model.ForEachIndexBit(plan.filters[j][r],
                           [&](int bit, BinaryContext& ctx) { encoder.Encode(bit, ctx); });
   });
-  proto::SawtChoices field;
-  field.set_alpha(alpha);
-  field.set_region_count(plan.regions.count);
-  field.set_coded(encoder.Finish());
-  field.set_crc32c(Crc32c(field.coded()));
+  StreamHeader::SawtChoices field;
+  field.alpha = alpha;
+  field.region_count = plan.regions.count;
+  field.coded = encoder.Finish();
+  field.crc32c = Crc32c(field.coded);
   return field;
 }
 
 Result<std::shared_ptr<const SawtPlan>> DecodeSawtChoices(
-    const proto::SawtChoices& field, const SemiRegularHierarchy& h,
+    const StreamHeader::SawtChoices& field, const SemiRegularHierarchy& h,
     std::span<const IntVec3> base_grid) {
-  if (Crc32c(field.coded()) != field.crc32c()) {
+  if (Crc32c(field.coded) != field.crc32c) {
     return ParseError("header: SAWT filter choices are corrupt (the CRC-32C of their " +
-                      std::to_string(field.coded().size()) + " bytes does not match)");
+                      std::to_string(field.coded.size()) + " bytes does not match)");
   }
-  ArithmeticDecoder decoder(field.coded());
+  ArithmeticDecoder decoder(field.coded);
   SawtSideModel model;
   auto plan = std::make_shared<SawtPlan>();
   plan->regions = ReplaySawtRegions(
       h, base_grid, [&](int depth) { return decoder.Decode(model.SplitContext(depth)); });
-  if (plan->regions.count != field.region_count()) {
+  if (plan->regions.count != field.region_count) {
     return ParseError("header: SAWT filter choices are corrupt (their split flags give " +
                       std::to_string(plan->regions.count) + " regions, the header says " +
-                      std::to_string(field.region_count()) + ")");
+                      std::to_string(field.region_count) + ")");
   }
   plan->filters.assign(h.levels(), std::vector<SawtFilter>(plan->regions.count,
                                                            SawtFilter::kButterfly));
@@ -59,7 +59,7 @@ Result<std::shared_ptr<const SawtPlan>> DecodeSawtChoices(
   });
   if (decoder.overrun()) {
     return ParseError("header: SAWT filter choices are truncated or corrupt (the codeword of " +
-                      std::to_string(field.coded().size()) +
+                      std::to_string(field.coded.size()) +
                       " bytes ends before the last filter index)");
   }
   return std::shared_ptr<const SawtPlan>(std::move(plan));

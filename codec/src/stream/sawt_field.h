@@ -11,20 +11,20 @@
 #include "bitplane/coefficient_octree.h"
 #include "meshwave/semiregular.h"
 #include "meshwave/status.h"
-#include "stream.pb.h"
+#include "meshwave/stream_header.h"
 #include "wavelet/sawt_plan.h"
 
 namespace meshwave {
 
 // `base_grid`: the integer base positions the decoder will hold.
-proto::SawtChoices EncodeSawtChoices(const SemiRegularHierarchy& h,
+StreamHeader::SawtChoices EncodeSawtChoices(const SemiRegularHierarchy& h,
                                      std::span<const IntVec3> base_grid,
                                      const SawtPlan& plan, uint32_t alpha);
 
 // Safe on untrusted input: a codeword that ends early or gives another
 // number of regions than the header states is refused.
 Result<std::shared_ptr<const SawtPlan>> DecodeSawtChoices(
-    const proto::SawtChoices& field, const SemiRegularHierarchy& h,
+    const StreamHeader::SawtChoices& field, const SemiRegularHierarchy& h,
     std::span<const IntVec3> base_grid);
 
 }  // namespace meshwave

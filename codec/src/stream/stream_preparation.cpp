@@ -5,6 +5,7 @@
 
 #include "stream/sawt_field.h"
 #include "stream/stream_format.h"
+#include "stream/stream_format_writer.h"
 #include "wavelet/sawt_choice.h"
 #include "wavelet/sawt_regions.h"
 
@@ -29,9 +30,9 @@ double BaseStep(const PreparedStream& p, const SemiRegularHierarchy& h) {
 // The grid a decoder will hold for these base positions.
 Result<std::vector<IntVec3>> DecodedGrid(const std::vector<Vec3>& base, const PreparedStream& p,
                                          const SemiRegularHierarchy& h) {
-  MW_ASSIGN_OR_RETURN(const proto::BaseMesh coded,
+  MW_ASSIGN_OR_RETURN(const StreamHeader::BaseMesh coded,
                       EncodeBaseMesh(base, h.faces(0), BaseStep(p, h)));
-  MW_ASSIGN_OR_RETURN(DecodedBase decoded, DecodeBaseMesh(coded, coded.vertex_count()));
+  MW_ASSIGN_OR_RETURN(DecodedBase decoded, DecodeBaseMesh(coded, coded.vertex_count));
   return std::move(decoded.grid);
 }
 
@@ -115,13 +116,13 @@ Result<PreparedStream> PrepareStream(const SemiRegularMesh& input,
     header.add_bbox_max(box.max[a]);
   }
   ToProto(out.transform, levels, *header.mutable_transform());
-  MW_ASSIGN_OR_RETURN(*header.mutable_base(),
+  MW_ASSIGN_OR_RETURN(const StreamHeader::BaseMesh base,
                       EncodeBaseMesh(out.pyramid.base, h.faces(0), BaseStep(out, h)));
-  MW_ASSIGN_OR_RETURN(out.base,
-                      DecodeBaseMesh(header.base(), header.base().vertex_count()));
+  ToProto(base, *header.mutable_base());
+  MW_ASSIGN_OR_RETURN(out.base, DecodeBaseMesh(base, base.vertex_count));
   if (out.transform.sawt) {
-    *header.mutable_transform()->mutable_sawt() =
-        EncodeSawtChoices(h, out.base.grid, *out.transform.sawt, options.sawt_alpha);
+    ToProto(EncodeSawtChoices(h, out.base.grid, *out.transform.sawt, options.sawt_alpha),
+            *header.mutable_transform()->mutable_sawt());
   }
   for (size_t v = 0; v < out.base.positions.size(); ++v) {
     out.base_distortion +=

@@ -17,9 +17,17 @@
 
 namespace meshwave {
 
+// a . b summed as (x + y) + z: the order of Eigen's SSE2 code, which every
+// x86-64 build runs, written out so that a build without it (WebAssembly:
+// Eigen's scalar code sums x + (y + z)) rounds alike, to the bit.
+inline double Dot3(const Vec3& a, const Vec3& b) {
+  return (a.x() * b.x() + a.y() * b.y()) + a.z() * b.z();
+}
+inline double Norm3(const Vec3& v) { return std::sqrt(Dot3(v, v)); }
+
 struct Frame {
   Vec3 n, t1, t2;  // orthonormal, right-handed
-  Vec3 ToLocal(const Vec3& d) const { return {d.dot(n), d.dot(t1), d.dot(t2)}; }
+  Vec3 ToLocal(const Vec3& d) const { return {Dot3(d, n), Dot3(d, t1), Dot3(d, t2)}; }
   Vec3 ToGlobal(const Vec3& l) const { return l[0] * n + l[1] * t1 + l[2] * t2; }
 };
 
@@ -36,7 +44,7 @@ inline Frame MakeFrame(const Vec3& normal_hint, const Vec3& tangent_hint) {
   };
   // Normalises v in place; false when it is too short to carry a direction.
   auto normalize = [](Vec3& v) {
-    const double len = v.norm();
+    const double len = Norm3(v);
     if (!(len > 1e-300) || !std::isfinite(len)) return false;
     v /= len;
     return true;
@@ -47,8 +55,8 @@ inline Frame MakeFrame(const Vec3& normal_hint, const Vec3& tangent_hint) {
   const bool has_n = normalize(f.n);
   bool has_t = normalize(f.t1);
   if (has_n && has_t) {
-    f.t1 -= f.t1.dot(f.n) * f.n;
-    has_t = f.t1.norm() > 1e-6 && normalize(f.t1);
+    f.t1 -= Dot3(f.t1, f.n) * f.n;
+    has_t = Norm3(f.t1) > 1e-6 && normalize(f.t1);
   }
   if (!has_n) {
     if (!has_t) {
@@ -58,12 +66,12 @@ inline Frame MakeFrame(const Vec3& normal_hint, const Vec3& tangent_hint) {
       return f;
     }
     f.n = least_aligned_axis(f.t1);
-    f.n -= f.n.dot(f.t1) * f.t1;
-    f.n.normalize();
+    f.n -= Dot3(f.n, f.t1) * f.t1;
+    f.n /= Norm3(f.n);  // Eigen's normalize(), nonzero here
   } else if (!has_t) {
     f.t1 = least_aligned_axis(f.n);
-    f.t1 -= f.t1.dot(f.n) * f.n;
-    f.t1.normalize();
+    f.t1 -= Dot3(f.t1, f.n) * f.n;
+    f.t1 /= Norm3(f.t1);
   }
   f.t2 = f.n.cross(f.t1);
   return f;
@@ -94,7 +102,7 @@ class LevelFrames {
     if (edge_faces_[k][1] != SemiRegularHierarchy::kNone) {
       const Vec3 sum = n + normals_[edge_faces_[k][1]];
       // Two faces folded onto each other cancel: keep the first one's.
-      if (sum.squaredNorm() > 1e-12 * n.squaredNorm()) n = sum;
+      if (Dot3(sum, sum) > 1e-12 * Dot3(n, n)) n = sum;
     }
     return MakeFrame(n, x_[edges_[k][1]] - x_[edges_[k][0]]);
   }

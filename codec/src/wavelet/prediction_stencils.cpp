@@ -1,9 +1,11 @@
 #include "wavelet/prediction_stencils.h"
 
 #include <cmath>
-#include <bit>
-#include <unordered_map>
 #include <numbers>
+#include <unordered_map>
+
+#include "core/bit_cast.h"
+#include "core/correctly_rounded_cos.h"
 
 namespace meshwave {
 namespace {
@@ -27,7 +29,7 @@ class StencilBuilder {
     uint64_t hash = terms_.size();
     for (const auto& [v, x] : terms_) {
       table.indices.push_back(v);
-      hash = (hash ^ std::bit_cast<uint64_t>(x)) * 0x9E3779B97F4A7C15ull;
+      hash = (hash ^ BitCast<uint64_t>(x)) * 0x9E3779B97F4A7C15ull;
     }
     table.offsets.push_back(static_cast<uint32_t>(table.indices.size()));
     table.weight_start.push_back(FindOrAddRun(table, hash));
@@ -38,7 +40,7 @@ class StencilBuilder {
   uint32_t InternRun(StencilTable& table) {
     uint64_t hash = terms_.size();
     for (const auto& [v, x] : terms_) {
-      hash = (hash ^ std::bit_cast<uint64_t>(x)) * 0x9E3779B97F4A7C15ull;
+      hash = (hash ^ BitCast<uint64_t>(x)) * 0x9E3779B97F4A7C15ull;
     }
     const uint32_t start = FindOrAddHashedRun(table, hash);
     terms_.clear();
@@ -142,7 +144,8 @@ class LevelView {
 
 // Zorin's weight of ring neighbour i of a vertex of valence k >= 5, from a
 // table filled once per valence (cosines are most of the set-up time
-// otherwise).
+// otherwise). The cosines are correctly rounded, so that every platform
+// (the WebAssembly decoder too) has the same weights to the bit.
 double ZorinWeight(int k, int i) {
   thread_local std::vector<std::vector<double>> table;
   if (static_cast<size_t>(k) >= table.size()) table.resize(k + 1);
@@ -151,7 +154,7 @@ double ZorinWeight(int k, int i) {
     row.resize(k);
     for (int n = 0; n < k; ++n) {
       const double a = 2 * std::numbers::pi * n / k;
-      row[n] = (0.25 + std::cos(a) + 0.5 * std::cos(2 * a)) / k;
+      row[n] = (0.25 + CorrectlyRoundedCos(a) + 0.5 * CorrectlyRoundedCos(2 * a)) / k;
     }
   }
   return row[i];

@@ -69,26 +69,30 @@ TEST(ZerotreeCoderTest, UsesTheQuantizersAndVertexOrderOfEncodeMesh) {
   EXPECT_EQ(f.stream.mesh.positions, sim->mesh.positions);
   const auto& a = f.stream.header;
   const auto& b = sim->header;
-  ASSERT_EQ(a.quantizers_size(), b.quantizers_size());
-  for (int i = 0; i < a.quantizers_size(); ++i) {
-    EXPECT_EQ(a.quantizers(i).step(), b.quantizers(i).step()) << i;
-    EXPECT_EQ(a.quantizers(i).top_bitplane(), b.quantizers(i).top_bitplane()) << i;
-    EXPECT_EQ(a.quantizers(i).deadzone(), b.quantizers(i).deadzone()) << i;
+  ASSERT_EQ(a.quantizers.size(), b.quantizers.size());
+  for (size_t i = 0; i < a.quantizers.size(); ++i) {
+    EXPECT_EQ(a.quantizers[i].step, b.quantizers[i].step) << i;
+    EXPECT_EQ(a.quantizers[i].top_bitplane, b.quantizers[i].top_bitplane) << i;
+    EXPECT_EQ(a.quantizers[i].deadzone, b.quantizers[i].deadzone) << i;
   }
-  EXPECT_EQ(a.base().SerializeAsString(), b.base().SerializeAsString());
-  EXPECT_NEAR(a.base_distortion(), b.base_distortion(), 1e-9 * a.base_distortion());
+  EXPECT_EQ(a.base.vertex_count, b.base.vertex_count);
+  EXPECT_EQ(a.base.face_count, b.base.face_count);
+  EXPECT_EQ(a.base.origin, b.base.origin);
+  EXPECT_EQ(a.base.step, b.base.step);
+  EXPECT_EQ(a.base.coded, b.base.coded);
+  EXPECT_NEAR(a.base_distortion, b.base_distortion, 1e-9 * a.base_distortion);
 }
 
 TEST(ZerotreeCoderTest, HasOnePacketPerBitplane) {
   const Fixture& f = Encoded();
   int top = -1;
-  for (const auto& q : f.stream.header.quantizers()) top = std::max(top, q.top_bitplane());
+  for (const auto& q : f.stream.header.quantizers) top = std::max(top, q.top_bitplane);
   ASSERT_EQ(f.stream.packets.size(), static_cast<size_t>(top + 1));
-  EXPECT_EQ(f.stream.header.packets().check().size(), 2 * f.stream.packets.size());
-  EXPECT_EQ(f.stream.header.packets().distortion_step().size(), f.stream.packets.size());
-  EXPECT_EQ(f.stream.header.packets().chain_distortion_size(), 1);
+  EXPECT_EQ(f.stream.header.packets.check.size(), 2 * f.stream.packets.size());
+  EXPECT_EQ(f.stream.header.packets.distortion_step.size(), f.stream.packets.size());
+  EXPECT_EQ(f.stream.header.packets.chain_distortion.size(), 1u);
   for (int i = 0; i <= top; ++i) {
-    EXPECT_EQ(f.stream.header.packets().length(i), f.stream.packets[i].size());
+    EXPECT_EQ(f.stream.header.packets.length[static_cast<size_t>(i)], f.stream.packets[i].size());
   }
 }
 
@@ -231,8 +235,8 @@ TEST(ZerotreeCoderTest, HeaderIsRefusedByTheMwvDecoderAndViceVersa) {
   auto sim = EncodeMesh(f.mesh, EncodeOptions{});
   ASSERT_TRUE(sim.ok());
   EXPECT_FALSE(PgcDecoder::Create(sim->header).ok());
-  proto::StreamHeader wrong = f.stream.header;
-  wrong.mutable_packets()->mutable_distortion_step()->push_back('\0');
+  StreamHeader wrong = f.stream.header;
+  wrong.packets.distortion_step.push_back('\0');
   EXPECT_EQ(PgcDecoder::Create(wrong).status().code(), StatusCode::kParseError);
 }
 

@@ -50,9 +50,9 @@ TEST(BaseMeshCodecTest, RoundTripsSampleMeshCompactly) {
   ASSERT_TRUE(coded.ok());
   // 16-bit positions and connectivity: well below the 3 x 16 + 3 x 2 x 12
   // = 120 bits per vertex of a plain fixed-width code (measured: 62.8).
-  const double bits_per_vertex = 8.0 * static_cast<double>(coded->coded().size()) /
+  const double bits_per_vertex = 8.0 * static_cast<double>(coded->coded.size()) /
                                  static_cast<double>(mesh->positions.size());
-  std::cout << "[base] elephant.off: " << coded->coded().size() << " bytes, "
+  std::cout << "[base] elephant.off: " << coded->coded.size() << " bytes, "
             << bits_per_vertex << " bits per vertex\n";
   EXPECT_LT(bits_per_vertex, 0.6 * 120);
 }
@@ -80,7 +80,7 @@ TEST(BaseMeshCodecTest, ConnectivityCostsAFewBitsPerFace) {
   std::vector<Vec3> zeros(mesh->positions.size(), Vec3::Zero());
   auto coded = EncodeBaseMesh(zeros, order->faces, 1.0);
   ASSERT_TRUE(coded.ok());
-  const double bits_per_face = 8.0 * static_cast<double>(coded->coded().size()) /
+  const double bits_per_face = 8.0 * static_cast<double>(coded->coded.size()) /
                                static_cast<double>(mesh->faces.size());
   std::cout << "[base] elephant.off connectivity: " << bits_per_face << " bits per face\n";
   EXPECT_LT(bits_per_face, 5.0);
@@ -100,24 +100,24 @@ TEST(BaseMeshCodecTest, RefusesCorruptCountsAndBytes) {
   for (size_t v = 0; v < 12; ++v) positions[order.new_of_old[v]] = ico.positions[v];
   auto coded = EncodeBaseMesh(positions, order.faces, 1e-3);
   ASSERT_TRUE(coded.ok());
-  proto::BaseMesh bad = *coded;
-  bad.set_vertex_count(2000000000);
+  StreamHeader::BaseMesh bad = *coded;
+  bad.vertex_count = 2000000000;
   EXPECT_FALSE(DecodeBaseMesh(bad, 1u << 24).ok());
   bad = *coded;
-  bad.set_face_count(1u << 30);
+  bad.face_count = 1u << 30;
   EXPECT_FALSE(DecodeBaseMesh(bad, 1u << 24).ok());
   bad = *coded;
-  bad.set_step(-1);
+  bad.step = -1;
   EXPECT_FALSE(DecodeBaseMesh(bad, 1u << 24).ok());
   std::mt19937 rng(2);
   int accepted = 0;
   for (int trial = 0; trial < 500; ++trial) {
     bad = *coded;
-    std::string bytes = bad.coded();
+    std::string bytes = bad.coded;
     if (bytes.empty()) break;
     bytes[rng() % bytes.size()] ^= static_cast<char>(1 + rng() % 255);
     if (trial % 2) bytes.resize(rng() % bytes.size());
-    bad.set_coded(bytes);
+    bad.coded = bytes;
     accepted += DecodeBaseMesh(bad, 1u << 24).ok();  // must not crash
   }
   EXPECT_LT(accepted, 500);

@@ -9,6 +9,7 @@
 #include "codec/stream/stream_test_util.h"
 #include "meshwave/progression.h"
 #include "meshwave/progressive_decoder.h"
+#include "stream/stream_format_writer.h"
 
 namespace meshwave {
 namespace {
@@ -65,10 +66,11 @@ TEST(ContainerTest, HeadFromCachedHeaderBytesIsWhatProtobufWrites) {
   // The head built by appending `present` to bytes serialized once must be
   // byte for byte protobuf's own serialization (ETags and CRC-free clients
   // compare bytes).
-  proto::StreamHeader header = Stream().header;
-  header.clear_present();
+  proto::StreamHeader header;
+  ASSERT_TRUE(header.ParseFromString(Stream().header.bytes_without_present));
   const std::string cached = header.SerializeAsString();
-  const auto order = PacketOrder(header, Progression::kRd);
+  EXPECT_EQ(cached, Stream().header.bytes_without_present);
+  const auto order = PacketOrder(Stream().header, Progression::kRd);
   for (size_t n : {size_t{0}, size_t{1}, order.size() / 2, order.size()}) {
     const std::vector<uint32_t> ids(order.begin(), order.begin() + static_cast<long>(n));
     proto::StreamHeader with = header;
@@ -114,7 +116,10 @@ TEST(ContainerTest, RejectsBadMagicVersionTrailingBytes) {
   // compact packet index, and a future one.
   for (uint32_t version : {1u, 2u, 3u, 5u}) {
     EncodedStream other = Stream();
-    other.header.set_format_version(version);
+    proto::StreamHeader p;
+    ASSERT_TRUE(p.ParseFromString(other.header.bytes_without_present));
+    p.set_format_version(version);
+    other.header = *ToStreamHeader(p);
     const std::string versioned = SerializeFullContainer(other);
     EXPECT_EQ(ParseContainer(versioned).status().code(),
               StatusCode::kUnsupported);

@@ -7,6 +7,9 @@
 #include <string>
 #include <vector>
 
+#include "stream/distortion_index_writer.h"
+#include "stream/stream_format_writer.h"
+
 
 namespace meshwave {
 namespace {
@@ -50,12 +53,14 @@ TEST(PacketIndexTest, DistortionCodeFollowsTheModelWithinItsStep) {
     model.chain.push_back(1);
     model.reduction.push_back(x);
   }
-  proto::StreamHeader header;
+  proto::StreamHeader written;
   const double scale = 2.0;
-  WriteDistortionIndex(model, scale * (0.5 + 1010.0), header);
-  EXPECT_DOUBLE_EQ(header.base_distortion(), scale * 0.5);
-  ASSERT_EQ(header.packets().distortion_step().size(), model.reduction.size());
-  const DistortionEstimates e = ReadDistortionIndex(header, model.chain);
+  WriteDistortionIndex(model, scale * (0.5 + 1010.0), written);
+  auto header = ToStreamHeader(written);
+  ASSERT_TRUE(header.ok());
+  EXPECT_DOUBLE_EQ(header->base_distortion, scale * 0.5);
+  ASSERT_EQ(header->packets.distortion_step.size(), model.reduction.size());
+  const DistortionEstimates e = ReadDistortionIndex(*header, model.chain);
   EXPECT_NEAR(e.start(), scale * 1010.5, 1e-3);
   double left = e.start();
   std::vector<double> chains = truth;

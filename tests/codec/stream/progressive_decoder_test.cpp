@@ -162,7 +162,7 @@ TEST(ProgressiveDecoderTest, PacketLayoutDerivesSubbandAndBitplaneFromTheQuantiz
   for (int j = 0; j < layout.levels(); ++j) {
     int top = -1;
     for (int c = 0; c < 3; ++c) {
-      top = std::max(top, f.stream.header.quantizers(3 * j + c).top_bitplane());
+      top = std::max(top, f.stream.header.quantizers[static_cast<size_t>(3 * j + c)].top_bitplane);
     }
     for (int b = top; b >= 0; --b, ++id) {
       EXPECT_EQ(layout.Subband(static_cast<uint32_t>(id)), j);
@@ -228,12 +228,12 @@ TEST(ProgressiveDecoderTest, ResetRecoversFromAPayloadThatDoesNotDecode) {
   const Fixture& f = Encoded(CoderKind::k3xC);
   const uint32_t last = static_cast<uint32_t>(f.stream.packets.size()) - 1;
   ASSERT_GT(f.stream.packets[last].size(), 8u);
-  proto::StreamHeader h = f.stream.header;
+  StreamHeader h = f.stream.header;
   const std::string cut = f.stream.packets[last].substr(0, 1);
-  h.mutable_packets()->set_length(static_cast<int>(last), 1);
+  h.packets.length[last] = 1;
   const uint16_t check = PacketCheck(cut);
-  (*h.mutable_packets()->mutable_check())[2 * last] = static_cast<char>(check >> 8);
-  (*h.mutable_packets()->mutable_check())[2 * last + 1] = static_cast<char>(check & 0xff);
+  h.packets.check[2 * last] = static_cast<char>(check >> 8);
+  h.packets.check[2 * last + 1] = static_cast<char>(check & 0xff);
   auto created = ProgressiveDecoder::Create(h);
   ASSERT_TRUE(created.ok()) << created.status().ToString();
   ProgressiveDecoder& d = **created;
@@ -252,9 +252,9 @@ TEST(ProgressiveDecoderTest, ResetRecoversFromAPayloadThatDoesNotDecode) {
 TEST(ProgressiveDecoderTest, RefusesAHeaderOverItsFaceLimitBeforeBuildingIt) {
   const Fixture& f = Encoded(CoderKind::k3xC);
   DecoderOptions options;
-  options.max_faces = f.stream.header.faces();
+  options.max_faces = f.stream.header.faces;
   EXPECT_TRUE(ProgressiveDecoder::Create(f.stream.header, options).ok());
-  options.max_faces = f.stream.header.faces() - 1;
+  options.max_faces = f.stream.header.faces - 1;
   auto refused = ProgressiveDecoder::Create(f.stream.header, options);
   ASSERT_FALSE(refused.ok());
   EXPECT_EQ(refused.status().code(), StatusCode::kUnsupported);

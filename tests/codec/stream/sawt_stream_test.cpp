@@ -12,6 +12,7 @@
 #include "stream/base_mesh_codec.h"
 #include "stream/sawt_field.h"
 #include "stream/stream_format.h"
+#include "stream/stream_format_writer.h"
 #include "stream/stream_preparation.h"
 #include "test_data.h"
 #include "wavelet/sawt_plan.h"
@@ -39,13 +40,13 @@ EncodeOptions SawtOptions(UpdateWeights update, uint32_t alpha) {
 }
 
 // What a decoder derives from the header alone.
-std::shared_ptr<const SawtPlan> DecoderPlan(const proto::StreamHeader& header) {
-  auto base = DecodeBaseMesh(header.base(), 1u << 20);
+std::shared_ptr<const SawtPlan> DecoderPlan(const StreamHeader& header) {
+  auto base = DecodeBaseMesh(header.base, 1u << 20);
   EXPECT_TRUE(base.ok()) << base.status().ToString();
   auto h = SemiRegularHierarchy::Build(static_cast<uint32_t>(base->positions.size()),
-                                       base->faces, static_cast<int>(header.transform().levels()));
+                                       base->faces, static_cast<int>(header.transform.levels));
   EXPECT_TRUE(h.ok());
-  auto plan = DecodeSawtChoices(header.transform().sawt(), **h, base->grid);
+  auto plan = DecodeSawtChoices(*header.transform.sawt, **h, base->grid);
   EXPECT_TRUE(plan.ok()) << plan.status().ToString();
   return plan.ok() ? *plan : nullptr;
 }
@@ -64,7 +65,9 @@ TEST(SawtStreamTest, DecoderFindsTheEncodersRegionsAndFilters) {
     ASSERT_TRUE(prepared.ok()) << prepared.status().ToString();
     const SawtPlan& encoder = *prepared->transform.sawt;
     ASSERT_GT(encoder.regions.count, 3u);
-    const auto decoder = DecoderPlan(prepared->header);
+    auto header = ToStreamHeader(prepared->header);  // the encoder's own proto
+    ASSERT_TRUE(header.ok());
+    const auto decoder = DecoderPlan(*header);
     ASSERT_NE(decoder, nullptr);
     EXPECT_EQ(decoder->regions.count, encoder.regions.count);
     EXPECT_EQ(decoder->filters, encoder.filters);
@@ -86,7 +89,7 @@ const EncodedStream& HolesStream() {
   return s;
 }
 
-std::vector<Vec3> DecodeEverything(const proto::StreamHeader& header,
+std::vector<Vec3> DecodeEverything(const StreamHeader& header,
                                    const std::vector<std::string>& payloads,
                                    const std::vector<uint32_t>& ids) {
   auto d = ProgressiveDecoder::Create(header);
@@ -100,13 +103,17 @@ std::vector<Vec3> DecodeEverything(const proto::StreamHeader& header,
 
 TEST(SawtStreamTest, FieldSurvivesTheContainerAndDecodesNearLossless) {
   const EncodedStream& s = HolesStream();
-  ASSERT_EQ(s.header.transform().predictor(), proto::PREDICTOR_SAWT);
-  ASSERT_GT(s.header.transform().sawt().coded().size(), 0u);
+  ASSERT_EQ(s.header.transform.predictor, StreamPredictor::kSawt);
+  ASSERT_TRUE(s.header.transform.sawt);
+  ASSERT_GT(s.header.transform.sawt->coded.size(), 0u);
   const std::string bytes = SerializeFullContainer(s);  // the payloads view into it
   auto parsed = ParseContainer(bytes);
   ASSERT_TRUE(parsed.ok()) << parsed.status().ToString();
-  EXPECT_EQ(parsed->header.transform().SerializeAsString(),
-            s.header.transform().SerializeAsString());
+  ASSERT_TRUE(parsed->header.transform.sawt);
+  EXPECT_EQ(parsed->header.transform.sawt->coded, s.header.transform.sawt->coded);
+  EXPECT_EQ(parsed->header.transform.sawt->crc32c, s.header.transform.sawt->crc32c);
+  EXPECT_EQ(parsed->header.transform.sawt->region_count, s.header.transform.sawt->region_count);
+  EXPECT_EQ(parsed->header.transform.sawt->alpha, s.header.transform.sawt->alpha);
   const std::vector<Vec3> decoded = DecodeEverything(
       parsed->header, std::vector<std::string>(parsed->payloads.begin(), parsed->payloads.end()),
       parsed->ids);
@@ -124,44 +131,43 @@ TEST(SawtStreamTest, FieldSurvivesTheContainerAndDecodesNearLossless) {
   EXPECT_GT(sawt_psnr, default_psnr - 1.0) << "default " << default_psnr;
 }
 
-Status CreateWith(const proto::StreamHeader& header) {
+Status CreateWith(const StreamHeader& header) {
   return ProgressiveDecoder::Create(header).status();
 }
 
 TEST(SawtStreamTest, CorruptFieldIsRefusedWithAClearError) {
-  const proto::StreamHeader& good = HolesStream().header;
+  const StreamHeader& good = HolesStream().header;
   ASSERT_TRUE(CreateWith(good).ok());
-  auto expect_refused = [](const proto::StreamHeader& h, const std::string& what) {
+  auto expect_refused = [](const StreamHeader& h, const std::string& what) {
     const Status s = CreateWith(h);
     EXPECT_FALSE(s.ok()) << what;
     EXPECT_NE(s.message().find("SAWT"), std::string::npos) << what << ": " << s.ToString();
   };
   {
-    proto::StreamHeader h = good;
-    h.mutable_transform()->mutable_sawt()->mutable_coded()->resize(
-        good.transform().sawt().coded().size() / 3);
+    StreamHeader h = good;
+    h.transform.sawt->coded.resize(good.transform.sawt->coded.size() / 3);
     expect_refused(h, "truncated codeword");
   }
   {
-    proto::StreamHeader h = good;
-    h.mutable_transform()->mutable_sawt()->set_region_count(good.transform().sawt().region_count() + 1);
+    StreamHeader h = good;
+    h.transform.sawt->region_count = good.transform.sawt->region_count + 1;
     expect_refused(h, "region count");
   }
   {
-    proto::StreamHeader h = good;
-    h.mutable_transform()->clear_sawt();
+    StreamHeader h = good;
+    h.transform.sawt.reset();
     expect_refused(h, "missing field");
   }
   {
-    proto::StreamHeader h = good;
-    h.mutable_transform()->set_predictor(proto::PREDICTOR_BUTTERFLY);
+    StreamHeader h = good;
+    h.transform.predictor = StreamPredictor::kButterfly;
     expect_refused(h, "field with another predictor");
   }
   // Any damage to the codeword, cut or flipped bytes, is caught by its CRC.
   std::mt19937 rng(5);
   for (int trial = 0; trial < 200; ++trial) {
-    proto::StreamHeader h = good;
-    std::string& coded = *h.mutable_transform()->mutable_sawt()->mutable_coded();
+    StreamHeader h = good;
+    std::string& coded = h.transform.sawt->coded;
     coded[rng() % coded.size()] ^= static_cast<char>(1 + rng() % 255);
     if (trial % 2) coded.resize(rng() % (coded.size() + 1));
     expect_refused(h, "damage " + std::to_string(trial));

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "meshwave/status.h"
-#include "stream.pb.h"
+#include "meshwave/stream_header.h"
 
 namespace meshwave::client {
 
@@ -40,7 +40,7 @@ Result<uint64_t> RateBudgetBytes(double bits_per_second, double seconds);
 // header validated): the longest prefix whose container fits kBytes (0 when
 // not even the header fits), the shortest prefix whose estimated PSNR
 // reaches kPsnr (the whole order when none does), or the whole order.
-size_t TargetCursor(const proto::StreamHeader& header,
+size_t TargetCursor(const StreamHeader& header,
                     const std::vector<uint32_t>& order, const Budget& budget);
 
 }  // namespace meshwave::client

@@ -1,0 +1,96 @@
+// The field-by-field comparison of ReadStreamHeader's result with
+// protobuf's parse of the same bytes (stream_header_test, and the
+// stream_header_fuzz differential target). Doubles and floats compare bit
+// for bit (a NaN equals the same NaN); `sawt` compares presence too.
+#ifndef MESHWAVE_TESTS_STREAM_HEADER_COMPARE_TESTONLY_H_
+#define MESHWAVE_TESTS_STREAM_HEADER_COMPARE_TESTONLY_H_
+
+#include <cstring>
+#include <string>
+
+#include "meshwave/stream_header.h"
+#include "stream.pb.h"
+
+namespace meshwave::testing {
+
+namespace header_compare_internal {
+
+template <class T>
+bool SameBits(T a, T b) {
+  return std::memcmp(&a, &b, sizeof a) == 0;
+}
+
+template <class T, class R>
+bool SameFloats(const std::vector<T>& a, const R& b) {
+  if (a.size() != static_cast<size_t>(b.size())) return false;
+  for (size_t i = 0; i < a.size(); ++i) {
+    if (!SameBits(a[i], b.Get(static_cast<int>(i)))) return false;
+  }
+  return true;
+}
+
+template <class T, class R>
+bool SameInts(const std::vector<T>& a, const R& b) {
+  return a.size() == static_cast<size_t>(b.size()) && std::equal(a.begin(), a.end(), b.begin());
+}
+
+}  // namespace header_compare_internal
+
+// "" when every field agrees, else the name of the first that does not.
+inline std::string HeaderDifference(const StreamHeader& r, const proto::StreamHeader& p) {
+  using namespace header_compare_internal;
+  if (r.format_version != p.format_version()) return "format_version";
+  if (r.name != p.name()) return "name";
+  if (r.vertices != p.vertices()) return "vertices";
+  if (r.faces != p.faces()) return "faces";
+  if (!SameFloats(r.bbox_min, p.bbox_min())) return "bbox_min";
+  if (!SameFloats(r.bbox_max, p.bbox_max())) return "bbox_max";
+  const auto& t = p.transform();
+  if (static_cast<int32_t>(r.transform.predictor) != t.predictor()) return "transform.predictor";
+  if (static_cast<int32_t>(r.transform.update) != t.update()) return "transform.update";
+  if (r.transform.local_frames != t.local_frames()) return "transform.local_frames";
+  if (r.transform.levels != t.levels()) return "transform.levels";
+  if (r.transform.sawt.has_value() != t.has_sawt()) return "transform.sawt presence";
+  if (r.transform.sawt) {
+    const auto& s = t.sawt();
+    if (r.transform.sawt->alpha != s.alpha()) return "transform.sawt.alpha";
+    if (r.transform.sawt->region_count != s.region_count()) return "transform.sawt.region_count";
+    if (r.transform.sawt->coded != s.coded()) return "transform.sawt.coded";
+    if (r.transform.sawt->crc32c != s.crc32c()) return "transform.sawt.crc32c";
+  }
+  if (static_cast<int32_t>(r.coder) != p.coder()) return "coder";
+  if (r.octree_leaf_size != p.octree_leaf_size()) return "octree_leaf_size";
+  const auto& b = p.base();
+  if (r.base.vertex_count != b.vertex_count()) return "base.vertex_count";
+  if (r.base.face_count != b.face_count()) return "base.face_count";
+  if (!SameFloats(r.base.origin, b.origin())) return "base.origin";
+  if (!SameBits(r.base.step, b.step())) return "base.step";
+  if (r.base.coded != b.coded()) return "base.coded";
+  if (r.quantizers.size() != static_cast<size_t>(p.quantizers_size())) return "quantizers size";
+  for (size_t i = 0; i < r.quantizers.size(); ++i) {
+    const auto& q = p.quantizers(static_cast<int>(i));
+    if (!SameBits(r.quantizers[i].step, q.step())) return "quantizers.step";
+    if (r.quantizers[i].deadzone != q.deadzone()) return "quantizers.deadzone";
+    if (r.quantizers[i].top_bitplane != q.top_bitplane()) return "quantizers.top_bitplane";
+  }
+  const auto& x = p.packets();
+  if (!SameInts(r.packets.length, x.length())) return "packets.length";
+  if (r.packets.check != x.check()) return "packets.check";
+  if (!SameFloats(r.packets.chain_distortion, x.chain_distortion())) {
+    return "packets.chain_distortion";
+  }
+  if (r.packets.distortion_step != x.distortion_step()) return "packets.distortion_step";
+  if (!SameBits(r.base_distortion, p.base_distortion())) return "base_distortion";
+  if (!SameInts(r.present, p.present())) return "present";
+  return "";
+}
+
+// protobuf's serialization of `p` without its `present` list.
+inline std::string ProtoBytesWithoutPresent(proto::StreamHeader p) {
+  p.clear_present();
+  return p.SerializeAsString();
+}
+
+}  // namespace meshwave::testing
+
+#endif  // MESHWAVE_TESTS_STREAM_HEADER_COMPARE_TESTONLY_H_

@@ -1,0 +1,44 @@
+#!/bin/sh
+# The WebAssembly decoder gives the native decoder's meshes bit for bit:
+#   wasm_decoder_test.sh MESHWAVE_CLI WASM_REFERENCE MODULE.js SAMPLE_DIR SHARED_DIR
+# encodes every sample mesh (SAMPLE_DIR/*.off, *.ply: the repository's
+# data/) and every shared development mesh (SHARED_DIR; skipped with one
+# line when absent) with the native `meshwave encode`, has wasm_reference
+# write the native decoder's output at five budgets in the three orders,
+# and runs wasm_decoder_test.mjs on it under Node.
+set -eu
+if [ "${1:-}" = "-h" ] || [ "${1:-}" = "--help" ]; then
+  sed -n '2,8p' "$0" | sed 's/^# \{0,1\}//'
+  exit 0
+fi
+[ $# -eq 5 ] || { echo "usage: $0 MESHWAVE_CLI WASM_REFERENCE MODULE.js SAMPLE_DIR SHARED_DIR" >&2; exit 2; }
+cli=$1 reference=$2 module=$3 samples=$4 shared=$5
+here=$(cd "$(dirname "$0")" && pwd)
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+dirs=""
+add() {  # add MESH: encode it, write the native reference
+  name=$(basename "$1")
+  name=${name%.*}
+  "$cli" encode "$1" "$work/$name.mwv" >/dev/null 2>"$work/$name.log" || {
+    cat "$work/$name.log" >&2
+    echo "meshwave encode $1 failed" >&2
+    exit 1
+  }
+  mkdir "$work/$name"
+  "$reference" "$work/$name.mwv" "$work/$name"
+  dirs="$dirs $work/$name"
+}
+for mesh in "$samples"/*.off "$samples"/*.ply; do
+  if [ -e "$mesh" ]; then add "$mesh"; fi
+done
+if [ -d "$shared" ]; then
+  for mesh in "$shared"/*.off "$shared"/*.ply "$shared"/*.obj; do
+    if [ -e "$mesh" ]; then add "$mesh"; fi
+  done
+else
+  echo "shared meshes not found at $shared: compared the sample meshes only"
+fi
+# shellcheck disable=SC2086  # $dirs: one word per directory (mktemp paths)
+exec node "$here/wasm_decoder_test.mjs" "$module" $dirs

@@ -1,0 +1,84 @@
+// The JavaScript decoder API (docs/API.md, "JavaScript decoder"), appended
+// inside the emscripten module with --post-js: Module.Decoder wraps the
+// embind class RawDecoder (decoder_bindings.cpp), turning its error
+// messages into thrown Errors and its arguments into the types it takes.
+//
+//   import createMeshwave from './meshwave_decoder.js';
+//   const mw = await createMeshwave();
+//   const dec = new mw.Decoder(headerBytes);  // Uint8Array | ArrayBuffer
+//   dec.addPacket(id, payload);               // throws Error(message)
+//   dec.positions(); dec.faces(); ... dec.delete();
+//   const { header, packets } = mw.parseContainer(mwvBytes);  // .mwv files
+(function () {
+  function bytes(data, what) {
+    if (data instanceof Uint8Array) return data;
+    if (data instanceof ArrayBuffer) return new Uint8Array(data);
+    if (ArrayBuffer.isView(data)) {
+      return new Uint8Array(data.buffer, data.byteOffset, data.byteLength);
+    }
+    throw new TypeError(what + ' must be a Uint8Array or an ArrayBuffer');
+  }
+  function id(value) {
+    if (!Number.isInteger(value) || value < 0 || value > 0xffffffff) {
+      throw new Error('packet id ' + value + ' is not an integer in [0, 2^32)');
+    }
+    return value;
+  }
+  function level(value) {
+    return value === undefined ? -1 : Math.trunc(value);
+  }
+
+  class Decoder {
+    constructor(headerBytes) {
+      const raw = new Module['RawDecoder']();
+      const error = raw['open'](bytes(headerBytes, 'the header'));
+      if (error) {
+        raw['delete']();
+        throw new Error(error);
+      }
+      this.raw_ = raw;
+    }
+    packetCount() { return this.live_()['packetCount'](); }
+    dependenciesMet(packet) { return this.live_()['dependenciesMet'](id(packet)); }
+    hasPacket(packet) { return this.live_()['hasPacket'](id(packet)); }
+    addPacket(packet, payload) {
+      const error = this.live_()['addPacket'](id(packet), bytes(payload, 'the payload'));
+      if (error) throw new Error(error);
+    }
+    positions(maxLevel) { return this.live_()['positions'](level(maxLevel)); }
+    // The decoder's float64 values (tests compare them with the native decoder).
+    positions64(maxLevel) { return this.live_()['positions64'](level(maxLevel)); }
+    faces(maxLevel) { return this.live_()['faces'](level(maxLevel)); }
+    level() { return this.live_()['level'](); }
+    levels() { return this.live_()['levels'](); }
+    estimatedPsnr() { return this.live_()['estimatedPsnr'](); }
+    packetsDecoded() { return this.live_()['packetsDecoded'](); }
+    payloadBytesDecoded() { return this.live_()['payloadBytesDecoded'](); }
+    delete() {
+      if (this.raw_) this.raw_['delete']();
+      this.raw_ = null;
+    }
+    live_() {
+      if (!this.raw_) throw new Error('the decoder was deleted');
+      return this.raw_;
+    }
+  }
+  Module['Decoder'] = Decoder;
+
+  // A .mwv container (whole or cut short, Uint8Array | ArrayBuffer):
+  // {header: Uint8Array (StreamHeader bytes, `present` dropped),
+  //  packets: [{id, payload: Uint8Array view into `data`}] (whole ones, in
+  //  the container's order), missingBytes}. Throws Error(message) on a
+  //  container that does not parse.
+  Module['parseContainer'] = function (data) {
+    const b = bytes(data, 'the container');
+    const raw = Module['parseContainerRaw'](b);
+    if (raw['error'] !== undefined) throw new Error(raw['error']);
+    const packets = [];
+    for (let i = 0; i < raw['ids'].length; ++i) {
+      const at = raw['offsets'][i];
+      packets.push({ id: raw['ids'][i], payload: b.subarray(at, at + raw['lengths'][i]) });
+    }
+    return { header: raw['header'], packets, missingBytes: raw['missingBytes'] };
+  };
+})();
