@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "co_status.h"
+#include "header_limit.h"
 #include "meshwave/container.h"
 #include "net.h"
 #include "stream_splitter.h"
@@ -134,9 +135,8 @@ class Session::Impl::ResponseSink final : public StreamSink,
     messages_ = true;
     if (s_.header) return ParseError("the server sent the header again");
     s_.received_bytes += bytes.size();
-    if (bytes.size() > s_.options.max_header_bytes) {
-      return HeaderTooLarge(bytes.size(), s_.options.max_header_bytes);
-    }
+    MW_RETURN_IF_ERROR(
+        CheckHeaderLength(bytes.size(), s_.options.max_header_bytes));
     proto::StreamHeader parsed;
     if (!parsed.ParseFromArray(bytes.data(), static_cast<int>(bytes.size()))) {
       return ParseError("the server's stream header does not parse");
@@ -211,6 +211,7 @@ net::awaitable<Status> Session::Impl::StreamFrom(const Budget& budget,
   request.max_level = options.max_level;
   request.from = header ? cursor() : 0;
   request.header_held = header.has_value();
+  request.max_header_bytes = options.max_header_bytes;
   if (header) {
     // Exactly the payloads of order[cursor .. target): the server's budget
     // from a cursor counts payloads only.
@@ -233,9 +234,11 @@ net::awaitable<Result<bool>> Session::Impl::Step(const Budget& budget) {
       co_return false;
     }
     // A PSNR target needs the index before choosing the packets.
-    auto bytes = co_await transport->GetHeader();
+    auto bytes = co_await transport->GetHeader(options.max_header_bytes);
     if (!bytes.ok()) co_return bytes.status();
     received_bytes += bytes->size();
+    MWC_CO_RETURN_IF_ERROR(
+        CheckHeaderLength(bytes->size(), options.max_header_bytes));
     proto::StreamHeader h;
     if (!h.ParseFromString(*bytes))
       co_return ParseError("the server's stream header does not parse");
