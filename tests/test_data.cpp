@@ -13,9 +13,11 @@ std::filesystem::path CliPath() { return MESHWAVE_CLI_PATH; }
 std::vector<std::filesystem::path> AllSharedMeshes() {
   std::vector<std::filesystem::path> out;
   std::error_code ec;
-  for (const auto& e : std::filesystem::directory_iterator(SharedMeshDir(), ec)) {
+  for (const auto& e :
+       std::filesystem::directory_iterator(SharedMeshDir(), ec)) {
     const auto ext = e.path().extension().string();
-    if (ext == ".ply" || ext == ".obj" || ext == ".off") out.push_back(e.path());
+    if (ext == ".ply" || ext == ".obj" || ext == ".off")
+      out.push_back(e.path());
   }
   std::sort(out.begin(), out.end());
   return out;
@@ -23,11 +25,13 @@ std::vector<std::filesystem::path> AllSharedMeshes() {
 
 std::string SharedMeshesMissing(std::initializer_list<std::string> names) {
   const std::string how =
-      ": the shared development meshes are not part of the repository (put shared/ beside "
+      ": the shared development meshes are not part of the repository (put "
+      "shared/ beside "
       "it, or configure with -DMESHWAVE_SHARED_MESHES=DIR)";
   if (names.size() == 0) {
-    return AllSharedMeshes().empty() ? "no shared meshes in " + SharedMeshDir().string() + how
-                                     : "";
+    return AllSharedMeshes().empty()
+               ? "no shared meshes in " + SharedMeshDir().string() + how
+               : "";
   }
   std::string missing;
   for (const auto& name : names) {
@@ -36,8 +40,9 @@ std::string SharedMeshesMissing(std::initializer_list<std::string> names) {
       missing += (missing.empty() ? "" : ", ") + name;
     }
   }
-  return missing.empty() ? "" : "shared mesh " + missing + " not found in " +
-                                    SharedMeshDir().string() + how;
+  return missing.empty() ? ""
+                         : "shared mesh " + missing + " not found in " +
+                               SharedMeshDir().string() + how;
 }
 
 }  // namespace meshwave::testing

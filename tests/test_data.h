@@ -29,9 +29,15 @@ std::filesystem::path SampleDataDir();
 std::filesystem::path TestDataDir();
 std::filesystem::path CliPath();
 
-inline std::filesystem::path SharedMesh(const std::string& name) { return SharedMeshDir() / name; }
-inline std::filesystem::path SampleMesh(const std::string& name) { return SampleDataDir() / name; }
-inline std::filesystem::path TestData(const std::string& name) { return TestDataDir() / name; }
+inline std::filesystem::path SharedMesh(const std::string& name) {
+  return SharedMeshDir() / name;
+}
+inline std::filesystem::path SampleMesh(const std::string& name) {
+  return SampleDataDir() / name;
+}
+inline std::filesystem::path TestData(const std::string& name) {
+  return TestDataDir() / name;
+}
 
 // Every mesh file (.ply/.obj/.off) in the shared directory, sorted by name;
 // empty when the directory is missing.
@@ -47,15 +53,17 @@ std::string SharedMeshesMissing(std::initializer_list<std::string> names);
 // Skips (or, with MESHWAVE_REQUIRE_SHARED_MESHES=ON, fails) the current
 // test, or every test of a suite from SetUpTestSuite, when a shared mesh is
 // missing. Arguments: file names in the shared directory, or none.
-#define MESHWAVE_REQUIRE_SHARED_MESH(...)                                                      \
-  do {                                                                                         \
-    const std::string mw_missing_ = ::meshwave::testing::SharedMeshesMissing({__VA_ARGS__});   \
-    if (!mw_missing_.empty()) {                                                                \
-      if (::meshwave::testing::SharedMeshesRequired()) {                                       \
-        GTEST_FAIL() << mw_missing_ << " (required: MESHWAVE_REQUIRE_SHARED_MESHES=ON)";       \
-      }                                                                                        \
-      GTEST_SKIP() << mw_missing_;                                                             \
-    }                                                                                          \
+#define MESHWAVE_REQUIRE_SHARED_MESH(...)                                 \
+  do {                                                                    \
+    const std::string mw_missing_ =                                       \
+        ::meshwave::testing::SharedMeshesMissing({__VA_ARGS__});          \
+    if (!mw_missing_.empty()) {                                           \
+      if (::meshwave::testing::SharedMeshesRequired()) {                  \
+        GTEST_FAIL() << mw_missing_                                       \
+                     << " (required: MESHWAVE_REQUIRE_SHARED_MESHES=ON)"; \
+      }                                                                   \
+      GTEST_SKIP() << mw_missing_;                                        \
+    }                                                                     \
   } while (false)
 
 #endif  // MESHWAVE_TESTS_TEST_DATA_H_

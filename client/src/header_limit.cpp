@@ -27,11 +27,11 @@ uint64_t HeaderMessageLimit(uint64_t limit) {
 }
 
 Status HeaderMessageTooLarge(uint64_t limit) {
-  return ParseError(
-      "the server's stream header message is over " +
-      std::to_string(HeaderMessageLimit(limit)) +
-      " bytes, so its header is over this client's limit of " +
-      std::to_string(limit) + " (--max-header); refused before reading it");
+  return ParseError("the server's stream header message is over " +
+                    std::to_string(HeaderMessageLimit(limit)) +
+                    " bytes, so its header is over this client's limit of " +
+                    std::to_string(limit) +
+                    " (--max-header); refused before reading it");
 }
 
 }  // namespace meshwave::client

@@ -245,8 +245,8 @@ class WebSocketTransport final : public Transport {
           ws.got_binary());
       if (!done.ok()) co_return done.status();
       if (*done) {
-        server_stream_ =
-            ServerStream{request.order, request.max_level, static_cast<size_t>(**done)};
+        server_stream_ = ServerStream{request.order, request.max_level,
+                                      static_cast<size_t>(**done)};
         co_return Status::Ok();
       }
     }

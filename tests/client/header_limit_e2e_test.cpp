@@ -42,7 +42,8 @@ constexpr uint64_t kOffered = uint64_t{256} << 20;  // what it sends at most
 class HugeHeaderServer {
  public:
   explicit HugeHeaderServer(bool websocket)
-      : websocket_(websocket), acceptor_(ioc_, {net::ip::make_address("127.0.0.1"), 0}) {
+      : websocket_(websocket),
+        acceptor_(ioc_, {net::ip::make_address("127.0.0.1"), 0}) {
     thread_ = std::thread([this] { Serve(); });
   }
   ~HugeHeaderServer() {
@@ -88,14 +89,19 @@ class HugeHeaderServer {
         if (ec) continue;
         if (req.target().find("/stream") != std::string_view::npos) {
           // A container whose length field claims kClaimed header bytes.
-          head = "HTTP/1.1 200 OK\r\nX-Meshwave-Packets: 1\r\nX-Meshwave-Next-Cursor: 1\r\n"
-                 "Content-Length: " + std::to_string(8 + kClaimed) + "\r\n\r\nMWV1";
+          head =
+              "HTTP/1.1 200 OK\r\nX-Meshwave-Packets: "
+              "1\r\nX-Meshwave-Next-Cursor: 1\r\n"
+              "Content-Length: " +
+              std::to_string(8 + kClaimed) + "\r\n\r\nMWV1";
           for (int shift = 0; shift < 32; shift += 8) {
             head.push_back(static_cast<char>((kClaimed >> shift) & 0xff));
           }
         } else {  // GET /header
-          head = "HTTP/1.1 200 OK\r\nContent-Type: application/x-protobuf\r\nContent-Length: " +
-                 std::to_string(kClaimed) + "\r\n\r\n";
+          head =
+              "HTTP/1.1 200 OK\r\nContent-Type: "
+              "application/x-protobuf\r\nContent-Length: " +
+              std::to_string(kClaimed) + "\r\n\r\n";
         }
         Offer(socket, head);
       }
@@ -140,29 +146,38 @@ TEST_P(HugeHeaderTest, IsRefusedBeforeItIsBuffered) {
   const Path& path = GetParam();
   HugeHeaderServer server(path.websocket);
   TempDir dir;
-  const std::string url = std::string(path.websocket ? "ws" : "http") + "://127.0.0.1:" +
-                          std::to_string(server.port()) + "/v1/meshes/0123456789ab";
-  std::vector<std::string> args = {"fetch", url, "--max-header", "1MiB", "--timeout", "20s",
-                                   "--out", (dir / "m.ply").string()};
+  const std::string url = std::string(path.websocket ? "ws" : "http") +
+                          "://127.0.0.1:" + std::to_string(server.port()) +
+                          "/v1/meshes/0123456789ab";
+  std::vector<std::string> args = {
+      "fetch",     url,   "--max-header", "1MiB",
+      "--timeout", "20s", "--out",        (dir / "m.ply").string()};
   args.insert(args.end(), path.budget.begin(), path.budget.end());
   const auto start = std::chrono::steady_clock::now();
   const auto r = RunCli(args);
   const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::cout << path.name << ": refused in " << static_cast<int>(seconds * 1000) << " ms; the server got "
-            << server.written() << " of " << kOffered << " bytes out; " << r.err;
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+          .count();
+  std::cout << path.name << ": refused in " << static_cast<int>(seconds * 1000)
+            << " ms; the server got " << server.written() << " of " << kOffered
+            << " bytes out; " << r.err;
   EXPECT_EQ(r.exit_code, 1) << r.err;
-  EXPECT_NE(r.err.find("over this client's limit of 1048576"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("over this client's limit of 1048576"),
+            std::string::npos)
+      << r.err;
   // Final, not retried, and not after waiting for the claimed bytes.
   EXPECT_EQ(server.connections(), 1);
   EXPECT_LT(seconds, 10.0);
   // What the server got out is what the kernel's socket buffers hold, not
   // what the client read: far below the 256 MiB it offered.
-  EXPECT_LT(server.written(), uint64_t{32} << 20) << server.written() << " bytes";
+  EXPECT_LT(server.written(), uint64_t{32} << 20)
+      << server.written() << " bytes";
   EXPECT_FALSE(std::filesystem::exists(dir / "m.ply"));
 }
 
-std::string PathName(const ::testing::TestParamInfo<Path>& param) { return param.param.name; }
+std::string PathName(const ::testing::TestParamInfo<Path>& param) {
+  return param.param.name;
+}
 
 INSTANTIATE_TEST_SUITE_P(
     Paths, HugeHeaderTest,

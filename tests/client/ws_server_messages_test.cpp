@@ -21,7 +21,8 @@ class Sink final : public StreamSink {
     header = std::string(h);
     return Status::Ok();
   }
-  Status OnPacketMessage(size_t cursor, uint32_t id, std::string_view payload) override {
+  Status OnPacketMessage(size_t cursor, uint32_t id,
+                         std::string_view payload) override {
     packets.push_back({cursor, id, std::string(payload)});
     return Status::Ok();
   }
@@ -44,7 +45,8 @@ std::string StartMessage(const std::string& header) {
   s->set_bytes(99);
   return m.SerializeAsString();
 }
-std::string PacketMessage(uint32_t cursor, uint32_t id, const std::string& payload) {
+std::string PacketMessage(uint32_t cursor, uint32_t id,
+                          const std::string& payload) {
   proto::ServerMessage m;
   m.mutable_packet()->set_cursor(cursor);
   m.mutable_packet()->set_id(id);
@@ -79,7 +81,8 @@ TEST(ServerMessageReaderTest, AStartsAnswerReachesTheSinkInOrder) {
 }
 
 TEST(ServerMessageReaderTest, RefusesWhatIsOutOfOrderOrMalformed) {
-  auto refusal = [](bool expect_header, const std::vector<std::string>& messages, bool binary) {
+  auto refusal = [](bool expect_header,
+                    const std::vector<std::string>& messages, bool binary) {
     Sink sink;
     ServerMessageReader reader(expect_header, 1000, sink, "srv");
     for (const auto& m : messages) {
@@ -92,12 +95,16 @@ TEST(ServerMessageReaderTest, RefusesWhatIsOutOfOrderOrMalformed) {
     EXPECT_EQ(s.code(), StatusCode::kParseError) << s.ToString();
     EXPECT_NE(s.message().find(what), std::string::npos) << s.ToString();
   };
-  expect(refusal(true, {PacketMessage(0, 0, "x")}, true), "packet before its selection");
+  expect(refusal(true, {PacketMessage(0, 0, "x")}, true),
+         "packet before its selection");
   expect(refusal(true, {DoneMessage(0)}, true), "never started");
-  expect(refusal(true, {StartMessage("h"), StartMessage("h")}, true), "unexpected stream header");
+  expect(refusal(true, {StartMessage("h"), StartMessage("h")}, true),
+         "unexpected stream header");
   expect(refusal(false, {StartMessage("h")}, true), "unexpected stream header");
-  expect(refusal(true, {StartMessage("h")}, false), "does not parse");  // a text frame
-  expect(refusal(true, {std::string("\xff\xff\xff", 3)}, true), "does not parse");
+  expect(refusal(true, {StartMessage("h")}, false),
+         "does not parse");  // a text frame
+  expect(refusal(true, {std::string("\xff\xff\xff", 3)}, true),
+         "does not parse");
   expect(refusal(true, {std::string()}, true), "empty message");
   proto::ServerMessage error;
   error.mutable_error()->set_code(proto::Error::NOT_FOUND);
@@ -112,7 +119,8 @@ TEST(ServerMessageReaderTest, TheHeaderLimitSaysWhatToChange) {
   ServerMessageReader reader(true, 1000, sink, "srv");
   const Status s = reader.TooLarge(1 << 20);
   EXPECT_EQ(s.code(), StatusCode::kParseError);
-  EXPECT_NE(s.message().find("over this client's limit of 1000 (--max-header)"), std::string::npos)
+  EXPECT_NE(s.message().find("over this client's limit of 1000 (--max-header)"),
+            std::string::npos)
       << s.message();
   EXPECT_EQ(CheckHeaderLength(1000, 1000).code(), StatusCode::kOk);
   EXPECT_EQ(CheckHeaderLength(1001, 1000).code(), StatusCode::kParseError);

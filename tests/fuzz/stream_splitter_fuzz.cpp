@@ -21,7 +21,8 @@ using namespace meshwave;
 namespace {
 
 constexpr uint64_t kMaxHeader = 4096;
-constexpr size_t kMaxPackets = 64;  // of the order: enough to cover the splitting
+constexpr size_t kMaxPackets =
+    64;  // of the order: enough to cover the splitting
 
 class Recorder final : public client::StreamSplitter::Events {
  public:
@@ -41,7 +42,8 @@ class Recorder final : public client::StreamSplitter::Events {
     return lengths[packets.size()];
   }
   Status OnPacket(std::string_view payload) override {
-    fuzz::Require(payload.size() == lengths[packets.size()], "a packet has the announced length");
+    fuzz::Require(payload.size() == lengths[packets.size()],
+                  "a packet has the announced length");
     packets.emplace_back(payload);
     return Status::Ok();
   }
@@ -75,7 +77,8 @@ void Run(std::string_view body, uint8_t seed, bool whole, Recorder& r) {
 
 uint64_t LengthField(std::string_view body) {
   uint64_t v = 0;
-  for (int i = 7; i >= 4; --i) v = (v << 8) | static_cast<uint8_t>(body[static_cast<size_t>(i)]);
+  for (int i = 7; i >= 4; --i)
+    v = (v << 8) | static_cast<uint8_t>(body[static_cast<size_t>(i)]);
   return v;
 }
 
@@ -83,24 +86,31 @@ uint64_t LengthField(std::string_view body) {
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size < 1) return 0;
-  const std::string_view body(reinterpret_cast<const char*>(data) + 1, size - 1);
+  const std::string_view body(reinterpret_cast<const char*>(data) + 1,
+                              size - 1);
   Recorder whole, pieces;
   Run(body, data[0], true, whole);
   Run(body, data[0], false, pieces);
-  fuzz::Require(whole.headers == pieces.headers, "the header does not depend on the pieces");
-  fuzz::Require(whole.packets == pieces.packets, "the packets do not depend on the pieces");
-  fuzz::Require(whole.failed == pieces.failed, "the outcome does not depend on the pieces");
+  fuzz::Require(whole.headers == pieces.headers,
+                "the header does not depend on the pieces");
+  fuzz::Require(whole.packets == pieces.packets,
+                "the packets do not depend on the pieces");
+  fuzz::Require(whole.failed == pieces.failed,
+                "the outcome does not depend on the pieces");
   fuzz::Require(whole.headers <= 1, "one header at most");
   if (whole.headers == 1) {
     const uint64_t header_length = LengthField(body);
-    fuzz::Require(header_length <= kMaxHeader, "a header over the limit is refused");
+    fuzz::Require(header_length <= kMaxHeader,
+                  "a header over the limit is refused");
     std::string expected;
     size_t offset = 8 + header_length;
     for (const auto& p : whole.packets) {
-      fuzz::Require(body.substr(offset, p.size()) == p, "packets are the body's bytes in order");
+      fuzz::Require(body.substr(offset, p.size()) == p,
+                    "packets are the body's bytes in order");
       offset += p.size();
     }
-    if (!whole.failed) fuzz::Require(offset == body.size(), "a clean finish consumed the body");
+    if (!whole.failed)
+      fuzz::Require(offset == body.size(), "a clean finish consumed the body");
   }
   return 0;
 }

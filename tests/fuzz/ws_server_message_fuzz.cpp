@@ -27,7 +27,8 @@ class CheckingSink final : public client::StreamSink {
   explicit CheckingSink(bool expect_header) : expect_header_(expect_header) {}
   Status OnHead(const client::StreamHead& head) override {
     fuzz::Require(heads == 0, "one head per answer");
-    fuzz::Require(head.next_cursor >= head.packets || head.packets == 0, "a head is consistent");
+    fuzz::Require(head.next_cursor >= head.packets || head.packets == 0,
+                  "a head is consistent");
     ++heads;
     return Status::Ok();
   }
@@ -37,8 +38,10 @@ class CheckingSink final : public client::StreamSink {
   }
   Status OnHeaderMessage(std::string_view header) override {
     fuzz::Require(expect_header_, "a header only after a start");
-    fuzz::Require(heads == 1 && headers == 0 && packets == 0, "the header comes right after the head");
-    fuzz::Require(header.size() <= client::HeaderMessageLimit(kMaxHeader), "the header fits its limit");
+    fuzz::Require(heads == 1 && headers == 0 && packets == 0,
+                  "the header comes right after the head");
+    fuzz::Require(header.size() <= client::HeaderMessageLimit(kMaxHeader),
+                  "the header fits its limit");
     ++headers;
     return Status::Ok();
   }
@@ -70,11 +73,13 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     // What the transport does: a frame over the limit is refused unread.
     if (length > reader.NextMessageLimit(kPacketLimit)) {
       const Status s = reader.TooLarge(kPacketLimit);
-      fuzz::Require(!s.ok() && !s.message().empty(), "an oversize message is refused with a reason");
+      fuzz::Require(!s.ok() && !s.message().empty(),
+                    "an oversize message is refused with a reason");
       break;
     }
     auto r = reader.OnMessage(
-        std::string_view(reinterpret_cast<const char*>(data) + pos, length), binary);
+        std::string_view(reinterpret_cast<const char*>(data) + pos, length),
+        binary);
     pos += length;
     if (!r.ok()) {
       fuzz::Require(!r.status().message().empty(), "a refusal says why");
@@ -82,7 +87,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     }
     if (r->has_value()) {
       fuzz::Require(sink.heads == 1, "Done only after a selection");
-      fuzz::Require(!expect_header || sink.headers == 1, "a start's answer had its header");
+      fuzz::Require(!expect_header || sink.headers == 1,
+                    "a start's answer had its header");
       break;
     }
     fuzz::Require(binary, "a text message is refused");

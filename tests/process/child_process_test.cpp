@@ -31,7 +31,8 @@ TEST_P(ChildProcessTest, NothingOutlivesATestProcessThatDies) {
   // directory, not to the stage's (tools/sanitize.sh fails on any), and the
   // objects it leaks on purpose are no finding.
   const pid_t test = SpawnChild(
-      {MESHWAVE_DIE_WITH_CHILDREN, mode, dir.path().string()}, dir / "test.log", std::nullopt,
+      {MESHWAVE_DIE_WITH_CHILDREN, mode, dir.path().string()}, dir / "test.log",
+      std::nullopt,
       {"ASAN_OPTIONS=detect_leaks=0:log_path=" + (dir / "asan").string(),
        "UBSAN_OPTIONS=log_path=" + (dir / "ubsan").string()});
   ASSERT_GT(test, 0);
@@ -59,18 +60,26 @@ TEST_P(ChildProcessTest, NothingOutlivesATestProcessThatDies) {
   ASSERT_GT(server, 0) << log;
   ASSERT_GT(shell, 0) << log;
   ASSERT_GT(grandchild, 0) << log;
-  EXPECT_TRUE(GoneWithin(server, std::chrono::seconds(5))) << "meshwave-server " << server << "\n" << log;
-  EXPECT_TRUE(GoneWithin(shell, std::chrono::seconds(5))) << "sh " << shell << "\n" << log;
+  EXPECT_TRUE(GoneWithin(server, std::chrono::seconds(5)))
+      << "meshwave-server " << server << "\n"
+      << log;
+  EXPECT_TRUE(GoneWithin(shell, std::chrono::seconds(5)))
+      << "sh " << shell << "\n"
+      << log;
   if (mode != "sigkill") {
-    EXPECT_TRUE(GoneWithin(grandchild, std::chrono::seconds(5))) << "grandchild " << grandchild << "\n" << log;
+    EXPECT_TRUE(GoneWithin(grandchild, std::chrono::seconds(5)))
+        << "grandchild " << grandchild << "\n"
+        << log;
   }
 }
 
-std::string ModeName(const ::testing::TestParamInfo<std::string>& param) { return param.param; }
+std::string ModeName(const ::testing::TestParamInfo<std::string>& param) {
+  return param.param;
+}
 
 INSTANTIATE_TEST_SUITE_P(Ends, ChildProcessTest,
-                         ::testing::Values("abort", "segfault", "exit", "throw", "sigterm",
-                                           "sigkill"),
+                         ::testing::Values("abort", "segfault", "exit", "throw",
+                                           "sigterm", "sigkill"),
                          ModeName);
 
 // A child that exits by itself is reaped and leaves the registry: the
@@ -92,7 +101,8 @@ TEST(ChildProcessRegistryTest, AReapedChildLeavesTheRegistry) {
 TEST(ChildProcessRegistryTest, StoppingAChildStopsItsGroup) {
   TempDir dir;
   const pid_t pid = SpawnChild(
-      {"/bin/sh", "-c", "sleep 600 & echo $! > '" + (dir / "grandchild").string() + "'; wait"},
+      {"/bin/sh", "-c",
+       "sleep 600 & echo $! > '" + (dir / "grandchild").string() + "'; wait"},
       dir / "log");
   pid_t grandchild = 0;
   for (int i = 0; i < 500 && grandchild == 0; ++i) {

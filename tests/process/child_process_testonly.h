@@ -70,8 +70,8 @@ inline void KillAll() {
   }
 }
 
-inline constexpr std::array<int, 9> kFatalSignals = {SIGABRT, SIGSEGV, SIGBUS, SIGFPE, SIGILL,
-                                                     SIGTERM, SIGINT,  SIGHUP, SIGQUIT};
+inline constexpr std::array<int, 9> kFatalSignals = {
+    SIGABRT, SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGTERM, SIGINT, SIGHUP, SIGQUIT};
 inline std::array<struct sigaction, kFatalSignals.size()> previous{};
 // The process that installed the handlers: a child between fork and exec
 // still has them, and must not kill its siblings.
@@ -98,7 +98,8 @@ inline void InstallHandlersOnce() {
       struct sigaction sa {};
       sa.sa_sigaction = OnFatalSignal;
       sigemptyset(&sa.sa_mask);
-      sa.sa_flags = SA_SIGINFO | SA_ONSTACK;  // SA_ONSTACK: a sanitizer's alternate stack
+      sa.sa_flags =
+          SA_SIGINFO | SA_ONSTACK;  // SA_ONSTACK: a sanitizer's alternate stack
       ::sigaction(kFatalSignals[i], &sa, &previous[i]);
     }
   });
@@ -124,7 +125,8 @@ inline void Remove(pid_t pid) {
 // Starts `argv` (argv[0] a path) with stdout and stderr appended to `log`,
 // as `account` when given, with `env` ("K=V") added to this process's
 // environment. -1 when fork fails; a failed exec shows as exit code 127.
-inline pid_t SpawnChild(const std::vector<std::string>& argv, const std::filesystem::path& log,
+inline pid_t SpawnChild(const std::vector<std::string>& argv,
+                        const std::filesystem::path& log,
                         std::optional<Account> account = std::nullopt,
                         const std::vector<std::string>& env = {}) {
   child_registry::InstallHandlersOnce();
@@ -149,7 +151,8 @@ inline pid_t SpawnChild(const std::vector<std::string>& argv, const std::filesys
     return pid;
   }
   // Child.
-  const int fd = ::open(log_path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+  const int fd =
+      ::open(log_path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
   if (fd >= 0) {
     ::dup2(fd, 1);
     ::dup2(fd, 2);
@@ -176,7 +179,8 @@ inline int WaitChild(pid_t pid, std::chrono::milliseconds timeout) {
   const auto end = std::chrono::steady_clock::now() + timeout;
   int status = 0;
   pid_t r = 0;
-  while ((r = ::waitpid(pid, &status, WNOHANG)) == 0 && std::chrono::steady_clock::now() < end) {
+  while ((r = ::waitpid(pid, &status, WNOHANG)) == 0 &&
+         std::chrono::steady_clock::now() < end) {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
   int code = -1;
@@ -214,7 +218,8 @@ inline bool ProcessRuns(pid_t pid) {
   std::fclose(f);
   line.resize(n);
   const size_t close = line.rfind(')');
-  if (close != std::string::npos && close + 2 < line.size()) state = line[close + 2];
+  if (close != std::string::npos && close + 2 < line.size())
+    state = line[close + 2];
   return state != 'Z' && state != 'X';
 }
 

@@ -16,7 +16,9 @@
 
 int main(int argc, char** argv) {
   if (argc != 3) {
-    std::fprintf(stderr, "usage: %s abort|segfault|exit|throw|sigterm|sigkill DIR\n", argv[0]);
+    std::fprintf(stderr,
+                 "usage: %s abort|segfault|exit|throw|sigterm|sigkill DIR\n",
+                 argv[0]);
     return 2;
   }
   using namespace meshwave::testing;
@@ -31,7 +33,8 @@ int main(int argc, char** argv) {
   }
   // A group with a grandchild: stopping the child alone would leave it.
   const pid_t shell = SpawnChild(
-      {"/bin/sh", "-c", "sleep 600 & echo $! > '" + (dir / "grandchild").string() + "'; wait"},
+      {"/bin/sh", "-c",
+       "sleep 600 & echo $! > '" + (dir / "grandchild").string() + "'; wait"},
       dir / "shell.log");
   // The shell creates the file before it writes the pid: wait for the pid.
   pid_t grandchild = 0;
@@ -48,7 +51,8 @@ int main(int argc, char** argv) {
   if (mode == "exit") std::exit(4);
   if (mode == "throw") throw std::runtime_error("uncaught");
   if (mode == "sigterm") ::raise(SIGTERM);  // as ctest's timeout does
-  if (mode == "sigkill") ::raise(SIGKILL);  // nothing runs: PR_SET_PDEATHSIG only
+  if (mode == "sigkill")
+    ::raise(SIGKILL);  // nothing runs: PR_SET_PDEATHSIG only
   std::fprintf(stderr, "unknown mode %s\n", mode.c_str());
   return 2;
 }
