@@ -1,39 +1,69 @@
 // Paths to test data: the shared development meshes, the project's own
-// sample meshes and the test corpus. One helper so every test finds them alike.
+// sample meshes and the test corpus. One helper so every test finds them
+// alike. The paths come from CMake and live in test_data.cpp alone, so that
+// pointing MESHWAVE_SHARED_MESHES elsewhere rebuilds one file.
+//
+// The shared meshes (../shared/data/meshes beside the repository) are not
+// part of it: a test that needs them starts with
+// MESHWAVE_REQUIRE_SHARED_MESH("name.ply") (or with no argument: the
+// directory), which skips the test with one line saying what is missing, or
+// fails it when the build was configured with
+// -DMESHWAVE_REQUIRE_SHARED_MESHES=ON (CI: nothing is skipped silently).
+// A test that needs only *a* mesh uses SampleMesh or a generated one.
 #ifndef MESHWAVE_TESTS_TEST_DATA_H_
 #define MESHWAVE_TESTS_TEST_DATA_H_
 
-#include <algorithm>
+#include <gtest/gtest.h>
+
 #include <filesystem>
+#include <initializer_list>
 #include <string>
 #include <vector>
 
 namespace meshwave::testing {
 
+std::filesystem::path SharedMeshDir();
+// Whether a missing shared mesh fails a test rather than skips it.
+bool SharedMeshesRequired();
+std::filesystem::path SampleDataDir();
+std::filesystem::path TestDataDir();
+std::filesystem::path CliPath();
+
 inline std::filesystem::path SharedMesh(const std::string& name) {
-  return std::filesystem::path(MESHWAVE_SHARED_MESHES) / name;
+  return SharedMeshDir() / name;
 }
 inline std::filesystem::path SampleMesh(const std::string& name) {
-  return std::filesystem::path(MESHWAVE_SAMPLE_DATA) / name;
+  return SampleDataDir() / name;
 }
 inline std::filesystem::path TestData(const std::string& name) {
-  return std::filesystem::path(MESHWAVE_TEST_DATA) / name;
+  return TestDataDir() / name;
 }
-inline std::filesystem::path CliPath() { return MESHWAVE_CLI_PATH; }
 
-// Every mesh file (.ply/.obj/.off) in the shared directory, sorted by name.
-inline std::vector<std::filesystem::path> AllSharedMeshes() {
-  std::vector<std::filesystem::path> out;
-  std::error_code ec;
-  for (const auto& e :
-       std::filesystem::directory_iterator(MESHWAVE_SHARED_MESHES, ec)) {
-    const auto ext = e.path().extension().string();
-    if (ext == ".ply" || ext == ".obj" || ext == ".off") out.push_back(e.path());
-  }
-  std::sort(out.begin(), out.end());
-  return out;
-}
+// Every mesh file (.ply/.obj/.off) in the shared directory, sorted by name;
+// empty when the directory is missing.
+std::vector<std::filesystem::path> AllSharedMeshes();
+
+// Empty when the shared meshes `names` (none: the directory with at least
+// one mesh) are present; else the line that says what is missing and how
+// to get it.
+std::string SharedMeshesMissing(std::initializer_list<std::string> names);
 
 }  // namespace meshwave::testing
+
+// Skips (or, with MESHWAVE_REQUIRE_SHARED_MESHES=ON, fails) the current
+// test, or every test of a suite from SetUpTestSuite, when a shared mesh is
+// missing. Arguments: file names in the shared directory, or none.
+#define MESHWAVE_REQUIRE_SHARED_MESH(...)                                 \
+  do {                                                                    \
+    const std::string mw_missing_ =                                       \
+        ::meshwave::testing::SharedMeshesMissing({__VA_ARGS__});          \
+    if (!mw_missing_.empty()) {                                           \
+      if (::meshwave::testing::SharedMeshesRequired()) {                  \
+        GTEST_FAIL() << mw_missing_                                       \
+                     << " (required: MESHWAVE_REQUIRE_SHARED_MESHES=ON)"; \
+      }                                                                   \
+      GTEST_SKIP() << mw_missing_;                                        \
+    }                                                                     \
+  } while (false)
 
 #endif  // MESHWAVE_TESTS_TEST_DATA_H_

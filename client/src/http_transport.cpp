@@ -2,15 +2,13 @@
 #include <charconv>
 
 #include "co_status.h"
+#include "header_limit.h"
 #include "http_client.h"
 #include "meshwave/client/transport.h"
 
 namespace meshwave::client {
 namespace {
 
-// Large enough for any header ValidateStreamHeader accepts, small enough
-// that a hostile server cannot make us buffer without bound.
-constexpr uint64_t kHeaderLimit = uint64_t{1} << 26;
 constexpr uint64_t kPacketLimit = uint64_t{1} << 30;
 
 Result<uint64_t> HeaderNumber(const http::response_header<>& head,
@@ -54,9 +52,28 @@ class HttpTransport final : public Transport {
 
   net::any_io_executor executor() override { return client_.executor(); }
 
-  net::awaitable<Result<std::string>> GetHeader() override {
-    co_return co_await client_.GetBody(url_.Path() + "/header",
-                                       "application/x-protobuf", kHeaderLimit);
+  net::awaitable<Result<std::string>> GetHeader(
+      uint64_t max_header_bytes) override {
+    // Refused from Content-Length when the server sends one, else as soon
+    // as the bytes pass the limit: never more than the limit buffered.
+    std::string body;
+    Status s = co_await client_.Get(
+        url_.Path() + "/header", "application/x-protobuf",
+        [&](const http::response_header<>& head) -> Status {
+          if (head.find(http::field::content_length) == head.end())
+            return Status::Ok();
+          auto length = HeaderNumber(head, "Content-Length");
+          if (!length.ok()) return length.status();
+          return CheckHeaderLength(*length, max_header_bytes);
+        },
+        [&](std::string_view bytes) -> Status {
+          MW_RETURN_IF_ERROR(
+              CheckHeaderLength(body.size() + bytes.size(), max_header_bytes));
+          body.append(bytes);
+          return Status::Ok();
+        });
+    if (!s.ok()) co_return s;
+    co_return body;
   }
 
   net::awaitable<Result<std::string>> GetPacket(uint32_t id) override {

@@ -82,7 +82,7 @@ std::filesystem::path SidecarPath(const std::filesystem::path& file) {
   return file.string() + ".session";
 }
 
-Status SaveState(const std::filesystem::path& file, const LocalState& state) {
+std::string SessionBytes(const LocalState& state) {
   proto::ClientState meta;
   meta.set_version(kStateVersion);
   meta.set_mesh_url(state.url.ToString());
@@ -90,19 +90,29 @@ Status SaveState(const std::filesystem::path& file, const LocalState& state) {
   meta.set_max_level(state.max_level);
   meta.set_cursor(state.cursor);
   meta.set_budget_bytes(state.budget_bytes);
+  return meta.SerializeAsString();
+}
+
+Status SaveState(const std::filesystem::path& file, const LocalState& state) {
   MW_RETURN_IF_ERROR(WriteAtomically(file, state.container));
-  return WriteAtomically(SidecarPath(file), meta.SerializeAsString());
+  return WriteAtomically(SidecarPath(file), SessionBytes(state));
 }
 
 Result<LocalState> LoadState(const std::filesystem::path& file) {
+  MW_ASSIGN_OR_RETURN(std::string meta_bytes, ReadAll(SidecarPath(file)));
+  MW_ASSIGN_OR_RETURN(std::string container, ReadAll(file));
+  return ParseState(meta_bytes, std::move(container), file);
+}
+
+Result<LocalState> ParseState(std::string_view session, std::string container,
+                              const std::filesystem::path& file) {
   const std::filesystem::path sidecar = SidecarPath(file);
   auto refuse = [&](const std::filesystem::path& which,
                     const std::string& why) {
     return ParseError("state " + which.string() + ": " + why);
   };
-  MW_ASSIGN_OR_RETURN(std::string meta_bytes, ReadAll(sidecar));
   proto::ClientState meta;
-  if (!meta.ParseFromString(meta_bytes))
+  if (!meta.ParseFromArray(session.data(), static_cast<int>(session.size())))
     return refuse(sidecar, "does not parse");
   if (meta.version() != kStateVersion) {
     return refuse(sidecar, "version " + std::to_string(meta.version()) +
@@ -123,7 +133,7 @@ Result<LocalState> LoadState(const std::filesystem::path& file) {
   state.max_level = meta.max_level();
   state.budget_bytes = meta.budget_bytes();
 
-  MW_ASSIGN_OR_RETURN(state.container, ReadAll(file));
+  state.container = std::move(container);
   auto parsed = ParseContainer(state.container);
   if (!parsed.ok()) return refuse(file, parsed.status().message());
   if (meta.cursor() != parsed->ids.size()) {

@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "co_status.h"
+#include "header_limit.h"
 #include "meshwave/container.h"
 #include "net.h"
 #include "stream_splitter.h"
@@ -134,9 +135,8 @@ class Session::Impl::ResponseSink final : public StreamSink,
     messages_ = true;
     if (s_.header) return ParseError("the server sent the header again");
     s_.received_bytes += bytes.size();
-    if (bytes.size() > s_.options.max_header_bytes) {
-      return HeaderTooLarge(bytes.size(), s_.options.max_header_bytes);
-    }
+    MW_RETURN_IF_ERROR(
+        CheckHeaderLength(bytes.size(), s_.options.max_header_bytes));
     auto parsed = ReadStreamHeader(bytes);
     if (!parsed.ok()) return ParseError("the server's stream header does not parse");
     return OnHeader(*parsed);
@@ -209,6 +209,7 @@ net::awaitable<Status> Session::Impl::StreamFrom(const Budget& budget,
   request.max_level = options.max_level;
   request.from = header ? cursor() : 0;
   request.header_held = header.has_value();
+  request.max_header_bytes = options.max_header_bytes;
   if (header) {
     // Exactly the payloads of order[cursor .. target): the server's budget
     // from a cursor counts payloads only.
@@ -231,9 +232,11 @@ net::awaitable<Result<bool>> Session::Impl::Step(const Budget& budget) {
       co_return false;
     }
     // A PSNR target needs the index before choosing the packets.
-    auto bytes = co_await transport->GetHeader();
+    auto bytes = co_await transport->GetHeader(options.max_header_bytes);
     if (!bytes.ok()) co_return bytes.status();
     received_bytes += bytes->size();
+    MWC_CO_RETURN_IF_ERROR(
+        CheckHeaderLength(bytes->size(), options.max_header_bytes));
     auto h = ReadStreamHeader(*bytes);
     if (!h.ok()) co_return ParseError("the server's stream header does not parse");
     MWC_CO_RETURN_IF_ERROR(SetHeader(*h));

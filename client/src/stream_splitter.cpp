@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "header_limit.h"
 #include "meshwave/container.h"
 
 namespace meshwave::client {
@@ -17,12 +18,6 @@ uint64_t HeaderLength(std::string_view preamble) {
 
 }  // namespace
 
-Status HeaderTooLarge(uint64_t header_bytes, uint64_t limit) {
-  return ParseError(
-      "the server's stream header is " + std::to_string(header_bytes) +
-      " bytes, over this client's limit of " + std::to_string(limit));
-}
-
 Status StreamSplitter::Feed(std::string_view bytes) {
   pending_.append(bytes);
   const std::string_view all(pending_);
@@ -35,10 +30,8 @@ Status StreamSplitter::Feed(std::string_view bytes) {
       // ParseContainer checks the magic, the length limit, the version and
       // the header; we only need the length to know when it is complete.
       const uint64_t header_length = HeaderLength(rest);
-      if (header_length > max_header_bytes_) {
-        status = HeaderTooLarge(header_length, max_header_bytes_);
-        break;
-      }
+      status = CheckHeaderLength(header_length, max_header_bytes_);
+      if (!status.ok()) break;
       const uint64_t head = kPreambleBytes + header_length;
       auto parsed =
           ParseContainer(rest.substr(0, std::min<uint64_t>(rest.size(), head)),

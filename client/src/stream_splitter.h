@@ -15,9 +15,6 @@
 
 namespace meshwave::client {
 
-// The error for a stream header over the client's limit (both transports).
-Status HeaderTooLarge(uint64_t header_bytes, uint64_t limit);
-
 class StreamSplitter {
  public:
   class Events {
@@ -30,7 +27,7 @@ class StreamSplitter {
   };
 
   // `max_header_bytes`: a container whose header length field claims more
-  // is refused at once, before its header is buffered.
+  // is refused at once, before its header is buffered (CheckHeaderLength).
   StreamSplitter(bool container, uint64_t max_header_bytes, Events& events)
       : expect_header_(container),
         max_header_bytes_(max_header_bytes),

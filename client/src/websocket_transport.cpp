@@ -11,6 +11,7 @@
 #include "net.h"
 #include "server_connection.h"
 #include "websocket.pb.h"
+#include "ws_server_messages.h"
 
 namespace meshwave::client {
 namespace {
@@ -23,32 +24,6 @@ constexpr uint64_t kMessageLimit = (uint64_t{1} << 30) + 1024;
 constexpr uint64_t kWholeOrder = uint64_t{1} << 50;
 
 auto Tuple() { return net::as_tuple(net::use_awaitable); }
-
-StreamHead HeadOf(const proto::Selection& s) {
-  StreamHead h;
-  h.packets = s.next_cursor() >= s.from_cursor()
-                  ? s.next_cursor() - s.from_cursor()
-                  : 0;
-  h.next_cursor = s.next_cursor();
-  h.complete = s.next_cursor() == s.order_packets();
-  h.content_length = s.bytes();
-  return h;
-}
-
-Status StatusFromError(const proto::Error& e) {
-  const std::string what = "the server refused: " + e.message();
-  switch (e.code()) {
-    case proto::Error::NOT_FOUND:
-      return Status(StatusCode::kNotFound, what);
-    case proto::Error::BAD_REQUEST:
-      return InvalidArgument(what);
-    case proto::Error::UNAVAILABLE:
-      return IoError(what);  // worth retrying
-    default:
-      return ParseError("an error message of unknown code " +
-                        std::to_string(e.code()) + ": " + e.message());
-  }
-}
 
 // Collects the header of a header-only start.
 class HeaderSink final : public StreamSink {
@@ -78,8 +53,10 @@ class WebSocketTransport final : public Transport {
 
   net::any_io_executor executor() override { return executor_; }
 
-  net::awaitable<Result<std::string>> GetHeader() override {
+  net::awaitable<Result<std::string>> GetHeader(
+      uint64_t max_header_bytes) override {
     StreamRequest request;  // the server's defaults: quality, all levels
+    request.max_header_bytes = max_header_bytes;
     proto::ClientMessage m;
     auto* start = m.mutable_start();
     start->set_mesh_id(url_.mesh_id);
@@ -213,7 +190,6 @@ class WebSocketTransport final : public Transport {
         websocket::stream_base::decorator([](websocket::request_type& req) {
           req.set(http::field::user_agent, "meshwave-client/0.1");
         }));
-    ws.read_message_max(kMessageLimit);
     ws.binary(true);
     websocket::response_type response;
     auto [ec] = co_await ws.async_handshake(response, HostHeader(url_.server),
@@ -248,57 +224,30 @@ class WebSocketTransport final : public Transport {
     if (wec)
       co_return NetError("sending to " + where, wec, options_.read_timeout);
     server_stream_.reset();  // until Done says where it stopped
-    const bool expect_header = m.has_start();
-    bool selected = false;
-    proto::ServerMessage reply;
+    ServerMessageReader reader(m.has_start(), request.max_header_bytes, sink,
+                               where);
     for (;;) {
+      // Beast checks each frame's declared length against this before
+      // reading its payload: a claimed 1 GiB header is refused unread.
+      ws.read_message_max(reader.NextMessageLimit(kMessageLimit));
       buffer_.clear();
       auto [rec, rn] = co_await ws.async_read(buffer_, Tuple());
+      if (rec == websocket::error::message_too_big) {
+        co_return reader.TooLarge(kMessageLimit);
+      }
       if (rec) {
         co_return NetError("reading from " + where, rec, options_.read_timeout);
       }
       answered = true;
       const auto data = buffer_.cdata();
-      if (!ws.got_binary() ||
-          !reply.ParseFromArray(data.data(), static_cast<int>(data.size()))) {
-        co_return ParseError(where + " sent a message that does not parse");
-      }
-      switch (reply.message_case()) {
-        case proto::ServerMessage::kStart:
-          if (!expect_header || selected) {
-            co_return ParseError(where + " sent an unexpected stream header");
-          }
-          selected = true;
-          MWC_CO_RETURN_IF_ERROR(
-              sink.OnHead(HeadOf(reply.start().selection())));
-          MWC_CO_RETURN_IF_ERROR(sink.OnHeaderMessage(reply.start().header()));
-          break;
-        case proto::ServerMessage::kSelection:
-          if (expect_header || selected) {
-            co_return ParseError(where + " sent an unexpected selection");
-          }
-          selected = true;
-          MWC_CO_RETURN_IF_ERROR(sink.OnHead(HeadOf(reply.selection())));
-          break;
-        case proto::ServerMessage::kPacket:
-          if (!selected) {
-            co_return ParseError(where + " sent a packet before its selection");
-          }
-          MWC_CO_RETURN_IF_ERROR(
-              sink.OnPacketMessage(reply.packet().cursor(), reply.packet().id(),
-                                   reply.packet().payload()));
-          break;
-        case proto::ServerMessage::kDone:
-          if (!selected) {
-            co_return ParseError(where + " ended a stream it never started");
-          }
-          server_stream_ = ServerStream{request.order, request.max_level,
-                                        reply.done().next_cursor()};
-          co_return Status::Ok();
-        case proto::ServerMessage::kError:
-          co_return StatusFromError(reply.error());
-        case proto::ServerMessage::MESSAGE_NOT_SET:
-          co_return ParseError(where + " sent an empty message");
+      auto done = reader.OnMessage(
+          std::string_view(static_cast<const char*>(data.data()), data.size()),
+          ws.got_binary());
+      if (!done.ok()) co_return done.status();
+      if (*done) {
+        server_stream_ = ServerStream{request.order, request.max_level,
+                                      static_cast<size_t>(**done)};
+        co_return Status::Ok();
       }
     }
   }

@@ -42,7 +42,7 @@ class FakeTransport final : public client::Transport {
 
   boost::asio::any_io_executor executor() override { return ex_; }
 
-  boost::asio::awaitable<Result<std::string>> GetHeader() override {
+  boost::asio::awaitable<Result<std::string>> GetHeader(uint64_t) override {
     ++log_->requests;
     co_return stream_.header.bytes_without_present;
   }

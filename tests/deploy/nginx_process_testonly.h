@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "server/child_process_testonly.h"
+#include "process/child_process_testonly.h"
 #include "server/http_client_testonly.h"
 
 namespace meshwave::testing {
@@ -121,8 +121,8 @@ class NginxProcess {
     while (std::chrono::steady_clock::now() < end) {
       HttpConnection probe(port);
       if (probe.connected()) return true;
-      int status = 0;
-      if (::waitpid(pid_, &status, WNOHANG) == pid_) {  // exited: port taken?
+      if (!ProcessRuns(pid_)) {  // exited: port taken?
+        WaitChild(pid_, std::chrono::seconds(1));
         pid_ = -1;
         return false;
       }

@@ -73,6 +73,7 @@ TEST(CliTest, InfoRefusesMissingAndMalformedFilesWithReason) {
 }
 
 TEST(CliTest, InfoWorksOnEverySharedMesh) {
+  MESHWAVE_REQUIRE_SHARED_MESH();
   const auto files = testing::AllSharedMeshes();
   ASSERT_GE(files.size(), 10u);
   for (const auto& file : files) {

@@ -106,6 +106,7 @@ TEST(RemeshCliTest, RefusesInputWithNothingUsableNamingTheFile) {
 // The messy shared mesh of the issue: 44 components, non-manifold vertices,
 // holes. Its remesh must be semi-regular and close to it.
 TEST(RemeshCliTest, RemeshesTheOgre) {
+  MESHWAVE_REQUIRE_SHARED_MESH("ogre.obj");
   TempDir dir;
   const auto in = testing::SharedMesh("ogre.obj");
   const auto out = dir / "ogre_sr.ply";

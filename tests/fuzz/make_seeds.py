@@ -180,6 +180,43 @@ def ws_seeds():
     put("ws_message_fuzz", "resume_quality_cursor5", f(3, 2, resume))
 
 
+def client_seeds():
+    """The client's parsers: a /stream body (a container) for
+    stream_splitter_fuzz, a server's answers for ws_server_message_fuzz,
+    a saved state (sidecar and container) for local_state_fuzz."""
+    f = protobuf_field
+    tiny = open(os.path.join(HERE, "data", "tetrahedron_sr2.mwv"), "rb").read()
+    for seed, cut in ((0, len(tiny)), (7, len(tiny)), (200, 300), (3, 12)):
+        put("stream_splitter_fuzz", "tetrahedron_sr2_%d_%d" % (seed, cut), bytes([seed]) + tiny[:cut])
+    put("stream_splitter_fuzz", "header_over_limit", bytes([1]) + b"MWV1" + struct.pack("<I", 1 << 30) + b"x" * 40)
+
+    def framed(flags, messages):
+        return bytes([flags]) + b"".join(struct.pack("<H", len(m)) + m for m in messages)
+    n = struct.unpack("<I", tiny[4:8])[0]
+    header = tiny[8:8 + n]
+    payloads = split_packets(tiny)
+    selection = f(1, 0, 0) + f(2, 0, 3) + f(3, 0, len(payloads)) + f(4, 0, 8 + n + sum(map(len, payloads[:3])))
+    packets = [f(3, 2, f(1, 0, i) + f(2, 0, i) + f(3, 2, payloads[i])) for i in range(3)]
+    done = f(4, 2, f(1, 0, 3))
+    # A start's answer (whole, and with a header cut short: the reader hands
+    # it on, the decoder is not its business), a resume's, a refusal, text.
+    put("ws_server_message_fuzz", "start", framed(1, [f(1, 2, f(1, 2, header) + f(2, 2, selection))] + packets + [done]))
+    put("ws_server_message_fuzz", "start_small_header",
+        framed(1, [f(1, 2, f(1, 2, header[:200]) + f(2, 2, selection))] + packets + [done]))
+    resumed = f(1, 0, 1) + f(2, 0, 3) + f(3, 0, len(payloads)) + f(4, 0, 100)
+    put("ws_server_message_fuzz", "resume", framed(0, [f(2, 2, resumed)] + packets[1:] + [done]))
+    put("ws_server_message_fuzz", "error", framed(0, [f(5, 2, f(1, 0, 2) + f(2, 2, b"no such mesh"))]))
+    put("ws_server_message_fuzz", "text_frame", framed(2, [f(4, 2, f(1, 0, 3))]))
+
+    def state(url, order, max_level, cursor, budget, container):
+        meta = f(1, 0, 1) + f(2, 2, url) + f(3, 2, order) + f(4, 0, max_level & 0xFFFFFFFFFFFFFFFF) \
+            + f(5, 0, cursor) + f(6, 0, budget)
+        return struct.pack("<H", len(meta)) + meta + container
+    count = len(payloads)
+    put("local_state_fuzz", "http_quality_all", state(b"http://127.0.0.1:8080/v1/meshes/0123456789ab", b"quality", -1, count, 5000, tiny))
+    put("local_state_fuzz", "ws_rd_level1", state(b"ws://localhost:9/v1/meshes/abcdefabcdef", b"rd", 1, count, 9000, tiny))
+    put("local_state_fuzz", "cursor_mismatch", state(b"https://h/v1/meshes/0123456789ab", b"resolution", 2, 3, 1, tiny))
+
 if __name__ == "__main__":
     if os.path.isdir(SEEDS):
         shutil.rmtree(SEEDS)
@@ -187,3 +224,4 @@ if __name__ == "__main__":
     http_seeds(container_seeds())
     header_seeds()
     ws_seeds()
+    client_seeds()

@@ -18,7 +18,7 @@ class AbuseTest : public ::testing::Test {
   static void SetUpTestSuite() {
     tmp_ = new TempDir();
     std::filesystem::create_directories(*tmp_ / "work");
-    IngestFiles(*tmp_ / "catalog", *tmp_ / "work", {SharedMesh("holes_patch_sr2.ply")});
+    ASSERT_NO_FATAL_FAILURE(IngestFiles(*tmp_ / "catalog", *tmp_ / "work", {SampleMesh("holes.off")}));
   }
   static void TearDownTestSuite() {
     delete tmp_;

@@ -51,7 +51,7 @@ void ExpectCatalogConsistent(uint16_t port, const std::filesystem::path& catalog
 
 std::string Upload(uint16_t port, const std::string& name, const std::string& body, unsigned* status) {
   HttpConnection c(port);
-  const HttpReply r = c.Send(http::verb::post, "/v1/meshes?format=ply&name=" + name,
+  const HttpReply r = c.Send(http::verb::post, "/v1/meshes?format=off&name=" + name,
                              {{"Authorization", std::string("Bearer ") + kToken}}, body);
   *status = r.status;
   return r.body;
@@ -65,7 +65,7 @@ TEST(FaultTest, KillDuringUploadsLosesNothingCommitted) {
   std::filesystem::create_directories(work);
   auto server = StartServer(catalog, work);
   ASSERT_TRUE(server->running()) << ReadBytes(server->log());
-  const std::string mesh = ReadBytes(SharedMesh("holes_patch_sr2.ply"));
+  const std::string mesh = ReadBytes(SampleMesh("holes.off"));
   std::atomic<bool> stop{false};
   std::vector<std::string> committed;  // names answered 201
   std::thread uploader([&] {
@@ -113,7 +113,7 @@ TEST(FaultTest, KillDuringStreamingThenRestartServesTheSameBytes) {
   TempDir tmp;
   const auto work = tmp / "work", catalog = tmp / "catalog";
   std::filesystem::create_directories(work);
-  IngestFiles(catalog, work, {SharedMesh("holes_patch_sr2.ply")});
+  ASSERT_NO_FATAL_FAILURE(IngestFiles(catalog, work, {SampleMesh("holes.off")}));
   auto server = StartServer(catalog, work);
   ASSERT_TRUE(server->running());
   const std::string id = List(server->port()).meshes(0).id();
@@ -196,7 +196,7 @@ void DiskFullScenario(bool upload_after_delete) {
   auto server = StartServer(catalog, work);
   if (!mounted) ::setrlimit(RLIMIT_FSIZE, &old);
   ASSERT_TRUE(server->running()) << ReadBytes(server->log());
-  const std::string small = ReadBytes(SharedMesh("holes_patch_sr2.ply"));
+  const std::string small = ReadBytes(SampleMesh("holes.off"));
   unsigned status = 0;
   Upload(server->port(), "first", small, &status);
   ASSERT_EQ(status, 201u);
@@ -260,16 +260,19 @@ TEST(FaultTest, CorruptContainerOnDiskIsAnErrorNotGarbage) {
   TempDir tmp;
   const auto work = tmp / "work", catalog = tmp / "catalog";
   std::filesystem::create_directories(work);
-  IngestFiles(catalog, work, {SharedMesh("holes_patch_sr2.ply"), SampleMesh("elephant.off")});
+  ASSERT_NO_FATAL_FAILURE(IngestFiles(catalog, work, {SampleMesh("holes.off"), SampleMesh("elephant.off")}));
   std::string victim_sha;
   {
     auto server = StartServer(catalog, work);
     ASSERT_TRUE(server->running());
-    victim_sha = List(server->port()).meshes(0).sha256();
+    const proto::MeshList list = List(server->port());
+    ASSERT_EQ(list.meshes_size(), 2);
+    victim_sha = list.meshes(0).sha256();
     EXPECT_EQ(server->Stop(), 0);
   }
   const auto file = catalog / "containers" / (victim_sha + ".mwv");
   std::string bytes = ReadBytes(file);
+  ASSERT_GT(bytes.size(), 10u) << file;
   bytes[bytes.size() - 10] ^= 0x01;  // one bit in the last payload
   std::ofstream(file, std::ios::binary | std::ios::trunc) << bytes;
 

@@ -16,7 +16,6 @@ namespace {
 using meshwave::testing::CatalogBackend;
 using meshwave::testing::CatalogBackendTest;
 using meshwave::testing::SampleMesh;
-using meshwave::testing::SharedMesh;
 using meshwave::testing::TempDir;
 
 void Touch(const std::filesystem::path& p) {
@@ -77,7 +76,9 @@ TEST_P(BulkIngestBackendTest, ParallelIngestAndIdempotentRerun) {
   auto catalog = OpenCatalog();
   ASSERT_TRUE(catalog);
   const std::vector<std::filesystem::path> files = {
-      SharedMesh("holes_patch_sr2.ply"), SampleMesh("holes.off"), tmp_ / "broken.ply"};
+      tmp_ / "holes_copy.off", SampleMesh("holes.off"), tmp_ / "broken.ply"};
+  // Another name, another container (the name is in the header).
+  std::filesystem::copy_file(SampleMesh("holes.off"), tmp_ / "holes_copy.off");
   std::ofstream(tmp_ / "broken.ply") << "ply\nformat ascii 1.0\nelement vertex 99999999\n";
   std::vector<std::string> reported;
   size_t present = 0;

@@ -22,7 +22,7 @@ namespace {
 using meshwave::testing::CatalogBackend;
 using meshwave::testing::CatalogBackendTest;
 using meshwave::testing::ReadBytes;
-using meshwave::testing::SharedMesh;
+using meshwave::testing::SampleMesh;
 using meshwave::testing::TempDir;
 
 size_t FilesIn(const std::filesystem::path& dir) {
@@ -36,13 +36,13 @@ using IngestTest = CatalogBackendTest;
 TEST_P(IngestTest, StoresAContentAddressedContainer) {
   auto catalog = OpenCatalog();
   ASSERT_TRUE(catalog);
-  auto r = IngestMeshFile(*catalog, SharedMesh("holes_patch_sr2.ply"));
+  auto r = IngestMeshFile(*catalog, SampleMesh("holes.off"));
   ASSERT_TRUE(r.ok()) << r.status().ToString();
   EXPECT_FALSE(r->already_present);
   EXPECT_FALSE(r->remeshed);
   const CatalogEntry& e = r->entry;
-  EXPECT_EQ(e.name, "holes_patch_sr2");
-  EXPECT_EQ(e.source, "holes_patch_sr2.ply");
+  EXPECT_EQ(e.name, "holes");
+  EXPECT_EQ(e.source, "holes.off");
   EXPECT_EQ(e.container, "containers/" + e.sha256 + ".mwv");
   EXPECT_EQ(e.id, e.sha256.substr(0, 12));
   const std::string bytes = ReadBytes(catalog->ContainerPath(e));
@@ -58,8 +58,8 @@ TEST_P(IngestTest, StoresAContentAddressedContainer) {
 TEST_P(IngestTest, SameFileTwiceGivesTheSameEntry) {
   auto catalog = OpenCatalog();
   ASSERT_TRUE(catalog);
-  auto a = IngestMeshFile(*catalog, SharedMesh("holes_patch_sr2.ply"));
-  auto b = IngestMeshFile(*catalog, SharedMesh("holes_patch_sr2.ply"));
+  auto a = IngestMeshFile(*catalog, SampleMesh("holes.off"));
+  auto b = IngestMeshFile(*catalog, SampleMesh("holes.off"));
   ASSERT_TRUE(a.ok() && b.ok());
   EXPECT_TRUE(b->already_present);
   EXPECT_EQ(a->entry.id, b->entry.id);
@@ -71,11 +71,11 @@ TEST_P(IngestTest, TwoHandlesIngestingTheSameMeshAtOnceMakeOneEntry) {
   auto a = OpenCatalog();
   auto b = OpenCatalog();
   ASSERT_TRUE(a && b);
-  const std::string bytes = ReadBytes(SharedMesh("holes_patch_sr2.ply"));
+  const std::string bytes = ReadBytes(SampleMesh("holes.off"));
   Result<IngestResult> ra = Status(StatusCode::kInternal, "not run");
   Result<IngestResult> rb = ra;
-  std::thread t([&] { ra = IngestMeshBytes(*a, bytes, MeshFormat::kPly, "h", "h.ply"); });
-  rb = IngestMeshBytes(*b, bytes, MeshFormat::kPly, "h", "h.ply");
+  std::thread t([&] { ra = IngestMeshBytes(*a, bytes, MeshFormat::kOff, "h", "h.off"); });
+  rb = IngestMeshBytes(*b, bytes, MeshFormat::kOff, "h", "h.off");
   t.join();
   ASSERT_TRUE(ra.ok()) << ra.status().ToString();
   ASSERT_TRUE(rb.ok()) << rb.status().ToString();
@@ -109,7 +109,7 @@ TEST_P(IngestTest, RejectsMalformedMeshLeavingNothing) {
 TEST_P(IngestTest, RemovesOrphanAndTemporaryFiles) {
   auto catalog = OpenCatalog();
   ASSERT_TRUE(catalog);
-  auto r = IngestMeshFile(*catalog, SharedMesh("holes_patch_sr2.ply"));
+  auto r = IngestMeshFile(*catalog, SampleMesh("holes.off"));
   ASSERT_TRUE(r.ok());
   // A container renamed into place but never committed, and a half write.
   const auto orphan = catalog->containers_dir() / (std::string(64, 'a') + ".mwv");
@@ -128,7 +128,7 @@ TEST_P(IngestTest, RemovesOrphanAndTemporaryFiles) {
 TEST_P(IngestTest, RemoveEntryDeletesRowThenFile) {
   auto catalog = OpenCatalog();
   ASSERT_TRUE(catalog);
-  auto r = IngestMeshFile(*catalog, SharedMesh("holes_patch_sr2.ply"));
+  auto r = IngestMeshFile(*catalog, SampleMesh("holes.off"));
   ASSERT_TRUE(r.ok());
   EXPECT_TRUE(*RemoveEntry(*catalog, r->entry.id));
   EXPECT_FALSE(catalog->Find(r->entry.id)->has_value());

@@ -14,7 +14,7 @@
 #include <sstream>
 #include <string>
 
-#include "server/child_process_testonly.h"
+#include "process/child_process_testonly.h"
 
 namespace meshwave::testing {
 
@@ -140,8 +140,8 @@ class PostgresInstance {
     const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(30);
     while (std::chrono::steady_clock::now() < end) {
       if (PQping(conninfo.c_str()) == PQPING_OK) return true;
-      int status = 0;
-      if (::waitpid(pid_, &status, WNOHANG) == pid_) {  // exited: port taken?
+      if (!ProcessRuns(pid_)) {  // exited: port taken?
+        WaitChild(pid_, std::chrono::seconds(1));
         pid_ = -1;
         return false;
       }

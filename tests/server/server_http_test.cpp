@@ -29,9 +29,18 @@ using server::Sha256Hex;
 
 constexpr char kToken[] = "test-token-1234";
 
-std::vector<std::filesystem::path> TestMeshes() {
-  return {SampleMesh("elephant.off"), SampleMesh("holes.off"), SharedMesh("holes_patch_sr2.ply"),
-          SharedMesh("elephant_cartoon_sr2.obj")};
+// The repository's samples (no ../shared needed): elephant.off (irregular:
+// remeshed), holes.off (semi-regular, 2 levels), and two copies of
+// holes.off under other names in `dir`, which encode to other containers
+// (the name is in the header): four entries.
+std::vector<std::filesystem::path> TestMeshes(const std::filesystem::path& dir) {
+  std::vector<std::filesystem::path> meshes = {SampleMesh("elephant.off"), SampleMesh("holes.off")};
+  for (const char* name : {"holes_patch.off", "holes_copy.off"}) {
+    std::filesystem::copy_file(SampleMesh("holes.off"), dir / name,
+                               std::filesystem::copy_options::overwrite_existing);
+    meshes.push_back(dir / name);
+  }
+  return meshes;
 }
 
 proto::MeshList ParseList(const std::string& json) {
@@ -79,7 +88,7 @@ class ServerHttpTest : public ::testing::Test {
     std::filesystem::create_directories(work_);
     catalog_ = tmp_ / "catalog";
     std::vector<std::string> args = {"ingest", "--catalog", catalog_.string()};
-    for (const auto& m : TestMeshes()) args.push_back(m.string());
+    for (const auto& m : TestMeshes(work_)) args.push_back(m.string());
     const pid_t ingest = SpawnServer(args, work_ / "ingest.log");
     ASSERT_EQ(WaitExit(ingest, std::chrono::seconds(120)), 0) << ReadBytes(work_ / "ingest.log");
     server_ = std::make_unique<ServerProcess>(
@@ -140,7 +149,7 @@ TEST_F(ServerHttpTest, ListsCatalogAsProtobuf) {
 }
 
 TEST_F(ServerHttpTest, DescribesMeshWithRateDistortionTable) {
-  const std::string id = ids_.at("holes_patch_sr2");
+  const std::string id = ids_.at("holes_patch");
   const HttpReply r = HttpGet(port_, "/v1/meshes/" + id);
   ASSERT_EQ(r.status, 200u) << r.body;
   proto::MeshDetails d;
@@ -221,7 +230,7 @@ TEST_F(ServerHttpTest, StreamDecodesLikeALocalTruncation) {
 }
 
 TEST_F(ServerHttpTest, StreamLimitsLevels) {
-  const std::string id = ids_.at("elephant_cartoon_sr2");
+  const std::string id = ids_.at("holes_copy");
   const std::string bytes = Container(id);
   auto parsed = ParseContainer(bytes);
   ASSERT_TRUE(parsed.ok());
@@ -308,7 +317,7 @@ TEST_F(ServerHttpTest, ServesSinglePackets) {
 }
 
 TEST_F(ServerHttpTest, ContainerAnswersRangeRequests) {
-  const std::string id = ids_.at("holes_patch_sr2");
+  const std::string id = ids_.at("holes_patch");
   const std::string full = Container(id);
   EXPECT_EQ(Sha256Hex(full).substr(0, 12), id);
   const std::string base = "/v1/meshes/" + id + "/container";
@@ -335,7 +344,7 @@ TEST_F(ServerHttpTest, ContainerAnswersRangeRequests) {
 }
 
 TEST_F(ServerHttpTest, ImmutableResourcesAnswerIfNoneMatch) {
-  const std::string id = ids_.at("elephant_cartoon_sr2");
+  const std::string id = ids_.at("holes_copy");
   for (const std::string suffix : {"/header", "/container", "/packets/0",
                                    "/stream?order=quality&budget=9000", ""}) {
     const std::string target = "/v1/meshes/" + id + suffix;
@@ -361,7 +370,7 @@ TEST_F(ServerHttpTest, ImmutableResourcesAnswerIfNoneMatch) {
 }
 
 TEST_F(ServerHttpTest, UploadAndDeleteNeedTheToken) {
-  const std::string mesh = ReadBytes(SharedMesh("elephant_cartoon_sr2.obj"));
+  const std::string mesh = ReadBytes(SampleMesh("holes.off"));
   HttpConnection c1(port_);
   HttpReply r = c1.Send(http::verb::post, "/v1/meshes?name=uploaded", {}, mesh);
   EXPECT_EQ(r.status, 401u);
@@ -522,7 +531,7 @@ TEST(ServerCrashTest, KilledIngestLeavesConsistentCatalog) {
   const auto catalog_dir = tmp / "catalog";
   std::filesystem::create_directories(work);
   std::vector<std::string> args = {"ingest", "--catalog", catalog_dir.string(),
-                                   SharedMesh("holes_patch_sr2.ply").string()};
+                                   SampleMesh("holes.off").string()};
   // Copies under other names encode to other containers (the name is in
   // the header), so each is a new entry.
   for (int i = 0; i < 6; ++i) {

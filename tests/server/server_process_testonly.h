@@ -3,9 +3,7 @@
 #ifndef MESHWAVE_TESTS_SERVER_SERVER_PROCESS_TESTONLY_H_
 #define MESHWAVE_TESTS_SERVER_SERVER_PROCESS_TESTONLY_H_
 
-#include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -16,9 +14,7 @@
 #include <thread>
 #include <vector>
 
-#include "child_process_testonly.h"
-
-extern char** environ;
+#include "process/child_process_testonly.h"
 
 namespace meshwave::testing {
 
@@ -26,26 +22,12 @@ inline std::filesystem::path ServerPath() { return MESHWAVE_SERVER_PATH; }
 
 // Spawns meshwave-server with `args`, stdout and stderr to `log`; extra
 // environment entries ("K=V") are added. Returns the pid (-1 on failure).
+// A child of SpawnChild: stopped with the test whatever happens.
 inline pid_t SpawnServer(const std::vector<std::string>& args, const std::filesystem::path& log,
                          const std::vector<std::string>& env = {}) {
-  std::vector<std::string> argv_s = {ServerPath().string()};
-  argv_s.insert(argv_s.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (auto& a : argv_s) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  std::vector<std::string> env_s(env);
-  for (char** e = environ; *e; ++e) env_s.emplace_back(*e);
-  std::vector<char*> envp;
-  for (auto& e : env_s) envp.push_back(e.data());
-  envp.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
-  posix_spawn_file_actions_adddup2(&actions, 1, 2);
-  pid_t pid = -1;
-  if (posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), envp.data()) != 0) pid = -1;
-  posix_spawn_file_actions_destroy(&actions);
-  return pid;
+  std::vector<std::string> argv = {ServerPath().string()};
+  argv.insert(argv.end(), args.begin(), args.end());
+  return SpawnChild(argv, log, std::nullopt, env);
 }
 
 // Waits for the child to exit; its exit code, or -1 (signal, timeout).
@@ -73,7 +55,8 @@ class ServerProcess {
         port_ = static_cast<uint16_t>(port);
         break;
       }
-      if (::waitpid(pid_, nullptr, WNOHANG) == pid_) {
+      if (!ProcessRuns(pid_)) {  // exited early: reaped, its code in the log
+        WaitChild(pid_, std::chrono::seconds(1));
         pid_ = -1;
         break;
       }

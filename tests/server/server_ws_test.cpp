@@ -5,6 +5,8 @@
 #include <google/protobuf/util/json_util.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include <fstream>
 #include <map>
 #include <thread>
@@ -102,7 +104,7 @@ Received Exchange(WsTestClient& c, const proto::ClientMessage& m) {
   return Collect(c.ReadUntilDone());
 }
 
-// A server on a catalog of four meshes, shared by the tests; a test that
+// A server on a catalog of the two sample meshes, shared by the tests; a test that
 // needs other settings starts its own on the same catalog.
 class ServerWsTest : public ::testing::Test {
  protected:
@@ -114,8 +116,7 @@ class ServerWsTest : public ::testing::Test {
         "--catalog",
         catalog_.string(),
         SampleMesh("elephant.off").string(),
-        SampleMesh("holes.off").string(),
-        SharedMesh("elephant_subdiv2.ply").string()};
+        SampleMesh("holes.off").string()};
     const pid_t ingest = SpawnServer(args, *dir_ / "ingest.log");
     ASSERT_EQ(WaitExit(ingest, std::chrono::seconds(120)), 0)
         << ReadBytes(*dir_ / "ingest.log");
@@ -127,7 +128,7 @@ class ServerWsTest : public ::testing::Test {
     ASSERT_TRUE(
         google::protobuf::util::JsonStringToMessage(list.body, &meshes).ok());
     for (const auto& m : meshes.meshes()) (*ids_)[m.name()] = m.id();
-    ASSERT_EQ(ids_->size(), 3u) << list.body;
+    ASSERT_EQ(ids_->size(), 2u) << list.body;
   }
   static void TearDownTestSuite() {
     if (server_) {
@@ -225,13 +226,16 @@ TEST_F(ServerWsTest, LevelLimitAndHeaderOnly) {
 }
 
 TEST_F(ServerWsTest, PacesToTheRequestedRate) {
-  // 81 kB at 30 kB/s: about 2.7 s. The first message goes at once and each
-  // later one when the bytes before it are paid for, so the rate is the
-  // bytes before the last message over the time between first and last.
-  constexpr double kRate = 30000;
+  // The whole mesh at the rate that takes about 2.7 s. The first message
+  // goes at once and each later one when the bytes before it are paid for,
+  // so the rate is the bytes before the last message over the time between
+  // first and last.
+  const HttpReply container = HttpGet(port(), "/v1/meshes/" + Id("elephant") + "/container");
+  ASSERT_EQ(container.status, 200u);
+  const double kRate = std::floor(static_cast<double>(container.body.size()) / 2.7);
   WsTestClient c(port());
   ASSERT_TRUE(c.open());
-  ASSERT_TRUE(c.Send(StartMessage(Id("elephant_subdiv2"), "quality",
+  ASSERT_TRUE(c.Send(StartMessage(Id("elephant"), "quality",
                                   std::nullopt, static_cast<uint64_t>(kRate))));
   std::optional<WsTestClient::Clock::time_point> first, last;
   uint64_t bytes = 0, last_size = 0;
@@ -450,7 +454,7 @@ TEST_F(ServerWsTest, ShutdownClosesSessionsWithGoingAway) {
   ASSERT_TRUE(c.open());
   // A slow stream in progress when SIGTERM arrives.
   ASSERT_TRUE(c.Send(
-      StartMessage(Id("elephant_subdiv2"), "quality", std::nullopt, 5000)));
+      StartMessage(Id("elephant"), "quality", std::nullopt, 5000)));
   ASSERT_TRUE(c.Read().has_value());
   std::thread stop(
       [&] { EXPECT_EQ(server->Stop(), 0) << ReadBytes(server->log()); });

@@ -40,11 +40,13 @@ const std::map<std::string, Expected>& ReadmeTable() {
 }
 
 TEST(SharedMeshesTest, AllTenMeshesArePresent) {
+  MESHWAVE_REQUIRE_SHARED_MESH();
   EXPECT_EQ(testing::AllSharedMeshes().size(), ReadmeTable().size())
-      << "shared meshes expected in " << MESHWAVE_SHARED_MESHES;
+      << "shared meshes expected in " << testing::SharedMeshDir();
 }
 
 TEST(SharedMeshesTest, StatisticsMatchTheReadme) {
+  MESHWAVE_REQUIRE_SHARED_MESH();
   for (const std::filesystem::path& path : testing::AllSharedMeshes()) {
     const std::string name = path.filename().string();
     SCOPED_TRACE(name);
@@ -69,6 +71,7 @@ TEST(SharedMeshesTest, StatisticsMatchTheReadme) {
 }
 
 TEST(SharedMeshesTest, BunnyHasItsUnreferencedVertices) {
+  MESHWAVE_REQUIRE_SHARED_MESH("bunny_stanford_zipper.ply");
   Result<TriMesh> mesh =
       ReadMesh(testing::SharedMesh("bunny_stanford_zipper.ply"));
   ASSERT_TRUE(mesh.ok()) << mesh.status().ToString();
@@ -76,6 +79,7 @@ TEST(SharedMeshesTest, BunnyHasItsUnreferencedVertices) {
 }
 
 TEST(SharedMeshesTest, OgreHasThreeNonManifoldVertices) {
+  MESHWAVE_REQUIRE_SHARED_MESH("ogre.obj");
   Result<TriMesh> mesh = ReadMesh(testing::SharedMesh("ogre.obj"));
   ASSERT_TRUE(mesh.ok()) << mesh.status().ToString();
   MeshStats s = ComputeStats(*mesh);
@@ -84,6 +88,7 @@ TEST(SharedMeshesTest, OgreHasThreeNonManifoldVertices) {
 }
 
 TEST(SharedMeshesTest, RoundTripThroughPlyAndObj) {
+  MESHWAVE_REQUIRE_SHARED_MESH();
   for (const std::filesystem::path& path : testing::AllSharedMeshes()) {
     SCOPED_TRACE(path.filename().string());
     Result<TriMesh> mesh = ReadMesh(path);

@@ -100,9 +100,10 @@ void ExpectPerfectReconstruction(const std::filesystem::path& path) {
 }
 
 TEST(SharedMeshesTransformTest, PerfectReconstructionOnEveryBaseMesh) {
+  MESHWAVE_REQUIRE_SHARED_MESH();
   const auto files = testing::AllSharedMeshes();
   ASSERT_GE(files.size(), 10u) << "shared meshes missing in "
-                               << MESHWAVE_SHARED_MESHES;
+                               << testing::SharedMeshDir();
   for (const auto& path : files) ExpectPerfectReconstruction(path);
 }
 

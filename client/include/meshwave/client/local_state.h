@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <string_view>
 
 #include "meshwave/client/url.h"
 #include "meshwave/progression.h"
@@ -28,6 +29,9 @@ struct LocalState {
 // FILE.session.
 std::filesystem::path SidecarPath(const std::filesystem::path& file);
 
+// The bytes of FILE.session for `state` (a ClientState protobuf).
+std::string SessionBytes(const LocalState& state);
+
 // Writes the container, then the sidecar. IoError naming the path.
 Status SaveState(const std::filesystem::path& file, const LocalState& state);
 
@@ -38,6 +42,12 @@ Status SaveState(const std::filesystem::path& file, const LocalState& state);
 // packets are the order's prefix and pass their CRCs is checked when a
 // Session restores the container.
 Result<LocalState> LoadState(const std::filesystem::path& file);
+
+// LoadState's checks on bytes already read: `session` the sidecar's,
+// `container` FILE's; `file` names them in messages. Safe on untrusted
+// bytes (fuzzed: tests/fuzz/local_state_fuzz.cpp).
+Result<LocalState> ParseState(std::string_view session, std::string container,
+                              const std::filesystem::path& file);
 
 }  // namespace meshwave::client
 

@@ -28,7 +28,7 @@ struct SessionOptions {
   // on its length field, before the header is read) and the mesh the
   // header describes (DecoderOptions::max_faces, max_base_vertices; checked
   // before the decoder allocates).
-  uint64_t max_header_bytes = uint64_t{64} << 20;
+  uint64_t max_header_bytes = kDefaultMaxHeaderBytes;
   DecoderOptions decoder;
 };
 

@@ -22,6 +22,11 @@ namespace meshwave::client {
 
 namespace net = boost::asio;
 
+// The default limit on a stream header (SessionOptions::max_header_bytes):
+// large enough for any header the encoder writes, small enough that a
+// hostile server cannot make the client buffer without bound.
+inline constexpr uint64_t kDefaultMaxHeaderBytes = uint64_t{64} << 20;
+
 struct TransportOptions {
   std::chrono::milliseconds connect_timeout{
       5000};  // resolve, connect, TLS handshake
@@ -43,6 +48,8 @@ struct StreamRequest {
   // The caller holds the header: payloads only, from cursor 0 too (budget
   // in payload bytes). Only for transports with CanStreamPayloadsFromStart.
   bool header_held = false;
+  // A header longer than this is refused before it is buffered.
+  uint64_t max_header_bytes = kDefaultMaxHeaderBytes;
 };
 
 // What the server says about a stream response before its body.
@@ -77,8 +84,10 @@ class Transport {
  public:
   virtual ~Transport() = default;
   virtual net::any_io_executor executor() = 0;
-  // The StreamHeader of the mesh, protobuf bytes (present empty).
-  virtual net::awaitable<Result<std::string>> GetHeader() = 0;
+  // The StreamHeader of the mesh, protobuf bytes (present empty); one over
+  // `max_header_bytes` is refused before it is buffered.
+  virtual net::awaitable<Result<std::string>> GetHeader(
+      uint64_t max_header_bytes) = 0;
   // The payload of packet `id` of the index.
   virtual net::awaitable<Result<std::string>> GetPacket(uint32_t id) = 0;
   virtual net::awaitable<Status> Stream(const StreamRequest& request,
