@@ -25,6 +25,7 @@ test=(
   nginx-light                  # the replica test's load balancer and cache
   docker-compose               # `docker-compose config`: compose file validation, no engine
   clang libclang-rt-14-dev     # the ASan + UBSan stage and the libFuzzer targets (tools/sanitize.sh)
+  python3-websockets python3-protobuf  # tests/interop: the Python client written from the docs
 )
 
 case "${1:-all}" in
