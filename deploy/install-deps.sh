@@ -27,6 +27,7 @@ test=(
   clang libclang-rt-14-dev     # the ASan + UBSan stage and the libFuzzer targets (tools/sanitize.sh)
   ccache                       # tools/compiler_cache.sh: a clone rebuilds only what changed
   emscripten                   # the WebAssembly decoder (web/build_decoder.sh) and its test
+  python3-websockets python3-protobuf  # tests/interop: the Python client written from the docs
 )
 
 case "${1:-all}" in

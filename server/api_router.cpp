@@ -128,12 +128,15 @@ void HandleRequest(ServerContext& ctx, Request req, std::function<void(Response)
 
 std::optional<Response> CheckWebSocketUpgrade(ServerContext& ctx,
                                               const http::request_header<>& header) {
-  auto target = ParseRequestTarget(header.target());
-  if (!target.ok()) return StatusError(target.status());
-  if (!IsWebSocketEndpoint(*target)) {
+  // The path alone decides 404 (anything but /v1/ws, malformed paths and a
+  // trailing '/' included); then any query at all, even a malformed one, 400.
+  const std::string_view raw = header.target();
+  const size_t q = raw.find('?');
+  auto path = ParseRequestTarget(raw.substr(0, q));
+  if (!path.ok() || !IsWebSocketEndpoint(*path)) {
     return JsonError(http::status::not_found, "WebSocket upgrades go to /v1/ws only");
   }
-  if (!target->query.empty()) return JsonError(http::status::bad_request, "/v1/ws takes no query");
+  if (q != std::string_view::npos) return JsonError(http::status::bad_request, "/v1/ws takes no query");
   const bool full = ctx.metrics().websocket_connections() >=
                     static_cast<int64_t>(ctx.config().max_websocket_sessions());
   if (ctx.stopping() || full) {

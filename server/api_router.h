@@ -27,7 +27,7 @@ HeaderDecision InspectHeader(const ServerContext& ctx, const http::request_heade
 void HandleRequest(ServerContext& ctx, Request req, std::function<void(Response)> done);
 
 // Whether a WebSocket upgrade may go ahead: the refusal to send instead
-// (404 for a target other than /v1/ws, 503 while the server stops or when
+// (404 for a path other than /v1/ws, 400 for any query, 503 while the server stops or when
 // max_websocket_sessions are open), or nothing.
 std::optional<Response> CheckWebSocketUpgrade(ServerContext& ctx,
                                               const http::request_header<>& header);

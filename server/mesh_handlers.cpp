@@ -191,13 +191,15 @@ Response GetContainer(ServerContext& ctx, const Request& req, const std::string&
   Response r;
   if (NotModified(req, etag, r)) return r;
   const std::string_view bytes = l.mesh->map()->bytes();
+  // RFC 9110 13.2.2: If-None-Match first (above), then If-Range decides
+  // whether Range applies at all; a failed If-Range means the whole.
   const auto range_header = req[http::field::range];
-  const RangeRequest range =
-      range_header.empty() ? RangeRequest{} : ParseRange(range_header, bytes.size());
+  const auto if_range = req[http::field::if_range];
+  const bool use_range =
+      !range_header.empty() && (if_range.empty() || IfRangeHolds(if_range, etag));
+  const RangeRequest range = use_range ? ParseRange(range_header, bytes.size()) : RangeRequest{};
   if (range.kind == RangeRequest::kUnsatisfiable) {
-    r = JsonError(http::status::range_not_satisfiable,
-                  "range '" + std::string(range_header) + "' does not fit " +
-                      std::to_string(bytes.size()) + " bytes");
+    r = JsonError(http::status::range_not_satisfiable, range.problem);
     r.set(http::field::content_range, "bytes */" + std::to_string(bytes.size()));
     return r;
   }

@@ -35,9 +35,13 @@ Response Text(http::status status, std::string body, std::string_view content_ty
   return r;
 }
 
+std::string JsonErrorBody(std::string_view message) {
+  return "{\"error\": " + JsonQuote(message) + "}\n";
+}
+
 Response JsonError(http::status status, std::string_view message) {
-  Response r = Text(status, "{\"error\": " + JsonQuote(message) + "}\n", "application/json");
-  r.set(http::field::cache_control, "no-store");
+  Response r = Text(status, JsonErrorBody(message), "application/json");
+  SetJsonErrorHeaders(r);
   return r;
 }
 

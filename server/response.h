@@ -18,6 +18,14 @@ inline constexpr std::string_view kImmutable = "public, max-age=31536000, immuta
 
 // {"error": "<message>"} with `status`.
 Response JsonError(http::status status, std::string_view message);
+// The body of JsonError (also of the WebSocket handshake's refusals, which
+// Beast writes), and its headers set on any response type.
+std::string JsonErrorBody(std::string_view message);
+template <typename Fields>
+void SetJsonErrorHeaders(Fields& fields) {
+  fields.set(http::field::content_type, "application/json");
+  fields.set(http::field::cache_control, "no-store");
+}
 // A Status from the codec or the catalog as a response: client errors
 // (invalid argument, parse) as 400, not found as 404, the rest as 500.
 Response StatusError(const Status& status);

@@ -47,6 +47,10 @@ Result<std::optional<uint64_t>> ParseBudget(bool has, uint64_t budget) {
 
 Status CheckRate(uint64_t rate) {
   if (rate > kMaxRate) return Bad("rate is above 2^40 bytes per second");
+  if (rate != 0 && rate < kMinRate) {
+    return Bad("rate " + std::to_string(rate) + " is below the minimum of " +
+               std::to_string(kMinRate) + " bytes per second (0: unpaced)");
+  }
   return Status::Ok();
 }
 

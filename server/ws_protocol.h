@@ -19,6 +19,11 @@ namespace meshwave::server {
 // Pacing above this is refused: 2^40 bytes/s is no pacing at all, and the
 // bound keeps the token arithmetic far from overflow.
 inline constexpr uint64_t kMaxRate = uint64_t{1} << 40;
+// Pacing below this is refused (0, unpaced, is not pacing): at 1 B/s one
+// packet of a few kB would hold a session, its memory map and a slot of
+// max_websocket_sessions for hours. 1024 B/s sends the largest sample
+// container (about 80 kB) in under 2 minutes.
+inline constexpr uint64_t kMinRate = 1024;
 
 struct WsLimits {
   size_t max_message_bytes = 64 * 1024;
@@ -42,7 +47,8 @@ struct ClientRequest {
 // with a message for the client when the message is larger than the limit,
 // does not parse, holds no request, names a malformed mesh id or an unknown
 // order, or has a number out of range (max_level > kMaxLevelLimit, budgets
-// and extra_bytes > kMaxBudget, rate > kMaxRate, extra_bytes 0, header_only
+// and extra_bytes > kMaxBudget, rate > kMaxRate or in (0, kMinRate), extra_bytes 0,
+// header_only
 // with a budget). Limits that depend on the mesh (levels, order length) are
 // the session's to check.
 Result<ClientRequest> ParseClientMessage(std::string_view bytes,

@@ -5,6 +5,7 @@
 #include <array>
 
 #include "meshwave/container.h"
+#include "response.h"
 #include "stream_plan.h"
 #include "stream_query.h"
 
@@ -16,6 +17,10 @@ namespace {
 // reading until the queue drains: a client flooding requests is slowed down
 // instead of growing the queue.
 constexpr size_t kMaxQueued = 16;
+// Refines sent while a stream runs, each owed its Done: past this many the
+// next one is refused (a client has no use for more, and the list is kept
+// bounded).
+constexpr size_t kMaxPendingDone = 64;
 
 std::string RemoteName(const tcp::socket& socket) {
   beast::error_code ec;
@@ -39,6 +44,7 @@ WsSession::WsSession(tcp::socket&& socket, ServerContext& ctx)
     : ws_(std::move(socket)),
       ctx_(ctx),
       pacing_timer_(ws_.get_executor()),
+      keepalive_timer_(ws_.get_executor()),
       remote_(RemoteName(beast::get_lowest_layer(ws_).socket())),
       opened_(std::chrono::steady_clock::now()) {
   ctx_.metrics().WebSocketOpened();
@@ -58,16 +64,26 @@ void WsSession::Run(const http::request<http::string_body>& upgrade) {
   websocket::stream_base::timeout timeout{};
   timeout.handshake_timeout =
       std::chrono::seconds(config.idle_timeout_seconds());
-  // Beast pings after half the idle time without a frame from the client and
-  // closes after the whole without one (a pong counts).
-  timeout.idle_timeout =
-      std::chrono::seconds(2 * config.websocket_ping_seconds());
-  timeout.keep_alive_pings = true;
+  // Keep-alive is the session's own (ArmKeepAlive): Beast's idle timeout
+  // would drop a silent client without a close frame.
+  timeout.idle_timeout = websocket::stream_base::none();
+  timeout.keep_alive_pings = false;
   ws_.set_option(timeout);
   ws_.set_option(
       websocket::stream_base::decorator([](websocket::response_type& res) {
         res.set(http::field::server, "meshwave");
+        if (res.result() != http::status::switching_protocols) {
+          // Beast refused the handshake (no key, version not 13, ...) with
+          // a plain-text reason: JSON, as every other error of the API.
+          res.body() = JsonErrorBody("WebSocket handshake refused: " + res.body());
+          SetJsonErrorHeaders(res);
+          res.prepare_payload();
+        }
       }));
+  // Pings, pongs and close frames count as hearing from the client.
+  ws_.control_callback([this](websocket::frame_type, beast::string_view) {
+    last_heard_ = std::chrono::steady_clock::now();
+  });
   ws_.read_message_max(config.websocket_message_limit_bytes());
   ws_.binary(true);
   // One frame per message: payloads go out without being copied in pieces.
@@ -80,7 +96,7 @@ void WsSession::Shutdown() {
   net::post(ws_.get_executor(), [self = shared_from_this()] {
     if (self->closing_) return;
     if (!self->writing_)
-      return self->DoClose(websocket::close_code::going_away);
+      return self->DoClose({websocket::close_code::going_away, "the server is stopping"});
     self->close_after_write_ = true;
   });
 }
@@ -88,6 +104,8 @@ void WsSession::Shutdown() {
 void WsSession::OnAccept(beast::error_code ec) {
   if (ec) return Fail(ec, "accept");
   spdlog::info("ws {} open", remote_);
+  last_heard_ = std::chrono::steady_clock::now();
+  ArmKeepAlive();
   DoRead();
 }
 
@@ -104,12 +122,13 @@ void WsSession::OnRead(beast::error_code ec, size_t /*bytes*/) {
     // The client closed, the connection broke or stayed silent past the
     // idle time, or a message was too large (Beast has sent close 1009).
     closing_ = true;
-    pacing_timer_.cancel();
+    StopTimers();
     return Fail(ec, "read");
   }
+  last_heard_ = std::chrono::steady_clock::now();
   if (!ws_.got_binary()) {
     read_buffer_.clear();
-    return DoClose(websocket::close_code::unknown_data);
+    return DoClose({websocket::close_code::unknown_data, "binary frames only"});
   }
   const auto data = read_buffer_.cdata();
   auto request = ParseClientMessage(
@@ -167,7 +186,7 @@ void WsSession::StartStream(const ClientRequest& r) {
   order_ = plan->order;
   cursor_ = from;
   end_ = plan->selection.next_cursor;
-  done_owed_ = true;
+  done_at_.push_back(end_);
   const auto now = TokenBucket::Clock::now();
   if (r.rate == 0) {
     pacer_.reset();
@@ -197,6 +216,11 @@ void WsSession::RefineStream(uint64_t extra_bytes) {
     return SendError(proto::Error::BAD_REQUEST,
                      "nothing to refine: send start or resume first");
   }
+  if (done_at_.size() >= kMaxPendingDone) {
+    return SendError(proto::Error::BAD_REQUEST,
+                     std::to_string(kMaxPendingDone) +
+                         " requests of this stream are still running: wait for a Done");
+  }
   StreamPlan plan;
   plan.order = order_;
   plan.selection = SelectPayloads(mesh_->header(), *order_, extra_bytes, end_);
@@ -206,7 +230,7 @@ void WsSession::RefineStream(uint64_t extra_bytes) {
                 plan.selection.next_cursor);
   end_ = plan.selection.next_cursor;
   if (!streaming() && pacer_) pacer_->DropCredit(TokenBucket::Clock::now());
-  done_owed_ = true;
+  done_at_.push_back(end_);
   Queue(m, false);
 }
 
@@ -233,6 +257,15 @@ void WsSession::Pump() {
     if (queue_.size() < kMaxQueued / 2) DoRead();
     return write(net::buffer(in_flight_));
   }
+  // One Done per request, once the packets it selected are out.
+  if (!done_at_.empty() && cursor_ == done_at_.front()) {
+    proto::ServerMessage m;
+    m.mutable_done()->set_next_cursor(static_cast<uint32_t>(cursor_));
+    m.mutable_done()->set_complete(cursor_ == order_->size());
+    done_at_.pop_front();
+    in_flight_ = m.SerializeAsString();
+    return write(net::buffer(in_flight_));
+  }
   if (mesh_ && cursor_ < end_) {
     const auto id = (*order_)[cursor_];
     const std::string_view payload = mesh_->payload(id);
@@ -245,14 +278,6 @@ void WsSession::Pump() {
     ++packets_sent_;
     return write(std::array<net::const_buffer, 2>{
         net::buffer(in_flight_), net::buffer(payload.data(), payload.size())});
-  }
-  if (done_owed_) {
-    done_owed_ = false;
-    proto::ServerMessage m;
-    m.mutable_done()->set_next_cursor(static_cast<uint32_t>(end_));
-    m.mutable_done()->set_complete(end_ == order_->size());
-    in_flight_ = m.SerializeAsString();
-    return write(net::buffer(in_flight_));
   }
 }
 
@@ -282,21 +307,68 @@ void WsSession::OnWrite(beast::error_code ec, size_t bytes) {
   ctx_.metrics().AddWebSocketBytes(bytes);
   if (ec) {
     closing_ = true;
-    pacing_timer_.cancel();
+    StopTimers();
     return Fail(ec, "write");
   }
-  if (close_after_write_) return DoClose(websocket::close_code::going_away);
+  if (close_after_write_) {
+    return DoClose({websocket::close_code::going_away, "the server is stopping"});
+  }
   Pump();
 }
 
-void WsSession::DoClose(websocket::close_code code) {
+void WsSession::DoClose(websocket::close_reason reason) {
   if (closing_) return;
   closing_ = true;
   pacing_timer_.cancel();
-  // The pending read completes when the client answers the close.
-  ws_.async_close(code, [self = shared_from_this()](beast::error_code ec) {
-    if (ec) self->Fail(ec, "close");
+  // The pending read completes when the client answers the close; a client
+  // that does not within a ping period loses the socket (OnKeepAlive).
+  keepalive_timer_.expires_after(
+      std::chrono::seconds(ctx_.config().websocket_ping_seconds()));
+  keepalive_timer_.async_wait(beast::bind_front_handler(
+      &WsSession::OnKeepAlive, shared_from_this()));
+  ws_.async_close(reason, [self = shared_from_this()](beast::error_code ec) {
+    if (ec) return self->Fail(ec, "close");
+    self->StopTimers();
   });
+}
+
+void WsSession::ArmKeepAlive() {
+  const auto ping = std::chrono::seconds(ctx_.config().websocket_ping_seconds());
+  const auto silent = std::chrono::steady_clock::now() - last_heard_;
+  // Next due: the ping after `ping` of silence, then the close after twice.
+  keepalive_timer_.expires_at(last_heard_ + (silent >= ping ? 2 * ping : ping));
+  keepalive_timer_.async_wait(beast::bind_front_handler(
+      &WsSession::OnKeepAlive, shared_from_this()));
+}
+
+void WsSession::OnKeepAlive(beast::error_code ec) {
+  if (ec) return;  // cancelled or re-armed
+  if (closing_) {
+    // The close frame got no answer (or could not even be written past a
+    // client that reads nothing): drop the connection.
+    beast::get_lowest_layer(ws_).close();
+    return;
+  }
+  const auto ping = std::chrono::seconds(ctx_.config().websocket_ping_seconds());
+  const auto now = std::chrono::steady_clock::now();
+  if (now - last_heard_ >= 2 * ping) {
+    spdlog::info("ws {}: no answer to keep-alive pings for {} s, closing", remote_,
+                 2 * ctx_.config().websocket_ping_seconds());
+    return DoClose({websocket::close_code::policy_error, "keep-alive pings unanswered"});
+  }
+  if (now - last_heard_ >= ping && last_ping_ <= last_heard_ && !ping_in_flight_) {
+    last_ping_ = now;
+    ping_in_flight_ = true;
+    ws_.async_ping({}, [self = shared_from_this()](beast::error_code) {
+      self->ping_in_flight_ = false;
+    });
+  }
+  ArmKeepAlive();
+}
+
+void WsSession::StopTimers() {
+  pacing_timer_.cancel();
+  keepalive_timer_.cancel();
 }
 
 void WsSession::Fail(beast::error_code ec, const char* what) {
@@ -304,10 +376,6 @@ void WsSession::Fail(beast::error_code ec, const char* what) {
   if (ec == websocket::error::closed || ec == net::error::operation_aborted ||
       ec == net::error::eof || ec == net::error::connection_reset ||
       ec == net::error::broken_pipe) {
-    return;
-  }
-  if (ec == beast::error::timeout) {
-    spdlog::info("ws {}: no answer to keep-alive pings, closed", remote_);
     return;
   }
   spdlog::info("ws {}: {}: {}", remote_, what, ec.message());

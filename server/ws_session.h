@@ -54,7 +54,14 @@ class WsSession : public Closable,
   void RefineStream(uint64_t extra_bytes);
   void SendError(proto::Error::Code code, const std::string& message);
   void Queue(const proto::ServerMessage& message, bool paced);
-  bool streaming() const { return done_owed_; }
+  bool streaming() const { return !done_at_.empty(); }
+
+  // Keep-alive: pings a client silent for websocket_ping_seconds and closes
+  // one silent for twice that with a close frame (1008), then drops the
+  // socket if even the close gets no answer.
+  void ArmKeepAlive();
+  void OnKeepAlive(beast::error_code ec);
+  void StopTimers();
 
   // Writes the next message if there is one and the rate allows it.
   void Pump();
@@ -62,12 +69,16 @@ class WsSession : public Closable,
   bool MayWriteNow(uint64_t bytes);
   void OnPacingTimer(beast::error_code ec);
   void OnWrite(beast::error_code ec, size_t bytes);
-  void DoClose(websocket::close_code code);
+  void DoClose(websocket::close_reason reason);
   void Fail(beast::error_code ec, const char* what);
 
   websocket::stream<beast::tcp_stream> ws_;
   ServerContext& ctx_;
   net::steady_timer pacing_timer_;
+  net::steady_timer keepalive_timer_;
+  std::chrono::steady_clock::time_point last_heard_;  // a frame from the client
+  std::chrono::steady_clock::time_point last_ping_;   // sent by us
+  bool ping_in_flight_ = false;
   beast::flat_buffer read_buffer_;
   std::deque<Outgoing> queue_;
   // The message being written: a queued one, or a packet's prefix with its
@@ -85,7 +96,9 @@ class WsSession : public Closable,
   const std::vector<uint32_t>* order_ = nullptr;
   size_t cursor_ = 0;
   size_t end_ = 0;
-  bool done_owed_ = false;  // a Done follows the last selected packet
+  // The end cursors of the requests still owed a Done, in request order:
+  // each Done goes when the packets before its cursor are sent.
+  std::deque<size_t> done_at_;
   std::optional<TokenBucket> pacer_;
 
   std::string remote_;

@@ -30,6 +30,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       fuzz::Require(q.max_level >= -1 && q.max_level <= kMaxLevelLimit, "max_level in range");
       fuzz::Require(!q.budget || *q.budget <= kMaxBudget, "budget in range");
       fuzz::Require(q.rate <= kMaxRate, "rate in range");
+      fuzz::Require(q.rate == 0 || q.rate >= kMinRate, "a paced rate is at least the minimum");
     } else {
       fuzz::Require(q.extra_bytes >= 1 && q.extra_bytes <= kMaxBudget, "extra_bytes in range");
     }

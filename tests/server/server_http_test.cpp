@@ -337,10 +337,70 @@ TEST_F(ServerHttpTest, ContainerAnswersRangeRequests) {
   EXPECT_TRUE(IsJsonError(r));
   r = HttpGet(port_, base, {{"Range", "bytes=9-3"}});
   EXPECT_EQ(r.status, 416u);
+  EXPECT_NE(r.body.find("ends before it starts"), std::string::npos) << r.body;
   r = HttpGet(port_, base, {{"Range", "bytes=0-1,4-5"}});  // several: the whole
   EXPECT_EQ(r.status, 200u);
   EXPECT_EQ(r.body, full);
   EXPECT_EQ(r.Header("accept-ranges"), "bytes");
+}
+
+TEST_F(ServerHttpTest, RangeFollowsRfc9110Syntax) {
+  const std::string id = ids_.at("holes_patch_sr2");
+  const std::string full = Container(id);
+  const std::string base = "/v1/meshes/" + id + "/container";
+  // Case-insensitive unit, empty list elements, whitespace, coalescing.
+  for (const char* range : {"BYTES=0-5", "bytes=0-5,", "bytes= 0-5", "bytes=,0-5",
+                            "bytes=0-2,3-5", "bytes=0-5,1-4"}) {
+    const HttpReply r = HttpGet(port_, base, {{"Range", range}});
+    EXPECT_EQ(r.status, 206u) << range;
+    EXPECT_EQ(r.body, full.substr(0, 6)) << range;
+    EXPECT_EQ(r.Header("content-range"), "bytes 0-5/" + std::to_string(full.size())) << range;
+  }
+  // A malformed range says what is wrong, not that it "does not fit".
+  HttpReply r = HttpGet(port_, base, {{"Range", "bytes=abc"}});
+  EXPECT_EQ(r.status, 416u);
+  EXPECT_TRUE(IsJsonError(r));
+  EXPECT_NE(r.body.find("not first-last, first- or -suffix"), std::string::npos) << r.body;
+  EXPECT_EQ(r.Header("content-range"), "bytes */" + std::to_string(full.size()));
+  // Another unit: ignored.
+  r = HttpGet(port_, base, {{"Range", "items=0-5"}});
+  EXPECT_EQ(r.status, 200u);
+  EXPECT_EQ(r.body, full);
+}
+
+TEST_F(ServerHttpTest, IfRangeDecidesBetweenPartAndWhole) {
+  const std::string id = ids_.at("holes_patch_sr2");
+  const std::string base = "/v1/meshes/" + id + "/container";
+  const HttpReply whole = HttpGet(port_, base);
+  const std::string etag = whole.Header("etag");
+  ASSERT_FALSE(etag.empty());
+  ASSERT_TRUE(whole.Header("last-modified").empty());  // so no date can validate
+  const auto get = [&](const std::string& if_range) {
+    return HttpGet(port_, base, {{"Range", "bytes=10-19"}, {"If-Range", if_range}});
+  };
+  // The same strong tag: the range (RFC 9110 13.1.5).
+  HttpReply r = get(etag);
+  EXPECT_EQ(r.status, 206u);
+  EXPECT_EQ(r.body, whole.body.substr(10, 10));
+  // Any other validator: the whole representation with 200, as if no Range.
+  for (const std::string& other : {"W/" + etag, std::string("\"0123\""),
+                                  std::string("Sun, 06 Nov 1994 08:49:37 GMT"),
+                                  std::string("not a validator")}) {
+    r = get(other);
+    EXPECT_EQ(r.status, 200u) << other;
+    EXPECT_EQ(r.body, whole.body) << other;
+    EXPECT_TRUE(r.Header("content-range").empty()) << other;
+  }
+  // A failed If-Range also keeps an unsatisfiable range from giving 416.
+  r = HttpGet(port_, base, {{"Range", "bytes=999999999-"}, {"If-Range", "\"other\""}});
+  EXPECT_EQ(r.status, 200u);
+  // If-Range without Range is ignored.
+  r = HttpGet(port_, base, {{"If-Range", etag}});
+  EXPECT_EQ(r.status, 200u);
+  EXPECT_EQ(r.body, whole.body);
+  // If-None-Match is evaluated first (RFC 9110 13.2.2): 304.
+  r = HttpGet(port_, base, {{"Range", "bytes=10-19"}, {"If-Range", etag}, {"If-None-Match", etag}});
+  EXPECT_EQ(r.status, 304u);
 }
 
 TEST_F(ServerHttpTest, ImmutableResourcesAnswerIfNoneMatch) {

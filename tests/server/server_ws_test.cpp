@@ -284,6 +284,54 @@ TEST_F(ServerWsTest, RefinePullsTheNextPacketsOnTheSameConnection) {
   EXPECT_TRUE(none.done->complete());
 }
 
+TEST_F(ServerWsTest, ARefineDuringAStreamGetsItsOwnDone) {
+  const std::string& id = Id("elephant");
+  WsTestClient c(port());
+  ASSERT_TRUE(c.open());
+  // Paced (about 0.3 s) so that the refine arrives while the start streams.
+  ASSERT_TRUE(c.Send(StartMessage(id, "resolution", 6000, 20000)));
+  ASSERT_TRUE(c.Send(RefineMessage(2000)));
+  ASSERT_TRUE(c.Send(RefineMessage(1)));  // selects nothing: still a Done
+  std::vector<proto::ServerMessage> messages;
+  std::vector<proto::Done> dones;
+  while (dones.size() < 3) {
+    auto m = c.Read();
+    ASSERT_TRUE(m.has_value()) << c.error().message();
+    messages.push_back(*m);
+    if (m->has_done()) dones.push_back(m->done());
+  }
+  const HttpReply first = Stream(id, "order=resolution&budget=6000");
+  const uint32_t end1 = std::stoul(first.Header("x-meshwave-next-cursor"));
+  const HttpReply second =
+      Stream(id, "order=resolution&from=" + std::to_string(end1) + "&budget=2000");
+  const uint32_t end2 = std::stoul(second.Header("x-meshwave-next-cursor"));
+  ASSERT_GT(end2, end1);
+  EXPECT_EQ(dones[0].next_cursor(), end1);
+  EXPECT_EQ(dones[1].next_cursor(), end2);
+  EXPECT_EQ(dones[2].next_cursor(), end2);
+  // Each Done follows the last packet of its request, and the packets are
+  // those of /stream then /stream?from=.
+  std::string payloads;
+  uint32_t last_cursor = 0;
+  for (const auto& m : messages) {
+    if (m.has_packet()) {
+      payloads += m.packet().payload();
+      last_cursor = m.packet().cursor() + 1;
+    }
+    if (m.has_done()) {
+      EXPECT_EQ(m.done().next_cursor(), last_cursor);
+    }
+  }
+  ASSERT_TRUE(messages.front().has_start());
+  const auto parsed = ParseContainer(first.body);
+  ASSERT_TRUE(parsed.ok());
+  std::string expected;
+  for (const auto& p : parsed->payloads) expected += p;
+  EXPECT_EQ(payloads, expected + second.body);
+  // Nothing more comes: exactly one Done per request.
+  EXPECT_FALSE(c.Read(std::chrono::milliseconds(300)).has_value());
+}
+
 TEST_F(ServerWsTest, ResumeContinuesAfterAReconnect) {
   const std::string& id = Id("holes");
   uint32_t held = 0;
@@ -344,6 +392,15 @@ TEST_F(ServerWsTest, BadRequestsGetErrorsAndTheConnectionStaysUsable) {
   const auto garbage = c.Read();
   ASSERT_TRUE(garbage && garbage->has_error());
   EXPECT_EQ(garbage->error().code(), proto::Error::BAD_REQUEST);
+  // Invalid UTF-8 in the id or the order: refused like any bad value, and
+  // no protobuf log line per message (the fields are `bytes`).
+  for (int i = 0; i < 5; ++i) {
+    expect_error(StartMessage("\xff\xfe\xc0\x80", "quality"), proto::Error::BAD_REQUEST,
+                 "invalid mesh id");
+    expect_error(StartMessage(id, "qu\xff"
+                                   "ality"), proto::Error::BAD_REQUEST, "unknown order");
+  }
+  EXPECT_EQ(ReadBytes(server_->log()).find("UTF-8"), std::string::npos);
 
   // Still open: a good request works, and a second start while it streams
   // is refused without disturbing it.
@@ -397,6 +454,15 @@ TEST_F(ServerWsTest, UpgradeRefusalsAreHttpErrors) {
   WsTestClient query(port(), "/v1/ws?x=1");
   EXPECT_FALSE(query.open());
   EXPECT_EQ(query.status(), 400u);
+  // Path rules: only /v1/ws; a trailing '/' or a malformed path is another
+  // path (404), any query 400.
+  for (const char* target : {"/v1/ws/", "/v1//ws", "/v1/ws/..", "/v1/ws%2f"}) {
+    WsTestClient other(port(), target);
+    EXPECT_FALSE(other.open()) << target;
+    EXPECT_EQ(other.status(), 404u) << target;
+  }
+  WsTestClient bad_query(port(), "/v1/ws?%zz");
+  EXPECT_EQ(bad_query.status(), 400u);
   EXPECT_EQ(HttpGet(port(), "/v1/ws").status, 426u);  // no upgrade
 
   auto limited = StartServer("limited", "max_websocket_sessions: 2\n");
@@ -427,6 +493,38 @@ TEST_F(ServerWsTest, UpgradeRefusalsAreHttpErrors) {
   EXPECT_TRUE(again.open());
 }
 
+TEST_F(ServerWsTest, HandshakeRefusalsAreJsonErrors) {
+  const std::vector<std::pair<std::string, std::string>> upgrade = {
+      {"Connection", "Upgrade"},
+      {"Upgrade", "websocket"},
+      {"Sec-WebSocket-Key", "dGhlIHNhbXBsZSBub25jZQ=="}};
+  const auto with = [&](std::vector<std::pair<std::string, std::string>> extra) {
+    auto h = upgrade;
+    h.insert(h.end(), extra.begin(), extra.end());
+    return h;
+  };
+  const auto is_json_error = [](const HttpReply& r) {
+    return r.Header("content-type") == "application/json" &&
+           r.body.starts_with("{\"error\": \"") && r.Header("cache-control") == "no-store";
+  };
+  // Refused by Beast's handshake checks (no longer its plain text).
+  HttpReply r = HttpGet(port(), "/v1/ws", with({{"Sec-WebSocket-Version", "12"}}));
+  EXPECT_EQ(r.status, 426u);
+  EXPECT_EQ(r.Header("sec-websocket-version"), "13");
+  EXPECT_TRUE(is_json_error(r)) << r.body;
+  EXPECT_NE(r.body.find("WebSocket handshake refused"), std::string::npos) << r.body;
+  r = HttpGet(port(), "/v1/ws", {{"Connection", "Upgrade"}, {"Upgrade", "websocket"},
+                                 {"Sec-WebSocket-Version", "13"}});  // no key
+  EXPECT_EQ(r.status, 400u);
+  EXPECT_TRUE(is_json_error(r)) << r.body;
+  // Refused by the server's own checks.
+  for (const char* target : {"/v1/ws/", "/v1/ws?x=1"}) {
+    r = HttpGet(port(), target, with({{"Sec-WebSocket-Version", "13"}}));
+    EXPECT_TRUE(is_json_error(r)) << target << ": " << r.body;
+  }
+  EXPECT_EQ(HttpGet(port(), "/healthz").status, 200u);
+}
+
 TEST_F(ServerWsTest, KeepAlivePingsHoldAnAnsweringClientAndDropASilentOne) {
   // Pings after 1 s without a frame from the client, closes after 2 s.
   auto server = StartServer("pings", "websocket_ping_seconds: 1\n");
@@ -442,9 +540,32 @@ TEST_F(ServerWsTest, KeepAlivePingsHoldAnAnsweringClientAndDropASilentOne) {
   ASSERT_TRUE(r.done.has_value());
   EXPECT_EQ(r.Container(),
             Stream(Id("holes"), "order=quality&budget=4000").body);
-  // The silent one never read, so never answered: the server dropped it.
+  // The silent one never read, so never answered: the server closed it
+  // with a close frame (1008) that waits in its socket. (The server has
+  // dropped the socket a second after that unanswered close, so answering
+  // it now may fail with a broken pipe: the code received is what counts.)
   EXPECT_FALSE(silent.Read(std::chrono::milliseconds(2000)).has_value());
   EXPECT_NE(silent.error(), beast::error::timeout) << silent.error().message();
+  EXPECT_EQ(silent.close_reason().code, websocket::close_code::policy_error);
+  const auto& reason = silent.close_reason().reason;
+  EXPECT_EQ(std::string(reason.data(), reason.size()), "keep-alive pings unanswered");
+  EXPECT_NE(ReadBytes(server->log()).find("no answer to keep-alive pings"), std::string::npos);
+}
+
+TEST_F(ServerWsTest, AClientThatNeverAnswersTheCloseLosesTheSocket) {
+  // The close frame goes; without an answer within a ping period the
+  // connection is dropped anyway (the session count falls to 0).
+  auto server = StartServer("close_unanswered", "websocket_ping_seconds: 1\n");
+  ASSERT_TRUE(server->running()) << ReadBytes(server->log());
+  WsTestClient silent(server->port());
+  ASSERT_TRUE(silent.open());
+  std::string body;
+  for (int i = 0; i < 100; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    body = HttpGet(server->port(), "/metrics").body;
+    if (body.find("meshwave_websocket_connections 0\n") != std::string::npos) break;
+  }
+  EXPECT_NE(body.find("meshwave_websocket_connections 0\n"), std::string::npos) << body;
 }
 
 TEST_F(ServerWsTest, ShutdownClosesSessionsWithGoingAway) {

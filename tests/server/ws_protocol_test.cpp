@@ -2,6 +2,7 @@
 // the server writes in front of a payload without copying it.
 #include "ws_protocol.h"
 
+#include <google/protobuf/stubs/logging.h>
 #include <gtest/gtest.h>
 
 #include "stream_query.h"
@@ -128,6 +129,71 @@ TEST(WsProtocolTest, RejectsBadIdsOrdersAndNumbers) {
   resume.mutable_resume()->set_mesh_id("ABCDEF012345");
   EXPECT_NE(ErrorOf(Serialize(resume)).find("invalid mesh id"),
             std::string::npos);
+}
+
+TEST(WsProtocolTest, PacingHasAMinimumRate) {
+  proto::ClientMessage m = Start();
+  for (uint64_t rate : {uint64_t{1}, kMinRate - 1}) {
+    m.mutable_start()->set_rate(rate);
+    EXPECT_NE(ErrorOf(Serialize(m)).find("below the minimum of 1024 bytes per second"),
+              std::string::npos)
+        << rate;
+  }
+  for (uint64_t rate : {uint64_t{0}, kMinRate}) {
+    m.mutable_start()->set_rate(rate);
+    auto r = ParseClientMessage(Serialize(m), {});
+    ASSERT_TRUE(r.ok()) << rate;
+    EXPECT_EQ(r->rate, rate);
+  }
+  proto::ClientMessage resume;
+  resume.mutable_resume()->set_mesh_id(kId);
+  resume.mutable_resume()->set_rate(10);
+  EXPECT_NE(ErrorOf(Serialize(resume)).find("below the minimum"), std::string::npos);
+}
+
+// Counts protobuf's own log lines while alive.
+class ProtobufLogCounter {
+ public:
+  ProtobufLogCounter() {
+    count_ = 0;
+    previous_ = google::protobuf::SetLogHandler(
+        [](google::protobuf::LogLevel, const char*, int, const std::string&) { ++count_; });
+  }
+  ~ProtobufLogCounter() { google::protobuf::SetLogHandler(previous_); }
+  int count() const { return count_; }
+
+ private:
+  static inline int count_ = 0;
+  google::protobuf::LogHandler* previous_;
+};
+
+TEST(WsProtocolTest, InvalidUtf8IsRefusedWithoutALogLine) {
+  const std::string bad_utf8 = "\xff\xfe\xc0\x80"
+                               "abcdefgh";
+  ProtobufLogCounter logs;
+  // The counter sees what protobuf logs for invalid UTF-8 in a `string`
+  // field (Error.message is one)...
+  proto::ServerMessage error;
+  error.mutable_error()->set_message("x");
+  std::string bytes = error.SerializeAsString();
+  bytes.back() = '\xff';
+  proto::ServerMessage parsed;
+  EXPECT_FALSE(parsed.ParseFromString(bytes));
+  ASSERT_EQ(logs.count(), 1);
+  // ...and client messages, whose ids and orders are `bytes`, log nothing:
+  // the checks of the values refuse them.
+  for (int i = 0; i < 3; ++i) {
+    proto::ClientMessage m = Start();
+    m.mutable_start()->set_mesh_id(bad_utf8);
+    EXPECT_NE(ErrorOf(Serialize(m)).find("invalid mesh id"), std::string::npos);
+    m = Start();
+    m.mutable_start()->set_order(bad_utf8);
+    EXPECT_NE(ErrorOf(Serialize(m)).find("unknown order '????abcdefgh'"), std::string::npos);
+    proto::ClientMessage resume;
+    resume.mutable_resume()->set_mesh_id(bad_utf8);
+    EXPECT_NE(ErrorOf(Serialize(resume)).find("invalid mesh id"), std::string::npos);
+  }
+  EXPECT_EQ(logs.count(), 1);
 }
 
 TEST(WsProtocolTest, PacketPrefixPlusPayloadIsTheSerializedMessage) {
