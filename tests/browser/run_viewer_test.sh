@@ -11,6 +11,11 @@ if [[ ! -x /usr/bin/chromium ]]; then
   echo "SKIP: /usr/bin/chromium not installed (bash deploy/install-deps.sh installs Debian's chromium)"
   exit 77
 fi
+if [[ -z $decoder || ! -f $decoder ]]; then
+  echo "SKIP: the WebAssembly decoder module is not built (${decoder:-no path given}): configure with" \
+    "-DMESHWAVE_DECODER_JS=PATH/meshwave_decoder.js"
+  exit 77
+fi
 command -v node > /dev/null || { echo "FAIL: node not found (bash deploy/install-deps.sh)" >&2; exit 1; }
 modules=$(bash "$here/../../web/npm_ci.sh" "$work/npm")
 exec node "$here/viewer_test.mjs" --server "$server" --cli "$cli" --decoder "$decoder" \
