@@ -8,6 +8,7 @@
 //  2. A corrupt packet (a test proxy inside the browser flips payload bytes):
 //     a readable error, the last good mesh still drawn, the page answering.
 //  3. The socket closed by the server mid-stream: the same.
+//  4. Error colours against the complete stream: a 6 KiB prefix shows them.
 // Screenshots are kept in the artefacts directory.
 //
 // node viewer_test.mjs --server BIN --cli BIN --decoder meshwave_decoder.js
@@ -202,6 +203,34 @@ try {
     assert.ok(Math.abs(cmp.drawnB - cmp.drawn) < cmp.drawn * 0.3, 'the same view, refined');
     const first_ms = await page.evaluate(() => Number(document.getElementById('r-first').dataset.value));
     assert.ok(first_ms > 0, 'time to first mesh shown');
+    assert.deepEqual(errors, [], 'console errors');
+    await page.close();
+  });
+
+  await test('error colours against the complete stream', async () => {
+    const errors = [];
+    const page = await openViewer(errors);
+    await streamAndWait(page);
+    const plain = await shot(page, 'viewer_plain_6KiB.png');
+    await page.check('#errors');
+    await page.waitForFunction(() => document.getElementById('status').textContent.startsWith('error colours:'));
+    const coloured = await shot(page, 'viewer_error_colours_6KiB.png');
+    const warm = await page.evaluate(async ([a64, b64]) => {
+      const pixels = async (b64) => {
+        const img = new Image();
+        img.src = `data:image/png;base64,${b64}`;
+        await img.decode();
+        const c = new OffscreenCanvas(img.width, img.height);
+        c.getContext('2d').drawImage(img, 0, 0);
+        return c.getContext('2d').getImageData(0, 0, img.width, img.height).data;
+      };
+      // Yellow to red: red well above blue; the plain grey never is.
+      const count = (p) => { let n = 0; for (let i = 0; i < p.length; i += 4) if (p[i] > p[i + 2] + 60) ++n; return n; };
+      return [count(await pixels(a64)), count(await pixels(b64))];
+    }, [plain.toString('base64'), coloured.toString('base64')]);
+    console.log(`  warm pixels: ${warm[0]} plain, ${warm[1]} with error colours`);
+    assert.equal(warm[0], 0, 'the plain mesh has no error colour');
+    assert.ok(warm[1] > 100, 'a 6 KiB prefix differs visibly from the complete stream');
     assert.deepEqual(errors, [], 'console errors');
     await page.close();
   });

@@ -125,7 +125,7 @@ async function ensureReference() {
     const decoder = await fetchComplete(mw, wsUrl, meshId, order);
     if (reference.meshId !== meshId) return decoder.delete();
     reference.decoder = decoder;
-    status('error colours: white = as the complete stream, red ≥ 0.5 % of the diagonal');
+    status('error colours: grey = as the complete stream, red ≥ 0.5 % of the diagonal away');
     draw(false);
   } catch (e) {
     reference = null;
