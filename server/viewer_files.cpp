@@ -18,7 +18,9 @@ constexpr std::string_view kPrefix = "/viewer";
 // bigger one is not ours.
 constexpr uintmax_t kMaxFileBytes = 16u << 20;
 
-std::string_view PathOf(std::string_view target) { return target.substr(0, target.find('?')); }
+std::string_view PathOf(std::string_view target) {
+  return target.substr(0, target.find('?'));
+}
 
 Response Redirect(std::string location) {
   Response r{http::status::moved_permanently, 11};
@@ -27,7 +29,8 @@ Response Redirect(std::string location) {
   return r;
 }
 
-bool Inside(const std::filesystem::path& root, const std::filesystem::path& file) {
+bool Inside(const std::filesystem::path& root,
+            const std::filesystem::path& file) {
   auto r = root.begin();
   auto f = file.begin();
   for (; r != root.end(); ++r, ++f) {
@@ -40,21 +43,23 @@ bool Inside(const std::filesystem::path& root, const std::filesystem::path& file
 
 bool IsViewerTarget(std::string_view target) {
   const std::string_view path = PathOf(target);
-  return path == kPrefix || (path.starts_with(kPrefix) && path[kPrefix.size()] == '/');
+  return path == kPrefix ||
+         (path.starts_with(kPrefix) && path[kPrefix.size()] == '/');
 }
 
 std::string_view ViewerContentType(const std::filesystem::path& file) {
-  static constexpr std::array<std::pair<std::string_view, std::string_view>, 9> kTypes = {{
-      {".html", "text/html; charset=utf-8"},
-      {".js", "text/javascript; charset=utf-8"},
-      {".mjs", "text/javascript; charset=utf-8"},
-      {".css", "text/css; charset=utf-8"},
-      {".wasm", "application/wasm"},
-      {".json", "application/json"},
-      {".png", "image/png"},
-      {".svg", "image/svg+xml"},
-      {".txt", "text/plain; charset=utf-8"},
-  }};
+  static constexpr std::array<std::pair<std::string_view, std::string_view>, 9>
+      kTypes = {{
+          {".html", "text/html; charset=utf-8"},
+          {".js", "text/javascript; charset=utf-8"},
+          {".mjs", "text/javascript; charset=utf-8"},
+          {".css", "text/css; charset=utf-8"},
+          {".wasm", "application/wasm"},
+          {".json", "application/json"},
+          {".png", "image/png"},
+          {".svg", "image/svg+xml"},
+          {".txt", "text/plain; charset=utf-8"},
+      }};
   const std::string ext = file.extension().string();
   for (const auto& [e, type] : kTypes) {
     if (ext == e) return type;
@@ -66,7 +71,8 @@ std::filesystem::path DefaultViewerDir() {
   std::error_code ec;
   const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
   if (!ec) {
-    const auto installed = exe.parent_path().parent_path() / "share" / "meshwave" / "viewer";
+    const auto installed =
+        exe.parent_path().parent_path() / "share" / "meshwave" / "viewer";
     if (std::filesystem::is_directory(installed, ec)) return installed;
   }
   return MESHWAVE_BUILD_VIEWER_DIR;
@@ -76,13 +82,15 @@ Response ServeViewerFile(const ServerContext& ctx, const Request& req) {
   const std::string_view target = req.target();
   const std::string_view path = PathOf(target);
   if (req.method() != http::verb::get && req.method() != http::verb::head) {
-    Response r = JsonError(http::status::method_not_allowed, "method not allowed here");
+    Response r =
+        JsonError(http::status::method_not_allowed, "method not allowed here");
     r.set(http::field::allow, "GET, HEAD");
     return r;
   }
   // Relative links in index.html need the trailing slash.
   if (path == kPrefix) return Redirect("/viewer/");
-  const std::string_view rest = path.substr(kPrefix.size());  // "/", "/viewer.js", ...
+  const std::string_view rest =
+      path.substr(kPrefix.size());  // "/", "/viewer.js", ...
   std::vector<std::string> segments;
   if (rest != "/") {
     // The same checks as every other target: no "..", no encoded slash.
@@ -93,23 +101,28 @@ Response ServeViewerFile(const ServerContext& ctx, const Request& req) {
   if (segments.empty()) segments.push_back("index.html");
 
   std::error_code ec;
-  const std::filesystem::path root = std::filesystem::canonical(ctx.config().viewer_dir(), ec);
+  const std::filesystem::path root =
+      std::filesystem::canonical(ctx.config().viewer_dir(), ec);
   if (ec) {
-    return JsonError(http::status::not_found,
-                     "the viewer is not installed here (meshwave-server --viewer-dir DIR)");
+    return JsonError(
+        http::status::not_found,
+        "the viewer is not installed here (meshwave-server --viewer-dir DIR)");
   }
   std::filesystem::path file = root;
   for (const auto& s : segments) file /= s;
   file = std::filesystem::canonical(file, ec);
-  if (ec || !Inside(root, file) || !std::filesystem::is_regular_file(file, ec)) {
+  if (ec || !Inside(root, file) ||
+      !std::filesystem::is_regular_file(file, ec)) {
     return JsonError(http::status::not_found, "no such viewer file");
   }
   const uintmax_t size = std::filesystem::file_size(file, ec);
-  if (ec || size > kMaxFileBytes) return JsonError(http::status::not_found, "no such viewer file");
+  if (ec || size > kMaxFileBytes)
+    return JsonError(http::status::not_found, "no such viewer file");
   std::string body(static_cast<size_t>(size), '\0');
   std::ifstream in(file, std::ios::binary);
   if (!in.read(body.data(), static_cast<std::streamsize>(body.size()))) {
-    return JsonError(http::status::internal_server_error, "cannot read a viewer file");
+    return JsonError(http::status::internal_server_error,
+                     "cannot read a viewer file");
   }
 
   const std::string etag = StrongEtag(Sha256Hex(body), "");

@@ -30,7 +30,8 @@ class ServerViewerTest : public ::testing::Test {
  protected:
   void SetUp() override {
     viewer_ = tmp_ / "viewer";
-    WriteFile(viewer_ / "index.html", "<!doctype html><title>test viewer</title>\n");
+    WriteFile(viewer_ / "index.html",
+              "<!doctype html><title>test viewer</title>\n");
     WriteFile(viewer_ / "app.js", "export const x = 1;\n");
     WriteFile(viewer_ / "style.css", "body { margin: 0; }\n");
     WriteFile(viewer_ / "decoder.wasm", std::string("\0asm\1\0\0\0", 8));
@@ -39,9 +40,9 @@ class ServerViewerTest : public ::testing::Test {
     WriteFile(tmp_ / "secret.txt", "outside the viewer");
     std::filesystem::create_symlink(tmp_ / "secret.txt", viewer_ / "link.txt");
     std::filesystem::create_directories(tmp_ / "work");
-    server_ = std::make_unique<ServerProcess>(tmp_ / "catalog", tmp_ / "work",
-                                              std::vector<std::string>{},
-                                              std::vector<std::string>{"--viewer-dir", viewer_.string()});
+    server_ = std::make_unique<ServerProcess>(
+        tmp_ / "catalog", tmp_ / "work", std::vector<std::string>{},
+        std::vector<std::string>{"--viewer-dir", viewer_.string()});
     ASSERT_TRUE(server_->running()) << ReadBytes(server_->log());
     port_ = server_->port();
   }
@@ -64,14 +65,19 @@ TEST_F(ServerViewerTest, ServesFilesWithTheirContentType) {
     const char* type;
     std::string body;
   } cases[] = {
-      {"/viewer/", "text/html; charset=utf-8", ReadBytes(viewer_ / "index.html")},
-      {"/viewer/index.html", "text/html; charset=utf-8", ReadBytes(viewer_ / "index.html")},
-      {"/viewer/app.js", "text/javascript; charset=utf-8", "export const x = 1;\n"},
+      {"/viewer/", "text/html; charset=utf-8",
+       ReadBytes(viewer_ / "index.html")},
+      {"/viewer/index.html", "text/html; charset=utf-8",
+       ReadBytes(viewer_ / "index.html")},
+      {"/viewer/app.js", "text/javascript; charset=utf-8",
+       "export const x = 1;\n"},
       {"/viewer/style.css", "text/css; charset=utf-8", "body { margin: 0; }\n"},
-      {"/viewer/decoder.wasm", "application/wasm", std::string("\0asm\1\0\0\0", 8)},
+      {"/viewer/decoder.wasm", "application/wasm",
+       std::string("\0asm\1\0\0\0", 8)},
       {"/viewer/data.bin", "application/octet-stream", "raw"},
       {"/viewer/sub/deep.js", "text/javascript; charset=utf-8", "// deep\n"},
-      {"/viewer/app.js?v=2", "text/javascript; charset=utf-8", "export const x = 1;\n"},
+      {"/viewer/app.js?v=2", "text/javascript; charset=utf-8",
+       "export const x = 1;\n"},
   };
   for (const auto& c : cases) {
     SCOPED_TRACE(c.target);
@@ -94,15 +100,21 @@ TEST_F(ServerViewerTest, IsCacheableAndRevalidatedWithTheEtag) {
   const std::string etag = first.Header("etag");
   ASSERT_EQ(etag.size(), 66u) << etag;  // "<sha256 hex>"
   EXPECT_EQ(first.Header("cache-control"), "no-cache");
-  const HttpReply again = HttpGet(port_, "/viewer/app.js", {{"If-None-Match", etag}});
+  const HttpReply again =
+      HttpGet(port_, "/viewer/app.js", {{"If-None-Match", etag}});
   EXPECT_EQ(again.status, 304u);
   EXPECT_TRUE(again.body.empty());
   EXPECT_EQ(again.Header("etag"), etag);
-  EXPECT_EQ(HttpGet(port_, "/viewer/app.js", {{"If-None-Match", "W/" + etag}}).status, 304u);
-  EXPECT_EQ(HttpGet(port_, "/viewer/app.js", {{"If-None-Match", "\"other\""}}).status, 200u);
+  EXPECT_EQ(
+      HttpGet(port_, "/viewer/app.js", {{"If-None-Match", "W/" + etag}}).status,
+      304u);
+  EXPECT_EQ(
+      HttpGet(port_, "/viewer/app.js", {{"If-None-Match", "\"other\""}}).status,
+      200u);
   // A changed file gets a new tag: a browser never keeps a stale page.
   WriteFile(viewer_ / "app.js", "export const x = 2;\n");
-  const HttpReply changed = HttpGet(port_, "/viewer/app.js", {{"If-None-Match", etag}});
+  const HttpReply changed =
+      HttpGet(port_, "/viewer/app.js", {{"If-None-Match", etag}});
   EXPECT_EQ(changed.status, 200u);
   EXPECT_EQ(changed.body, "export const x = 2;\n");
   EXPECT_NE(changed.Header("etag"), etag);
@@ -118,8 +130,9 @@ TEST_F(ServerViewerTest, AnswersHeadWithoutABody) {
 }
 
 TEST_F(ServerViewerTest, MissingFilesAre404) {
-  for (const char* target : {"/viewer/nothing.js", "/viewer/sub", "/viewer/sub/none/x.js",
-                             "/viewerx", "/viewer/index.html/x"}) {
+  for (const char* target :
+       {"/viewer/nothing.js", "/viewer/sub", "/viewer/sub/none/x.js",
+        "/viewerx", "/viewer/index.html/x"}) {
     SCOPED_TRACE(target);
     const HttpReply r = HttpGet(port_, target);
     EXPECT_EQ(r.status, 404u);
@@ -129,9 +142,10 @@ TEST_F(ServerViewerTest, MissingFilesAre404) {
 
 TEST_F(ServerViewerTest, RefusesTraversal) {
   // Malformed targets: 400 from the request-target parser.
-  for (const char* target : {"/viewer/../secret.txt", "/viewer/%2e%2e/secret.txt",
-                             "/viewer/sub/..%2f..%2fsecret.txt", "/viewer/sub%5c..%5csecret.txt",
-                             "/viewer/./app.js", "/viewer//app.js", "/viewer/sub/"}) {
+  for (const char* target :
+       {"/viewer/../secret.txt", "/viewer/%2e%2e/secret.txt",
+        "/viewer/sub/..%2f..%2fsecret.txt", "/viewer/sub%5c..%5csecret.txt",
+        "/viewer/./app.js", "/viewer//app.js", "/viewer/sub/"}) {
     SCOPED_TRACE(target);
     const HttpReply r = HttpGet(port_, target);
     EXPECT_EQ(r.status, 400u);
@@ -159,23 +173,29 @@ TEST(ServerViewerDefaultTest, ServesTheBuildTreesViewer) {
   std::filesystem::create_directories(tmp / "work");
   ServerProcess server(tmp / "catalog", tmp / "work");
   ASSERT_TRUE(server.running()) << ReadBytes(server.log());
-  const std::filesystem::path source = std::filesystem::path(MESHWAVE_SAMPLE_DATA).parent_path() / "web" / "viewer";
+  const std::filesystem::path source =
+      std::filesystem::path(MESHWAVE_SAMPLE_DATA).parent_path() / "web" /
+      "viewer";
   const HttpReply index = HttpGet(server.port(), "/viewer/");
   EXPECT_EQ(index.status, 200u);
   EXPECT_EQ(index.body, ReadBytes(source / "index.html"));
-  const HttpReply three = HttpGet(server.port(), "/viewer/vendor/three/three.module.js");
+  const HttpReply three =
+      HttpGet(server.port(), "/viewer/vendor/three/three.module.js");
   EXPECT_EQ(three.status, 200u);
   EXPECT_EQ(three.Header("content-type"), "text/javascript; charset=utf-8");
-  EXPECT_EQ(three.body, ReadBytes(source / "vendor" / "three" / "three.module.js"));
+  EXPECT_EQ(three.body,
+            ReadBytes(source / "vendor" / "three" / "three.module.js"));
   EXPECT_EQ(server.Stop(), 0);
 }
 
 // The config file's viewer_dir, and a directory that does not exist.
-TEST(ServerViewerDefaultTest, TakesTheConfigFieldAndSaysWhenTheViewerIsMissing) {
+TEST(ServerViewerDefaultTest,
+     TakesTheConfigFieldAndSaysWhenTheViewerIsMissing) {
   TempDir tmp;
   std::filesystem::create_directories(tmp / "work");
   WriteFile(tmp / "mine" / "index.html", "mine");
-  WriteFile(tmp / "server.conf", "viewer_dir: \"" + (tmp / "mine").string() + "\"\n");
+  WriteFile(tmp / "server.conf",
+            "viewer_dir: \"" + (tmp / "mine").string() + "\"\n");
   {
     ServerProcess server(tmp / "catalog", tmp / "work", {},
                          {"--config", (tmp / "server.conf").string()});

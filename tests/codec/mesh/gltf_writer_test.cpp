@@ -64,7 +64,8 @@ Glb SplitGlb(const std::string& glb) {
 }
 
 std::string Base64Decode(const std::string& text) {
-  const std::string digits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  const std::string digits =
+      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
   std::string out;
   uint32_t acc = 0;
   int bits = 0;
@@ -86,29 +87,43 @@ TEST(GltfWriterTest, GlbHoldsOneIndexedTrianglePrimitive) {
   TriMesh mesh = testing::Tetrahedron();
   mesh.positions[3] = Vec3(-0.5, 2.25, 1e-3);
   const Glb glb = SplitGlb(SerializeGltf(mesh, GltfForm::kBinary));
-  EXPECT_THAT(glb.json, StartsWith(R"({"asset":{"version":"2.0","generator":"meshwave"})"));
-  EXPECT_THAT(glb.json, HasSubstr(R"("scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}])"));
-  EXPECT_THAT(glb.json, HasSubstr(
-      R"("primitives":[{"attributes":{"POSITION":0},"indices":1,"mode":4}])"));
+  EXPECT_THAT(
+      glb.json,
+      StartsWith(R"({"asset":{"version":"2.0","generator":"meshwave"})"));
+  EXPECT_THAT(
+      glb.json,
+      HasSubstr(R"("scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}])"));
+  EXPECT_THAT(
+      glb.json,
+      HasSubstr(
+          R"("primitives":[{"attributes":{"POSITION":0},"indices":1,"mode":4}])"));
   // Positions: FLOAT (5126) VEC3 with the data's bounds; indices:
   // UNSIGNED_INT (5125) SCALAR, three per face.
-  EXPECT_THAT(glb.json, HasSubstr(R"({"bufferView":0,"componentType":5126,"count":4,)"
-                                  R"("type":"VEC3","min":[-0.5,0,0],"max":[1,2.25,0.0010000000474974513]})"));
-  EXPECT_THAT(glb.json, HasSubstr(
-      R"({"bufferView":1,"componentType":5125,"count":12,"type":"SCALAR"})"));
+  EXPECT_THAT(
+      glb.json,
+      HasSubstr(
+          R"({"bufferView":0,"componentType":5126,"count":4,)"
+          R"("type":"VEC3","min":[-0.5,0,0],"max":[1,2.25,0.0010000000474974513]})"));
+  EXPECT_THAT(
+      glb.json,
+      HasSubstr(
+          R"({"bufferView":1,"componentType":5125,"count":12,"type":"SCALAR"})"));
   EXPECT_THAT(glb.json, HasSubstr(R"("buffers":[{"byteLength":96}])"));
   EXPECT_THAT(glb.json, Not(HasSubstr("uri")));
   // Space padding after the JSON, nothing else.
-  EXPECT_THAT(glb.json.substr(0, glb.json.find_last_not_of(' ') + 1), EndsWith("}"));
+  EXPECT_THAT(glb.json.substr(0, glb.json.find_last_not_of(' ') + 1),
+              EndsWith("}"));
 
   ASSERT_EQ(glb.bin.size(), 4 * 12 + 4 * 12u);
   for (size_t v = 0; v < 4; ++v) {
     for (int a = 0; a < 3; ++a) {
-      EXPECT_EQ(F32(glb.bin, v * 12 + a * 4), static_cast<float>(mesh.positions[v][a]));
+      EXPECT_EQ(F32(glb.bin, v * 12 + a * 4),
+                static_cast<float>(mesh.positions[v][a]));
     }
   }
   for (size_t f = 0; f < 4; ++f) {
-    for (int c = 0; c < 3; ++c) EXPECT_EQ(U32(glb.bin, 48 + f * 12 + c * 4), mesh.faces[f][c]);
+    for (int c = 0; c < 3; ++c)
+      EXPECT_EQ(U32(glb.bin, 48 + f * 12 + c * 4), mesh.faces[f][c]);
   }
 }
 
@@ -126,7 +141,8 @@ TEST(GltfWriterTest, GltfEmbedsTheGlbBufferAsBase64) {
   // The same JSON otherwise.
   std::string without = gltf;
   without.erase(at - 1, prefix.size() + encoded.size() + 2);
-  EXPECT_EQ(without, glb.json.substr(0, glb.json.find_last_not_of(' ') + 1) + "\n");
+  EXPECT_EQ(without,
+            glb.json.substr(0, glb.json.find_last_not_of(' ') + 1) + "\n");
 }
 
 TEST(GltfWriterTest, AMeshWithoutFacesIsAnEmptyScene) {
@@ -156,7 +172,8 @@ TEST(GltfWriterTest, WriteMeshChoosesGltfByExtension) {
   // Written only: reading one back is refused with the formats read.
   const Result<TriMesh> back = ReadMesh(dir / "t.glb");
   EXPECT_EQ(back.status().code(), StatusCode::kInvalidArgument);
-  EXPECT_THAT(back.status().message(), HasSubstr("expected .ply, .obj or .off"));
+  EXPECT_THAT(back.status().message(),
+              HasSubstr("expected .ply, .obj or .off"));
   const Status unknown = WriteMesh(mesh, dir / "t.stl");
   EXPECT_EQ(unknown.code(), StatusCode::kInvalidArgument);
   EXPECT_THAT(unknown.message(), HasSubstr("write .ply, .obj, .glb or .gltf"));
