@@ -28,6 +28,7 @@ test=(
   ccache                       # tools/compiler_cache.sh: a clone rebuilds only what changed
   emscripten                   # the WebAssembly decoder (web/build_decoder.sh) and its test
   python3-websockets python3-protobuf  # tests/interop: the Python client written from the docs
+  chromium                     # the viewer's browser test (tests/browser), headless
 )
 
 case "${1:-all}" in
@@ -36,8 +37,9 @@ case "${1:-all}" in
   *) echo "usage: install-deps.sh [build|all]" >&2; exit 2 ;;
 esac
 
-# Kubernetes manifest validation (tests/deploy/validate_manifests.sh) runs
-# on Node.js. One from elsewhere (NodeSource's bundles npm) serves as well as
+# Kubernetes manifest validation (tests/deploy/validate_manifests.sh), the
+# viewer's browser test and the glTF validation run on Node.js; their npm
+# packages are pinned by lockfiles and installed by the tests (web/npm_ci.sh). One from elsewhere (NodeSource's bundles npm) serves as well as
 # Debian's, and Debian's npm would not install beside it.
 if [[ ${1:-all} = all ]] && ! { command -v node && command -v npm; } > /dev/null; then
   packages+=(nodejs npm)

@@ -7,6 +7,7 @@
 #include "request_target.h"
 #include "response.h"
 #include "upload_handler.h"
+#include "viewer_files.h"
 
 namespace meshwave::server {
 namespace {
@@ -105,6 +106,7 @@ HeaderDecision InspectHeader(const ServerContext& ctx, const http::request_heade
 
 void HandleRequest(ServerContext& ctx, Request req, std::function<void(Response)> done) {
   try {
+    if (IsViewerTarget(req.target())) return done(ServeViewerFile(ctx, req));
     auto target = ParseRequestTarget(req.target());
     if (!target.ok()) return done(StatusError(target.status()));
     // Checked again here so that no caller can skip InspectHeader's check.

@@ -21,7 +21,8 @@ int Fail(const std::string& what, const Status& s) {
 }
 
 int Serve(const std::string& catalog, const std::string& store, const std::string& listen,
-          const std::string& config_path, unsigned threads, const std::string& port_file) {
+          const std::string& config_path, unsigned threads, const std::string& port_file,
+          const std::string& viewer_dir) {
   ServeOptions options;
   options.catalog = catalog;
   options.store = store;
@@ -33,6 +34,7 @@ int Serve(const std::string& catalog, const std::string& store, const std::strin
   }
   if (!listen.empty()) options.config.set_listen(listen);
   if (threads > 0) options.config.set_threads(threads);
+  if (!viewer_dir.empty()) options.config.set_viewer_dir(viewer_dir);
   if (Status s = FinishServerConfig(options.config); !s.ok()) return Fail("", s);
   if (Status s = RunServer(options); !s.ok()) return Fail("", s);
   return 0;
@@ -85,7 +87,7 @@ int Ingest(const IngestOptions& o) {
 int main(int argc, char** argv) {
   using namespace meshwave::server;
   CLI::App app{"meshwave-server: streams progressive meshes over HTTP from a catalog"};
-  std::string catalog, store, listen, config, port_file, log_level = "info";
+  std::string catalog, store, listen, config, port_file, viewer_dir, log_level = "info";
   unsigned threads = 0;
   app.add_option("--catalog", catalog, "Catalog: a directory (SQLite, created when missing) or "
                                        "postgres://USER@HOST:PORT/DB (password from PGPASSWORD)")
@@ -98,6 +100,9 @@ int main(int argc, char** argv) {
   app.add_option("--config", config, "Configuration file (protobuf text format, docs/API.md)");
   app.add_option("--threads", threads, "I/O threads (default 2)")->check(CLI::Range(1, 256));
   app.add_option("--port-file", port_file, "Write the bound port to this file");
+  app.add_option("--viewer-dir", viewer_dir,
+                 "Directory of the browser viewer served under /viewer/ (default: the installed "
+                 "share/meshwave/viewer, else the build tree's copy)");
   app.add_option("--log-level", log_level, "trace, debug, info, warn, error")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error"}))
       ->capture_default_str();
@@ -136,5 +141,5 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "meshwave-server: --catalog is required (see --help)\n");
     return 2;
   }
-  return Serve(catalog, store, listen, config, threads, port_file);
+  return Serve(catalog, store, listen, config, threads, port_file, viewer_dir);
 }

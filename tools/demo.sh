@@ -4,7 +4,9 @@
 # compare), then starts meshwave-server on an embedded default catalog
 # (SQLite, in a temporary directory) holding the sample meshes, and streams
 # one with the client: a fetch at a budget, then two refinements that pull
-# only the next packets.
+# only the next packets. It prints the browser viewer's URL
+# (http://127.0.0.1:PORT/viewer/) and, run from a terminal, keeps the server
+# up until Enter.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash deploy/install-deps.sh
@@ -41,6 +43,9 @@ for budget in 6000 8000 10000; do
   $cli compare data/holes.off "$out/holes_$budget.ply" | grep -E "vertex (matching|rms)"
 done
 echo
+echo "== meshwave decode holes.mwv holes.glb (glTF 2.0, by the extension)"
+$cli decode "$out/holes.mwv" "$out/holes.glb" --budget 8000
+echo
 echo "== meshwave decode holes.mwv --order resolution --max-level 1 (a smaller mesh)"
 $cli decode "$out/holes.mwv" "$out/holes_level1.ply" --order resolution --max-level 1
 
@@ -56,6 +61,7 @@ for _ in $(seq 100); do [[ -s $out/port ]] && break; sleep 0.1; done
 [[ -s $out/port ]] || { cat "$out/server.log"; echo "server did not start" >&2; exit 1; }
 url=http://127.0.0.1:$(cat "$out/port")
 echo "serving at $url"
+echo "the viewer: open $url/viewer/ in a browser (catalog, streaming, refine)"
 echo
 echo "== meshwave catalog $url"
 $cli catalog "$url"
@@ -69,4 +75,8 @@ for more in 2000 4000; do
   $cli refine "$out/e.mwv" --more "$more" --reference data/elephant.off
 done
 echo
+if [[ -t 0 ]]; then
+  echo "== the viewer is at $url/viewer/ — press Enter to stop the server"
+  read -r
+fi
 echo "== done: the server stops, the temporary catalog is removed"

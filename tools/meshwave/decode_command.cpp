@@ -101,7 +101,7 @@ void AddDecodeCommand(CLI::App& app, int& exit_code) {
   CLI::App* cmd = app.add_subcommand(
       "decode", "Decode a .mwv stream, whole or truncated to a budget, into a mesh");
   cmd->add_option("in", args->in, "Stream (.mwv)")->required();
-  cmd->add_option("out", args->out, "Output mesh (.ply or .obj)")->required();
+  cmd->add_option("out", args->out, "Output mesh (.ply, .obj, .glb or .gltf)")->required();
   cmd->add_option("--budget", args->budget,
                   "Bytes of the stream to use, header included (e.g. 20000, 64KiB)");
   cmd->add_option("--order", args->order, "Packet order: quality, resolution or rd")

@@ -118,7 +118,7 @@ void AddFetchCommand(CLI::App& app, int& exit_code) {
          "--max-level", args->max_level,
          "Only subbands below this level (a coarser mesh for small devices)")
       ->check(CLI::Range(0, 12));
-  AddFetchOutputOptions(cmd, args->output, "Output mesh (.ply or .obj)",
+  AddFetchOutputOptions(cmd, args->output, "Output mesh (.ply, .obj, .glb or .gltf)",
                         /*out_required=*/true);
   cmd->add_option("--state", args->state,
                   "Keep the packets received as a partial container FILE (and "

@@ -65,7 +65,7 @@ void AddRefineCommand(CLI::App& app, int& exit_code) {
                   "Bytes to add to the budget (e.g. 64KiB)")
       ->required();
   AddFetchOutputOptions(cmd, args->output,
-                        "Output mesh (.ply or .obj; default: STATE as .ply)",
+                        "Output mesh (.ply, .obj, .glb, .gltf; default: STATE as .ply)",
                         /*out_required=*/false);
   AddClientOptions(cmd, args->client);
   AddDecodeLimitOptions(cmd, args->limits);

@@ -211,7 +211,7 @@ void AddRemeshCommand(CLI::App& app, int& exit_code) {
       "Turn any triangle mesh into a semi-regular mesh that follows its "
       "surface (clean, repair, simplify to a base mesh, subdivide and fit)");
   cmd->add_option("in", args->in, "Input mesh (.ply, .obj, .off)")->required();
-  cmd->add_option("out", args->out, "Semi-regular output (.ply or .obj)")
+  cmd->add_option("out", args->out, "Semi-regular output (.ply, .obj, .glb or .gltf)")
       ->required();
   cmd->add_option("-l,--levels", args->levels,
                   "Levels of 1-to-4 subdivision (-1: from the input size)")

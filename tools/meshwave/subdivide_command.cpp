@@ -51,7 +51,7 @@ void AddSubdivideCommand(CLI::App& app, int& exit_code) {
       "Refine a coarse manifold mesh by 1-to-4 splits into a semi-regular mesh");
   cmd->add_option("in", args->in, "Coarse manifold mesh (.ply, .obj, .off)")
       ->required();
-  cmd->add_option("out", args->out, "Output mesh (.ply or .obj)")->required();
+  cmd->add_option("out", args->out, "Output mesh (.ply, .obj, .glb or .gltf)")->required();
   cmd->add_option("-l,--levels", args->levels, "Levels of subdivision")
       ->check(CLI::Range(0, 12))
       ->capture_default_str();

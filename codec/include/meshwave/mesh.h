@@ -48,13 +48,13 @@ Result<TriMesh> ParseMesh(std::string_view bytes, MeshFormat format,
 // parse errors name the path as given.
 Result<TriMesh> ReadMesh(const std::filesystem::path& path);
 
-// Writes binary little-endian PLY (float32 coordinates) or OBJ (the shortest
-// decimal form that reads back as the same double, at most 17 significant
-// digits: lossless) by the path's extension. The file is written to
-// `<path>.tmp-<pid>`, fsynced and renamed, so a failure never leaves half a
-// file behind. IoError names the path; .off gives kUnsupported.
+// Writes binary PLY (float32), OBJ (shortest exact decimals: lossless) or
+// glTF 2.0 (.glb, .gltf: meshwave/gltf.h) by the path's extension. The file
+// is written to `<path>.tmp-<pid>`, fsynced and renamed, so a failure never
+// leaves half a file behind. IoError names the path; .off gives kUnsupported,
+// other extensions kInvalidArgument.
 Status WriteMesh(const TriMesh& mesh, const std::filesystem::path& path);
-// In-memory forms of the writers.
+// In-memory forms of the writers (SerializeGltf: meshwave/gltf.h).
 std::string SerializePly(const TriMesh& mesh);
 std::string SerializeObj(const TriMesh& mesh);
 

@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "mesh/mesh_readers.h"
+#include "meshwave/gltf.h"
 #include "meshwave/mesh.h"
 
 namespace meshwave {
@@ -155,8 +156,16 @@ Result<TriMesh> ReadMesh(const std::filesystem::path& path) {
 }
 
 Status WriteMesh(const TriMesh& mesh, const std::filesystem::path& path) {
-  MW_ASSIGN_OR_RETURN(MeshFormat format, FormatFromPath(path));
-  switch (format) {
+  if (const auto gltf = GltfFormFromPath(path)) {
+    return WriteFileAtomically(SerializeGltf(mesh, *gltf), path);
+  }
+  const Result<MeshFormat> read_format = FormatFromPath(path);
+  if (!read_format.ok()) {
+    return InvalidArgument(path.string() + ": unknown mesh format \"" +
+                           path.extension().string() +
+                           "\" (write .ply, .obj, .glb or .gltf)");
+  }
+  switch (*read_format) {
     case MeshFormat::kPly:
       return WriteFileAtomically(SerializePly(mesh), path);
     case MeshFormat::kObj:
@@ -166,7 +175,8 @@ Status WriteMesh(const TriMesh& mesh, const std::filesystem::path& path) {
   }
   return Status(
       StatusCode::kUnsupported,
-      path.string() + ": writing OFF is not supported (use .ply or .obj)");
+      path.string() +
+          ": writing OFF is not supported (use .ply, .obj, .glb or .gltf)");
 }
 
 Aabb BoundingBox(const std::vector<Vec3>& positions) {

@@ -1,10 +1,15 @@
-// The in-memory writers: binary little-endian PLY and OBJ.
+// The in-memory writers: binary little-endian PLY, OBJ and glTF 2.0.
+#include <algorithm>
+#include <array>
 #include <bit>
+#include <cctype>
 #include <charconv>
+#include <limits>
 #include <cstring>
 #include <string>
 
 #include "core/byte_reader.h"
+#include "meshwave/gltf.h"
 #include "meshwave/mesh.h"
 
 namespace meshwave {
@@ -33,7 +38,131 @@ void AppendUnsigned(std::string& out, uint64_t value) {
   out.append(buffer, end);
 }
 
+// RFC 4648 base64 with padding.
+std::string Base64(std::string_view bytes) {
+  static constexpr char kDigits[] =
+      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  out.reserve((bytes.size() + 2) / 3 * 4);
+  size_t i = 0;
+  for (; i + 3 <= bytes.size(); i += 3) {
+    const uint32_t v = uint32_t{static_cast<uint8_t>(bytes[i])} << 16 |
+                       uint32_t{static_cast<uint8_t>(bytes[i + 1])} << 8 |
+                       static_cast<uint8_t>(bytes[i + 2]);
+    for (int shift = 18; shift >= 0; shift -= 6) out += kDigits[(v >> shift) & 63];
+  }
+  if (const size_t rest = bytes.size() - i; rest > 0) {
+    uint32_t v = uint32_t{static_cast<uint8_t>(bytes[i])} << 16;
+    if (rest == 2) v |= uint32_t{static_cast<uint8_t>(bytes[i + 1])} << 8;
+    out += kDigits[(v >> 18) & 63];
+    out += kDigits[(v >> 12) & 63];
+    out += rest == 2 ? kDigits[(v >> 6) & 63] : '=';
+    out += '=';
+  }
+  return out;
+}
+
+void AppendFloatArray(std::string& out, const std::array<float, 3>& v) {
+  out += '[';
+  for (int a = 0; a < 3; ++a) {
+    if (a) out += ',';
+    // float -> double is exact and the shortest double form reads back as
+    // the same float: min/max equal the data bit for bit, as glTF asks.
+    AppendDouble(out, v[a]);
+  }
+  out += ']';
+}
+
+void PadTo4(std::string& s, char pad) { s.append((4 - s.size() % 4) % 4, pad); }
+
+void AppendUint32(std::string& out, uint32_t v) {
+  char bytes[4];
+  StoreLittleEndian(bytes, v);
+  out.append(bytes, 4);
+}
+
 }  // namespace
+
+std::optional<GltfForm> GltfFormFromPath(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext == ".glb") return GltfForm::kBinary;
+  if (ext == ".gltf") return GltfForm::kEmbedded;
+  return std::nullopt;
+}
+
+std::string SerializeGltf(const TriMesh& mesh, GltfForm form) {
+  // The buffer: float32 positions, then uint32 indices (both 4-aligned).
+  const size_t n = mesh.positions.size();
+  std::string bin(n * 12 + mesh.faces.size() * 12, '\0');
+  char* p = bin.data();
+  std::array<float, 3> lo, hi;
+  lo.fill(std::numeric_limits<float>::infinity());
+  hi.fill(-std::numeric_limits<float>::infinity());
+  for (const Vec3& v : mesh.positions) {
+    for (int a = 0; a < 3; ++a) {
+      const float f = static_cast<float>(v[a]);
+      lo[a] = std::min(lo[a], f);
+      hi[a] = std::max(hi[a], f);
+      p = StoreLittleEndian(p, f);
+    }
+  }
+  for (const Face& f : mesh.faces) {
+    for (uint32_t index : f) p = StoreLittleEndian(p, index);
+  }
+
+  std::string json = R"({"asset":{"version":"2.0","generator":"meshwave"},"scene":0,)";
+  if (mesh.faces.empty() || n == 0) {
+    // glTF forbids empty buffers and accessors: an empty scene instead.
+    json += R"("scenes":[{"nodes":[]}]})";
+    bin.clear();
+  } else {
+    json += R"("scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)";
+    json += R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1,"mode":4}]}],)";
+    json += R"("accessors":[{"bufferView":0,"componentType":5126,"count":)";
+    AppendUnsigned(json, n);
+    json += R"(,"type":"VEC3","min":)";
+    AppendFloatArray(json, lo);
+    json += R"(,"max":)";
+    AppendFloatArray(json, hi);
+    json += R"(},{"bufferView":1,"componentType":5125,"count":)";
+    AppendUnsigned(json, mesh.faces.size() * 3);
+    json += R"(,"type":"SCALAR"}],"bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":)";
+    AppendUnsigned(json, n * 12);
+    json += R"(,"target":34962},{"buffer":0,"byteOffset":)";
+    AppendUnsigned(json, n * 12);
+    json += R"(,"byteLength":)";
+    AppendUnsigned(json, mesh.faces.size() * 12);
+    json += R"(,"target":34963}],"buffers":[{"byteLength":)";
+    AppendUnsigned(json, bin.size());
+    if (form == GltfForm::kEmbedded) {
+      json += R"(,"uri":"data:application/octet-stream;base64,)";
+      json += Base64(bin);
+      json += '"';
+    }
+    json += "}]}";
+  }
+  if (form == GltfForm::kEmbedded) return json + "\n";
+
+  // GLB: a 12-byte header, the JSON chunk (space-padded), the BIN chunk.
+  PadTo4(json, ' ');
+  PadTo4(bin, '\0');
+  const size_t total = 12 + 8 + json.size() + (bin.empty() ? 0 : 8 + bin.size());
+  std::string out;
+  out.reserve(total);
+  AppendUint32(out, 0x46546C67);  // "glTF"
+  AppendUint32(out, 2);
+  AppendUint32(out, static_cast<uint32_t>(total));
+  AppendUint32(out, static_cast<uint32_t>(json.size()));
+  AppendUint32(out, 0x4E4F534A);  // "JSON"
+  out += json;
+  if (!bin.empty()) {
+    AppendUint32(out, static_cast<uint32_t>(bin.size()));
+    AppendUint32(out, 0x004E4942);  // "BIN\0"
+    out += bin;
+  }
+  return out;
+}
 
 std::string SerializePly(const TriMesh& mesh) {
   std::string out =

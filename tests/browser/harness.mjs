@@ -1,0 +1,93 @@
+// What the browser test and bench/viewer_first_mesh.sh share: a catalog
+// ingested from a shipped sample, a meshwave-server on 127.0.0.1 serving
+// it with a given viewer directory, and Debian's Chromium driven by
+// playwright-core (pinned by web/package-lock.json) with the flags this
+// machine's closed network needs.
+import { execFileSync, spawn } from 'node:child_process';
+import { cpSync, existsSync, mkdtempSync, readFileSync, rmSync } from 'node:fs';
+import { createRequire } from 'node:module';
+import { tmpdir } from 'node:os';
+import path from 'node:path';
+import { setTimeout as sleep } from 'node:timers/promises';
+
+export const CHROMIUM = '/usr/bin/chromium';
+export const SKIP = 77;  // ctest's SKIP_RETURN_CODE for these tests
+
+export function skip(message) {
+  console.log(`SKIP: ${message}`);
+  process.exit(SKIP);
+}
+
+export function tempDir(prefix) { return mkdtempSync(path.join(tmpdir(), prefix)); }
+
+// `meshwave-server ingest` of one mesh file; its catalog id.
+export function ingest(serverBinary, catalog, meshFile) {
+  const out = execFileSync(serverBinary, ['ingest', '--catalog', catalog, meshFile], { encoding: 'utf8' });
+  const id = out.trim().split(/\s+/)[0];
+  if (!/^[0-9a-f]{12}$/.test(id)) throw new Error(`ingest printed no id: ${out}`);
+  return id;
+}
+
+// web/viewer with `decoderModule` as its meshwave_decoder.js, in `dir`.
+export function viewerDir(sourceViewer, decoderModule, dir) {
+  cpSync(sourceViewer, dir, { recursive: true });
+  cpSync(decoderModule, path.join(dir, 'meshwave_decoder.js'));
+  return dir;
+}
+
+export class Server {
+  // Starts `serverBinary` on 127.0.0.1 with a free port.
+  static async start(serverBinary, catalog, viewer, work) {
+    const portFile = path.join(work, 'port');
+    rmSync(portFile, { force: true });
+    const child = spawn(serverBinary, ['--catalog', catalog, '--listen', '127.0.0.1:0',
+      '--port-file', portFile, '--viewer-dir', viewer, '--log-level', 'warn'],
+    { stdio: ['ignore', 'inherit', 'inherit'] });
+    let exited = false;
+    child.on('exit', () => { exited = true; });
+    for (let i = 0; i < 200 && !exited; ++i) {
+      if (existsSync(portFile)) {
+        const port = parseInt(readFileSync(portFile, 'utf8'), 10);
+        if (port > 0) return new Server(child, `http://127.0.0.1:${port}`);
+      }
+      await sleep(50);
+    }
+    child.kill('SIGKILL');
+    throw new Error('meshwave-server did not start');
+  }
+
+  constructor(child, url) { this.child = child; this.url = url; }
+
+  async stop() {
+    if (this.child.exitCode !== null) return;
+    const exited = new Promise((resolve) => this.child.on('exit', resolve));
+    this.child.kill('SIGTERM');
+    await Promise.race([exited, sleep(15000)]);
+    if (this.child.exitCode === null) this.child.kill('SIGKILL');
+  }
+}
+
+// A Chromium context with a fresh profile (removed by close()).
+export async function launchChromium(nodeModules) {
+  if (!existsSync(CHROMIUM)) skip(`${CHROMIUM} not found: apt-get install chromium (deploy/install-deps.sh)`);
+  const require = createRequire(path.join(nodeModules, 'noop.js'));
+  const { chromium } = require('playwright-core');
+  const profile = tempDir('meshwave-chromium-');
+  const context = await chromium.launchPersistentContext(profile, {
+    executablePath: CHROMIUM,
+    headless: true,
+    viewport: { width: 960, height: 640 },
+    args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
+      '--disable-background-networking', '--disable-component-update', '--disable-sync',
+      // WebGL without a GPU: ANGLE on SwiftShader, which newer Chromium
+      // only offers when asked.
+      '--use-angle=swiftshader', '--enable-unsafe-swiftshader'],
+  });
+  return {
+    context,
+    async close() {
+      await context.close();
+      rmSync(profile, { recursive: true, force: true });
+    },
+  };
+}

@@ -1,0 +1,319 @@
+// The browser viewer end to end: meshwave-server on 127.0.0.1 serving a
+// catalog ingested from a shipped sample and the viewer with the real
+// WebAssembly decoder, opened in headless Chromium.
+//  1. A mesh streamed at a budget, then refined: the readouts (bytes,
+//     packets, level, estimated PSNR) equal what the server's GET /stream
+//     and `meshwave decode` of the same prefix say, the mesh is drawn, the
+//     two screenshots differ where it refined, no console error.
+//  2. A corrupt packet (a test proxy inside the browser flips payload bytes):
+//     a readable error, the last good mesh still drawn, the page answering.
+//  3. The socket closed by the server mid-stream: the same.
+//  4. Error colours against the complete stream: a 6 KiB prefix shows them.
+// Screenshots are kept in the artefacts directory.
+//
+// node viewer_test.mjs --server BIN --cli BIN --decoder meshwave_decoder.js
+//   --viewer web/viewer --mesh data/elephant.off --node-modules DIR --artefacts DIR
+// Exit 0 passed, 1 failed, 77 skipped (no Chromium, no decoder module) —
+// and 77 after a run with the test-only fake decoder, which checks the
+// page's wiring but can never pass.
+import assert from 'node:assert/strict';
+import { execFileSync } from 'node:child_process';
+import { existsSync, mkdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import path from 'node:path';
+import { parseArgs } from 'node:util';
+import { Server, SKIP, ingest, launchChromium, skip, tempDir, viewerDir } from './harness.mjs';
+import { decodeServerMessage } from '../../web/viewer/ws_protocol.js';
+
+const { values: opt } = parseArgs({ options: {
+  server: { type: 'string' }, cli: { type: 'string' }, decoder: { type: 'string' },
+  viewer: { type: 'string' }, mesh: { type: 'string' }, 'node-modules': { type: 'string' },
+  artefacts: { type: 'string' },
+} });
+for (const k of ['server', 'cli', 'viewer', 'mesh', 'node-modules', 'artefacts']) {
+  if (!opt[k]) { console.error(`viewer_test: --${k} is required`); process.exit(2); }
+}
+if (!opt.decoder || !existsSync(opt.decoder)) {
+  skip(`the WebAssembly decoder module is not built (${opt.decoder || 'no path given'}): ` +
+       'configure with -DMESHWAVE_DECODER_JS=PATH/meshwave_decoder.js');
+}
+const fake = readFileSync(opt.decoder, 'utf8').includes('isFakeTestOnly');
+if (fake) console.log('WIRING ONLY: the test-only fake decoder; level and PSNR are not checked');
+
+const BUDGET = 6 * 1024, REFINE_KIB = 8, ORDER = 'quality';
+mkdirSync(opt.artefacts, { recursive: true });
+const work = tempDir('meshwave-viewer-test-');
+const catalog = path.join(work, 'catalog');
+const id = ingest(opt.server, catalog, opt.mesh);
+const server = await Server.start(opt.server, catalog,
+  viewerDir(opt.viewer, opt.decoder, path.join(work, 'viewer')), work);
+const browser = await launchChromium(opt['node-modules']);
+let failed = false;
+
+// What the server and the CLI say about the prefix order[0 .. packets) that
+// fits `budget` container bytes: the bytes the page receives for it,
+// packets, level, estimated PSNR.
+let wsHeaderLength = null;
+async function serverNumbers(budget) {
+  if (wsHeaderLength === null) {
+    const header = await fetch(`${server.url}/v1/meshes/${id}/header`);
+    wsHeaderLength = (await header.arrayBuffer()).byteLength;
+  }
+  const reply = await fetch(`${server.url}/v1/meshes/${id}/stream?order=${ORDER}&budget=${budget}`);
+  assert.equal(reply.status, 200);
+  const body = Buffer.from(await reply.arrayBuffer());
+  const file = path.join(work, `prefix_${budget}.mwv`);
+  writeFileSync(file, body);
+  const out = execFileSync(opt.cli, ['decode', file, path.join(work, 'prefix.ply')], { encoding: 'utf8' });
+  const level = out.match(/\(level (\d+) of (\d+)\)/);
+  const psnr = out.match(/estimated PSNR ([0-9.]+) dB/);
+  assert.ok(level && psnr, `unexpected meshwave decode output: ${out}`);
+  // The page receives the header as GET /header serves it (`present`
+  // empty) and the payloads: the container less its 8-byte preamble and
+  // its header (which lists the packets present).
+  const headerLength = body.readUInt32LE(4);
+  const bytes = wsHeaderLength + body.length - 8 - headerLength;
+  return { containerBytes: body.length, bytes, packets: Number(reply.headers.get('x-meshwave-packets')),
+           nextCursor: Number(reply.headers.get('x-meshwave-next-cursor')),
+           level: Number(level[1]), psnr: Number(psnr[1]) };
+}
+
+async function readouts(page) {
+  return page.evaluate(() => ({
+    bytes: Number(document.getElementById('r-bytes').dataset.value),
+    packets: Number(document.getElementById('r-packets').textContent),
+    level: Number(document.getElementById('r-level').dataset.value),
+    psnr: Number(document.getElementById('r-psnr').dataset.value),
+    error: document.getElementById('error').hidden ? '' : document.getElementById('error').textContent,
+    state: document.body.dataset.state,
+  }));
+}
+
+function checkReadouts(got, want, what) {
+  assert.equal(got.bytes, want.bytes, `${what}: bytes received`);
+  assert.equal(got.packets, want.packets, `${what}: packets`);
+  if (fake) return;
+  assert.equal(got.level, want.level, `${what}: level`);
+  assert.ok(Math.abs(got.psnr - want.psnr) <= 0.006, `${what}: PSNR ${got.psnr} vs ${want.psnr}`);
+}
+
+async function shot(page, name) {
+  // Two frames: whatever was scheduled is drawn.
+  await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+  const file = path.join(opt.artefacts, name);
+  await page.locator('#view').screenshot({ path: file });
+  return readFileSync(file);
+}
+
+// Pixels of two PNGs (same size) that differ, and pixels of each that are
+// not background: decoded by the browser's own image decoder.
+async function comparePngs(a, b) {
+  const page = await browser.context.newPage();
+  const result = await page.evaluate(async ([a64, b64]) => {
+    const pixels = async (b64) => {
+      const img = new Image();
+      img.src = `data:image/png;base64,${b64}`;
+      await img.decode();
+      const c = new OffscreenCanvas(img.width, img.height);
+      const g = c.getContext('2d');
+      g.drawImage(img, 0, 0);
+      return g.getImageData(0, 0, img.width, img.height).data;
+    };
+    const [pa, pb] = [await pixels(a64), await pixels(b64)];
+    let differ = 0, drawn = 0, drawnB = 0;
+    for (let i = 0; i < pa.length; i += 4) {
+      const d = Math.abs(pa[i] - pb[i]) + Math.abs(pa[i + 1] - pb[i + 1]) + Math.abs(pa[i + 2] - pb[i + 2]);
+      if (d > 24) ++differ;
+      if (pa[i] + pa[i + 1] + pa[i + 2] < 3 * 240) ++drawn;
+      if (pb[i] + pb[i + 1] + pb[i + 2] < 3 * 240) ++drawnB;
+    }
+    return { differ, drawn, drawnB, total: pa.length / 4 };
+  }, [a.toString('base64'), b.toString('base64')]);
+  await page.close();
+  return result;
+}
+
+async function openViewer(consoleErrors) {
+  const page = await browser.context.newPage();
+  page.on('console', (m) => { if (m.type() === 'error') consoleErrors.push(m.text()); });
+  page.on('pageerror', (e) => consoleErrors.push(`uncaught: ${e.message}`));
+  await page.goto(`${server.url}/viewer/`);
+  await page.waitForSelector('body[data-state="ready"], body[data-state="error"]');
+  const { error } = await readouts(page);
+  assert.equal(error, '', 'the page loaded with an error');
+  await page.selectOption('#mesh', id);
+  await page.selectOption('#order', ORDER);
+  await page.fill('#budget', String(BUDGET / 1024));
+  await page.fill('#rate', '0');
+  await page.fill('#refine-kib', String(REFINE_KIB));
+  return page;
+}
+
+async function streamAndWait(page) {
+  await page.click('#stream');
+  await page.waitForSelector('body[data-state="done"], body[data-state="error"]');
+}
+
+async function refineAndWait(page) {
+  await page.click('#refine');
+  await page.waitForSelector('body[data-state="done"], body[data-state="error"]');
+}
+
+async function test(name, body) {
+  try {
+    await body();
+    console.log(`ok: ${name}`);
+  } catch (e) {
+    failed = true;
+    console.log(`FAIL: ${name}: ${e.stack || e}`);
+  }
+}
+
+try {
+  await test('stream, refine: readouts equal the server\'s, the mesh drawn and refined', async () => {
+    const errors = [];
+    const page = await openViewer(errors);
+    await streamAndWait(page);
+    const first = await serverNumbers(BUDGET);
+    checkReadouts(await readouts(page), first, `budget ${BUDGET}`);
+    const coarse = await shot(page, 'viewer_budget_6KiB.png');
+
+    await refineAndWait(page);
+    const extra = await fetch(`${server.url}/v1/meshes/${id}/stream?order=${ORDER}` +
+                              `&from=${first.nextCursor}&budget=${REFINE_KIB * 1024}`);
+    const packets = first.packets + Number(extra.headers.get('x-meshwave-packets'));
+    assert.ok(packets > first.packets, 'the refinement brings packets');
+    // The container of exactly that prefix: its size from the mesh's
+    // rate-distortion table (quality order; the header grows with the
+    // packets present, so it is not the two budgets added).
+    const details = await (await fetch(`${server.url}/v1/meshes/${id}`)).json();
+    const point = details.rate_distortion.find((p) => p.packets === packets);
+    assert.ok(point, `no rate-distortion point for ${packets} packets`);
+    const refined = await serverNumbers(Number(point.bytes));
+    assert.equal(refined.packets, packets);
+    checkReadouts(await readouts(page), refined, `after refine +${REFINE_KIB} KiB`);
+    const fine = await shot(page, 'viewer_refined_14KiB.png');
+
+    const cmp = await comparePngs(coarse, fine);
+    console.log(`  screenshots: ${cmp.drawn} then ${cmp.drawnB} of ${cmp.total} pixels drawn, ` +
+                `${cmp.differ} differ`);
+    assert.ok(cmp.drawn > cmp.total * 0.02, 'the mesh is drawn (over 2 % of the view)');
+    assert.ok(cmp.differ > cmp.drawn * 0.005, 'the refined mesh looks different');
+    // The camera stays where the first mesh put it: the refined mesh covers
+    // about the same area (a refit or a lost mesh would not).
+    assert.ok(Math.abs(cmp.drawnB - cmp.drawn) < cmp.drawn * 0.3, 'the same view, refined');
+    const first_ms = await page.evaluate(() => Number(document.getElementById('r-first').dataset.value));
+    assert.ok(first_ms > 0, 'time to first mesh shown');
+    assert.deepEqual(errors, [], 'console errors');
+    await page.close();
+  });
+
+  await test('error colours against the complete stream', async () => {
+    const errors = [];
+    const page = await openViewer(errors);
+    await streamAndWait(page);
+    const plain = await shot(page, 'viewer_plain_6KiB.png');
+    await page.check('#errors');
+    await page.waitForFunction(() => document.getElementById('status').textContent.startsWith('error colours:'));
+    const coloured = await shot(page, 'viewer_error_colours_6KiB.png');
+    const warm = await page.evaluate(async ([a64, b64]) => {
+      const pixels = async (b64) => {
+        const img = new Image();
+        img.src = `data:image/png;base64,${b64}`;
+        await img.decode();
+        const c = new OffscreenCanvas(img.width, img.height);
+        c.getContext('2d').drawImage(img, 0, 0);
+        return c.getContext('2d').getImageData(0, 0, img.width, img.height).data;
+      };
+      // Yellow to red: red well above blue; the plain grey never is.
+      const count = (p) => { let n = 0; for (let i = 0; i < p.length; i += 4) if (p[i] > p[i + 2] + 60) ++n; return n; };
+      return [count(await pixels(a64)), count(await pixels(b64))];
+    }, [plain.toString('base64'), coloured.toString('base64')]);
+    console.log(`  warm pixels: ${warm[0]} plain, ${warm[1]} with error colours`);
+    assert.equal(warm[0], 0, 'the plain mesh has no error colour');
+    assert.ok(warm[1] > 100, 'a 6 KiB prefix differs visibly from the complete stream');
+    assert.deepEqual(errors, [], 'console errors');
+    await page.close();
+  });
+
+  // A proxy between page and server (Playwright's WebSocket routing) that
+  // passes everything through except what `tamper` changes.
+  async function proxiedViewer(tamper) {
+    const errors = [];
+    const page = await openViewer(errors);
+    let afterDone = false;
+    await page.routeWebSocket(/\/v1\/ws$/, (ws) => {
+      const upstream = ws.connectToServer();
+      ws.onMessage((m) => upstream.send(m));
+      upstream.onMessage((m) => {
+        const bytes = new Uint8Array(m);
+        const msg = decodeServerMessage(bytes);
+        if (tamper(msg, bytes, afterDone, ws) !== 'drop') ws.send(Buffer.from(bytes));
+        if (msg.kind === 'done') afterDone = true;
+      });
+    });
+    return page;
+  }
+
+  async function checkKeptLastGoodMesh(page, good, goodShot, name, errorPattern) {
+    const r = await readouts(page);
+    assert.equal(r.state, 'error');
+    assert.match(r.error, errorPattern);
+    assert.match(r.error, /last good mesh/);
+    checkReadouts(r, good, 'after the failure');
+    const after = await shot(page, name);
+    await page.screenshot({ path: path.join(opt.artefacts, name.replace('.png', '_page.png')) });
+    const cmp = await comparePngs(goodShot, after);
+    console.log(`  ${name}: "${r.error.replace(/\n/g, ' ')}"; ${cmp.differ} pixels differ`);
+    assert.ok(cmp.drawn > cmp.total * 0.02, 'the last good mesh is still drawn');
+    assert.ok(cmp.differ <= 10, 'the mesh shown did not change');
+    // Not frozen: the page answers and can stream again.
+    assert.equal(await page.evaluate(() => document.getElementById('stream').disabled), false);
+    await page.close();
+  }
+
+  await test('a corrupt packet: readable error, last good mesh kept', async () => {
+    // Corrupts the first packet of the refinement: the payload is the last
+    // field of a Packet message, so its last bytes are payload bytes.
+    let seen = 0;
+    const page = await proxiedViewer((msg, bytes, afterDone) => {
+      if (afterDone && msg.kind === 'packet' && ++seen === 1) {
+        for (let i = bytes.length - 4; i < bytes.length; ++i) bytes[i] ^= 0x5a;
+      }
+    });
+    await streamAndWait(page);
+    const good = await serverNumbers(BUDGET);
+    const goodShot = await shot(page, 'viewer_before_corrupt.png');
+    await page.click('#refine');
+    await page.waitForSelector('body[data-state="error"]');
+    await checkKeptLastGoodMesh(page, good, goodShot, 'viewer_after_corrupt.png',
+      /packet \d+ \(cursor \d+\) was refused/);
+  });
+
+  await test('the socket closed mid-stream: readable error, last good mesh kept', async () => {
+    let seen = 0;
+    const page = await proxiedViewer((msg, bytes, afterDone, ws) => {
+      if (afterDone && msg.kind === 'packet' && ++seen === 1) {
+        ws.close({ code: 1011, reason: 'test proxy closed it' });
+        return 'drop';
+      }
+    });
+    await streamAndWait(page);
+    const good = await serverNumbers(BUDGET);
+    const goodShot = await shot(page, 'viewer_before_close.png');
+    await page.click('#refine');
+    await page.waitForSelector('body[data-state="error"]');
+    await checkKeptLastGoodMesh(page, good, goodShot, 'viewer_after_close.png',
+      /connection to the server closed \(code 1011/);
+  });
+} finally {
+  await browser.close();
+  await server.stop();
+  rmSync(work, { recursive: true, force: true });
+}
+console.log(`screenshots in ${opt.artefacts}`);
+if (failed) process.exit(1);
+if (fake) {
+  console.log('SKIP: wiring checked with the test-only fake decoder; the real module is needed to pass');
+  process.exit(SKIP);
+}
+console.log('viewer_test: all passed');

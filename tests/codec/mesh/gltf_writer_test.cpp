@@ -1,0 +1,184 @@
+// The glTF 2.0 writer (SerializeGltf, WriteMesh to .glb/.gltf): the GLB
+// container's header and chunks, the JSON's structure (one scene, node,
+// mesh; FLOAT VEC3 positions with min/max, UNSIGNED_INT indices), the
+// buffer's bytes, and the .gltf form's base64 buffer equal to the GLB's.
+// tests/gltf validates whole files with the Khronos glTF-Validator.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "codec/mesh/mesh_builders_testonly.h"
+#include "meshwave/gltf.h"
+#include "meshwave/mesh.h"
+
+namespace meshwave {
+namespace {
+
+using ::testing::EndsWith;
+using ::testing::HasSubstr;
+using ::testing::Not;
+using ::testing::StartsWith;
+
+uint32_t U32(const std::string& s, size_t at) {
+  uint32_t v = 0;
+  for (int i = 3; i >= 0; --i) v = v << 8 | static_cast<uint8_t>(s.at(at + i));
+  return v;
+}
+
+float F32(const std::string& s, size_t at) {
+  const uint32_t bits = U32(s, at);
+  float f;
+  std::memcpy(&f, &bits, 4);
+  return f;
+}
+
+struct Glb {
+  std::string json, bin;
+};
+
+// Splits a GLB, checking its header and chunk framing on the way.
+Glb SplitGlb(const std::string& glb) {
+  Glb out;
+  EXPECT_EQ(U32(glb, 0), 0x46546C67u);  // "glTF"
+  EXPECT_EQ(U32(glb, 4), 2u);
+  EXPECT_EQ(U32(glb, 8), glb.size());
+  const uint32_t json_length = U32(glb, 12);
+  EXPECT_EQ(json_length % 4, 0u);
+  EXPECT_EQ(glb.substr(16, 4), "JSON");
+  out.json = glb.substr(20, json_length);
+  size_t at = 20 + json_length;
+  if (at < glb.size()) {
+    const uint32_t bin_length = U32(glb, at);
+    EXPECT_EQ(bin_length % 4, 0u);
+    EXPECT_EQ(glb.substr(at + 4, 4), std::string("BIN\0", 4));
+    out.bin = glb.substr(at + 8, bin_length);
+    EXPECT_EQ(at + 8 + bin_length, glb.size());
+  }
+  return out;
+}
+
+std::string Base64Decode(const std::string& text) {
+  const std::string digits =
+      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  uint32_t acc = 0;
+  int bits = 0;
+  for (char c : text) {
+    if (c == '=') break;
+    const size_t d = digits.find(c);
+    EXPECT_NE(d, std::string::npos) << "not base64: " << c;
+    acc = acc << 6 | static_cast<uint32_t>(d);
+    bits += 6;
+    if (bits >= 8) {
+      bits -= 8;
+      out += static_cast<char>((acc >> bits) & 0xff);
+    }
+  }
+  return out;
+}
+
+TEST(GltfWriterTest, GlbHoldsOneIndexedTrianglePrimitive) {
+  TriMesh mesh = testing::Tetrahedron();
+  mesh.positions[3] = Vec3(-0.5, 2.25, 1e-3);
+  const Glb glb = SplitGlb(SerializeGltf(mesh, GltfForm::kBinary));
+  EXPECT_THAT(
+      glb.json,
+      StartsWith(R"({"asset":{"version":"2.0","generator":"meshwave"})"));
+  EXPECT_THAT(
+      glb.json,
+      HasSubstr(R"("scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}])"));
+  EXPECT_THAT(
+      glb.json,
+      HasSubstr(
+          R"("primitives":[{"attributes":{"POSITION":0},"indices":1,"mode":4}])"));
+  // Positions: FLOAT (5126) VEC3 with the data's bounds; indices:
+  // UNSIGNED_INT (5125) SCALAR, three per face.
+  EXPECT_THAT(
+      glb.json,
+      HasSubstr(
+          R"({"bufferView":0,"componentType":5126,"count":4,)"
+          R"("type":"VEC3","min":[-0.5,0,0],"max":[1,2.25,0.0010000000474974513]})"));
+  EXPECT_THAT(
+      glb.json,
+      HasSubstr(
+          R"({"bufferView":1,"componentType":5125,"count":12,"type":"SCALAR"})"));
+  EXPECT_THAT(glb.json, HasSubstr(R"("buffers":[{"byteLength":96}])"));
+  EXPECT_THAT(glb.json, Not(HasSubstr("uri")));
+  // Space padding after the JSON, nothing else.
+  EXPECT_THAT(glb.json.substr(0, glb.json.find_last_not_of(' ') + 1),
+              EndsWith("}"));
+
+  ASSERT_EQ(glb.bin.size(), 4 * 12 + 4 * 12u);
+  for (size_t v = 0; v < 4; ++v) {
+    for (int a = 0; a < 3; ++a) {
+      EXPECT_EQ(F32(glb.bin, v * 12 + a * 4),
+                static_cast<float>(mesh.positions[v][a]));
+    }
+  }
+  for (size_t f = 0; f < 4; ++f) {
+    for (int c = 0; c < 3; ++c)
+      EXPECT_EQ(U32(glb.bin, 48 + f * 12 + c * 4), mesh.faces[f][c]);
+  }
+}
+
+TEST(GltfWriterTest, GltfEmbedsTheGlbBufferAsBase64) {
+  const TriMesh mesh = testing::Grid(3);  // 16 vertices: base64 padding too
+  const Glb glb = SplitGlb(SerializeGltf(mesh, GltfForm::kBinary));
+  const std::string gltf = SerializeGltf(mesh, GltfForm::kEmbedded);
+  const std::string prefix = R"("uri":"data:application/octet-stream;base64,)";
+  const size_t at = gltf.find(prefix);
+  ASSERT_NE(at, std::string::npos) << gltf;
+  const size_t start = at + prefix.size();
+  const std::string encoded = gltf.substr(start, gltf.find('"', start) - start);
+  EXPECT_EQ(encoded.size() % 4, 0u);
+  EXPECT_EQ(Base64Decode(encoded), glb.bin);
+  // The same JSON otherwise.
+  std::string without = gltf;
+  without.erase(at - 1, prefix.size() + encoded.size() + 2);
+  EXPECT_EQ(without,
+            glb.json.substr(0, glb.json.find_last_not_of(' ') + 1) + "\n");
+}
+
+TEST(GltfWriterTest, AMeshWithoutFacesIsAnEmptyScene) {
+  TriMesh mesh;
+  const std::string glb = SerializeGltf(mesh, GltfForm::kBinary);
+  const Glb parts = SplitGlb(glb);
+  EXPECT_THAT(parts.json, HasSubstr(R"("scenes":[{"nodes":[]}]})"));
+  EXPECT_TRUE(parts.bin.empty());
+  EXPECT_THAT(parts.json, Not(HasSubstr("buffers")));
+}
+
+TEST(GltfWriterTest, WriteMeshChoosesGltfByExtension) {
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("meshwave_gltf_test_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const TriMesh mesh = testing::Tetrahedron();
+  for (const auto& [name, form] : {std::pair{"t.glb", GltfForm::kBinary},
+                                   std::pair{"t.GLTF", GltfForm::kEmbedded}}) {
+    ASSERT_TRUE(WriteMesh(mesh, dir / name).ok()) << name;
+    std::ifstream in(dir / name, std::ios::binary);
+    std::stringstream bytes;
+    bytes << in.rdbuf();
+    EXPECT_EQ(bytes.str(), SerializeGltf(mesh, form)) << name;
+  }
+  EXPECT_EQ(GltfFormFromPath("a/b.GlB"), GltfForm::kBinary);
+  EXPECT_EQ(GltfFormFromPath("b.ply"), std::nullopt);
+  // Written only: reading one back is refused with the formats read.
+  const Result<TriMesh> back = ReadMesh(dir / "t.glb");
+  EXPECT_EQ(back.status().code(), StatusCode::kInvalidArgument);
+  EXPECT_THAT(back.status().message(),
+              HasSubstr("expected .ply, .obj or .off"));
+  const Status unknown = WriteMesh(mesh, dir / "t.stl");
+  EXPECT_EQ(unknown.code(), StatusCode::kInvalidArgument);
+  EXPECT_THAT(unknown.message(), HasSubstr("write .ply, .obj, .glb or .gltf"));
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace meshwave

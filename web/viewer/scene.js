@@ -1,0 +1,81 @@
+// The three.js view: one mesh, lit, orbitable, drawn only when something
+// changed. The camera is fitted to the first mesh of a stream and then left
+// alone, so refinements are seen from the same place.
+import * as THREE from 'three';
+import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+
+export class MeshView {
+  // Throws an Error when the browser has no WebGL.
+  constructor(container) {
+    this.container = container;
+    this.renderer = new THREE.WebGLRenderer({ antialias: true });
+    this.renderer.setPixelRatio(window.devicePixelRatio);
+    container.appendChild(this.renderer.domElement);
+    this.scene = new THREE.Scene();
+    this.scene.background = new THREE.Color(0xffffff);
+    this.camera = new THREE.PerspectiveCamera(40, 1, 0.01, 1000);
+    this.scene.add(new THREE.HemisphereLight(0xffffff, 0x444455, 1.2));
+    const sun = new THREE.DirectionalLight(0xffffff, 1.5);
+    sun.position.set(1, 2, 3);
+    this.camera.add(sun);  // a light that follows the camera
+    this.scene.add(this.camera);
+    this.controls = new OrbitControls(this.camera, this.renderer.domElement);
+    this.controls.addEventListener('change', () => this.draw());
+    this.mesh = null;
+    new ResizeObserver(() => this.resize()).observe(container);
+    this.resize();
+  }
+
+  resize() {
+    const { clientWidth: w, clientHeight: h } = this.container;
+    if (!w || !h) return;
+    this.renderer.setSize(w, h, false);
+    this.camera.aspect = w / h;
+    this.camera.updateProjectionMatrix();
+    this.draw();
+  }
+
+  // positions: Float32Array xyz; faces: Uint32Array; colors: Float32Array
+  // rgb per vertex or null (flat grey).
+  setMesh(positions, faces, colors, fitCamera) {
+    const geometry = new THREE.BufferGeometry();
+    geometry.setAttribute('position', new THREE.BufferAttribute(positions, 3));
+    geometry.setIndex(new THREE.BufferAttribute(faces, 1));
+    geometry.computeVertexNormals();
+    if (colors) geometry.setAttribute('color', new THREE.BufferAttribute(colors, 3));
+    const material = new THREE.MeshStandardMaterial({
+      color: colors ? 0xffffff : 0xb8b8c8, vertexColors: !!colors, flatShading: true,
+      roughness: 0.8, side: THREE.DoubleSide,
+    });
+    if (this.mesh) {
+      this.scene.remove(this.mesh);
+      this.mesh.geometry.dispose();
+      this.mesh.material.dispose();
+    }
+    this.mesh = new THREE.Mesh(geometry, material);
+    this.scene.add(this.mesh);
+    if (fitCamera) this.fit(geometry);
+    this.draw();
+  }
+
+  fit(geometry) {
+    geometry.computeBoundingSphere();
+    const { center, radius } = geometry.boundingSphere;
+    const distance = radius / Math.sin(THREE.MathUtils.degToRad(this.camera.fov / 2));
+    this.camera.position.copy(center).add(new THREE.Vector3(0.4, 0.3, 1).normalize().multiplyScalar(distance));
+    this.camera.near = distance / 100;
+    this.camera.far = distance * 10;
+    this.camera.updateProjectionMatrix();
+    this.controls.target.copy(center);
+    this.controls.update();
+  }
+
+  draw() {
+    if (this.pending) return;
+    this.pending = true;
+    requestAnimationFrame(() => {
+      this.pending = false;
+      this.renderer.render(this.scene, this.camera);
+    });
+  }
+}

@@ -1,0 +1,153 @@
+// One mesh streamed over GET /v1/ws into the WebAssembly decoder: sends
+// `start` and `refine`, feeds every packet to the decoder as it arrives,
+// and reports the decoded mesh at most once per animation frame (the
+// decoder copies the whole mesh out, so a burst of small packets is shown
+// as one refinement per frame). Any failure — a refused packet, a
+// malformed message, a closed socket — stops the session and is reported
+// once; the last mesh reported stays the last good one. No DOM here.
+import { decodeServerMessage, encodeRefine, encodeStart } from './ws_protocol.js';
+
+export class StreamSession {
+  // mw: the decoder module (createMeshwave()). Callbacks:
+  //   onMesh({positions, faces, level, levels, psnr}) after new packets,
+  //   onProgress(stats) after every message, onDone(stats) when a
+  //   selection is complete, onError(message) once, then nothing more.
+  constructor(mw, wsUrl, { onMesh, onProgress, onDone, onError }) {
+    this.mw = mw;
+    this.callbacks = { onMesh, onProgress, onDone, onError };
+    this.decoder = null;
+    this.stats = { bytes: 0, packets: 0, level: null, levels: null, psnr: null, complete: false,
+                   streaming: false };
+    this.failed = false;
+    this.dirty = false;
+    this.socket = new WebSocket(wsUrl);
+    this.socket.binaryType = 'arraybuffer';
+    this.opened = new Promise((resolve) => { this.socket.onopen = resolve; });
+    this.socket.onmessage = (e) => this.onMessage(e.data);
+    this.socket.onclose = (e) => {
+      if (this.closing) return;
+      this.fail(`the connection to the server closed (code ${e.code}${e.reason ? ', ' + e.reason : ''})` +
+                ` after ${this.stats.packets} packets`);
+    };
+  }
+
+  // budget: container bytes (header included) or null for the whole order;
+  // rate: bytes per second, 0 unpaced.
+  async start({ meshId, order, budget, rate }) {
+    await this.opened;
+    this.stats.streaming = true;
+    this.send(encodeStart({ meshId, order, budget, rate }));
+  }
+
+  refine(extraBytes) {
+    if (this.failed || !this.decoder) return;
+    this.stats.streaming = true;
+    this.send(encodeRefine(extraBytes));
+  }
+
+  close() {
+    this.closing = true;
+    this.socket.close(1000);
+    if (this.decoder) this.decoder.delete();
+    this.decoder = null;
+  }
+
+  send(bytes) {
+    if (this.socket.readyState !== WebSocket.OPEN) {
+      this.fail('the connection to the server is closed');
+      return;
+    }
+    this.socket.send(bytes);
+  }
+
+  onMessage(data) {
+    if (this.failed) return;
+    if (!(data instanceof ArrayBuffer)) return this.fail('the server sent a text frame');
+    let m;
+    try {
+      m = decodeServerMessage(new Uint8Array(data));
+    } catch (e) {
+      return this.fail(`the server sent a malformed message: ${e.message}`);
+    }
+    switch (m.kind) {
+      case 'start':
+        try {
+          this.decoder = new this.mw.Decoder(m.header);
+        } catch (e) {
+          return this.fail(`the stream header was refused: ${e.message}`);
+        }
+        this.stats.bytes += m.header.length;
+        this.updateLevel();
+        break;
+      case 'selection':
+        break;
+      case 'packet':
+        if (!this.decoder) return this.fail('a packet before the stream header');
+        try {
+          this.decoder.addPacket(m.id, m.payload);
+        } catch (e) {
+          return this.fail(`packet ${m.id} (cursor ${m.cursor}) was refused: ${e.message}`);
+        }
+        this.stats.bytes += m.payload.length;
+        this.stats.packets += 1;
+        this.updateLevel();
+        this.scheduleMesh();
+        break;
+      case 'done':
+        this.stats.streaming = false;
+        this.stats.complete = m.complete;
+        this.emitMesh();  // the final state now, not a frame later
+        this.callbacks.onDone(this.stats);
+        break;
+      case 'error':
+        this.stats.streaming = false;
+        return this.fail(`the server refused the request (${m.codeName}): ${m.message}`);
+    }
+    this.callbacks.onProgress(this.stats);
+  }
+
+  updateLevel() {
+    this.stats.level = this.decoder.level();
+    this.stats.levels = this.decoder.levels();
+    this.stats.psnr = this.decoder.estimatedPsnr();
+  }
+
+  scheduleMesh() {
+    if (this.dirty) return;
+    this.dirty = true;
+    requestAnimationFrame(() => this.emitMesh());
+  }
+
+  emitMesh() {
+    if (!this.dirty || !this.decoder) return;
+    this.dirty = false;
+    this.callbacks.onMesh({
+      positions: this.decoder.positions(), faces: this.decoder.faces(), level: this.stats.level,
+      levels: this.stats.levels, psnr: this.stats.psnr,
+    });
+  }
+
+  fail(message) {
+    if (this.failed) return;
+    // Packets accepted before the failure are part of the last good mesh.
+    this.emitMesh();
+    this.failed = true;
+    this.stats.streaming = false;
+    this.closing = true;
+    if (this.socket.readyState <= WebSocket.OPEN) this.socket.close(1000);
+    this.callbacks.onError(message);
+  }
+}
+
+// The complete stream of a mesh in a decoder of its own (for the error
+// colours): resolves to the decoder, rejects with a readable Error.
+export function fetchComplete(mw, wsUrl, meshId, order) {
+  return new Promise((resolve, reject) => {
+    const s = new StreamSession(mw, wsUrl, {
+      onMesh() {}, onProgress() {},
+      onDone: () => { s.closing = true; s.socket.close(1000); resolve(s.decoder); },
+      onError: (message) => reject(new Error(message)),
+    });
+    s.start({ meshId, order, budget: null, rate: 0 });
+  });
+}

@@ -1,0 +1,188 @@
+// The viewer page: the catalog (GET /v1/meshes), a mesh streamed over
+// GET /v1/ws with the order, budget and pace chosen, every refinement drawn
+// as it arrives, readouts, "refine +N KiB", optional error colours against
+// the complete stream. Errors are shown in words; the last good mesh stays.
+import { StreamSession, fetchComplete } from './stream_session.js';
+import { errorColours } from './error_colours.js';
+
+const $ = (id) => document.getElementById(id);
+const KiB = 1024;
+const wsUrl = `${location.protocol === 'https:' ? 'wss' : 'ws'}://${location.host}/v1/ws`;
+
+let mw = null;        // the decoder module
+let view = null;      // MeshView, null without WebGL
+let session = null;   // the current StreamSession
+let lastMesh = null;  // what is drawn: {positions, faces, level}
+let reference = null; // {meshId, order, decoder} of the complete stream
+let streamStarted = 0, firstMeshShown = false;
+
+function setState(state) { document.body.dataset.state = state; }
+
+function showError(message) {
+  $('error').textContent = message + (lastMesh ? '\nShowing the last good mesh.' : '');
+  $('error').hidden = false;
+}
+
+function clearError() { $('error').hidden = true; $('error').textContent = ''; }
+
+function status(text) { $('status').textContent = text; }
+
+function kib(bytes) { return `${(bytes / KiB).toFixed(1)} KiB`; }
+
+function showStats(s) {
+  $('r-bytes').textContent = `${s.bytes} B (${kib(s.bytes)})`;
+  $('r-bytes').dataset.value = s.bytes;
+  $('r-packets').textContent = s.packets;
+  $('r-level').textContent = s.level === null ? '–' : `${s.level} of ${s.levels}`;
+  $('r-level').dataset.value = s.level ?? '';
+  $('r-psnr').textContent = s.psnr === null ? '–' : s.psnr >= 999 ? 'lossless' : `${s.psnr.toFixed(2)} dB`;
+  $('r-psnr').dataset.value = s.psnr ?? '';
+}
+
+function draw(fitCamera) {
+  if (!lastMesh) return;
+  const { positions, faces } = lastMesh;
+  $('r-size').textContent = `${positions.length / 3} / ${faces.length / 3}`;
+  if (!view) return;
+  let colours = null;
+  if ($('errors').checked && reference?.decoder) {
+    colours = errorColours(positions, reference.decoder.positions(lastMesh.level));
+  }
+  view.setMesh(positions, faces, colours, fitCamera);
+}
+
+function onMesh(mesh) {
+  if (!mesh.faces.length) return;
+  const first = !firstMeshShown;
+  lastMesh = mesh;
+  draw(first);
+  if (first) {
+    firstMeshShown = true;
+    // After the frame that shows it.
+    requestAnimationFrame(() => {
+      $('r-first').textContent = `${(performance.now() - streamStarted).toFixed(0)} ms`;
+      $('r-first').dataset.value = performance.now() - streamStarted;
+    });
+  }
+}
+
+function startStream() {
+  const meshId = $('mesh').value;
+  if (!meshId) return showError('Pick a mesh first (the catalog is empty?).');
+  if (session) session.close();
+  clearError();
+  lastMesh = null;
+  firstMeshShown = false;
+  $('r-first').textContent = '–';
+  const budgetKiB = parseFloat($('budget').value);
+  const rateKiB = parseFloat($('rate').value);
+  const request = {
+    meshId, order: $('order').value,
+    budget: Number.isFinite(budgetKiB) && budgetKiB > 0 ? Math.round(budgetKiB * KiB) : null,
+    rate: Number.isFinite(rateKiB) && rateKiB > 0 ? Math.round(rateKiB * KiB) : 0,
+  };
+  streamStarted = performance.now();
+  setState('streaming');
+  status(`streaming ${$('mesh').selectedOptions[0].textContent} …`);
+  $('refine').disabled = true;
+  const s = new StreamSession(mw, wsUrl, {
+    onMesh,
+    onProgress: showStats,
+    onDone(stats) {
+      if (s !== session) return;
+      status(stats.complete ? 'complete: the whole order is here' : 'done; refine for more');
+      $('refine').disabled = stats.complete;
+      setState('done');
+      if ($('errors').checked) ensureReference();
+    },
+    onError(message) {
+      if (s !== session) return;
+      $('refine').disabled = true;
+      status('');
+      showError(message);
+      setState('error');
+    },
+  });
+  session = s;
+  s.start(request);
+}
+
+function refine() {
+  const extra = Math.round(parseFloat($('refine-kib').value) * KiB);
+  if (!session || !(extra > 0)) return;
+  $('refine').disabled = true;
+  setState('streaming');
+  status(`refining by ${kib(extra)} …`);
+  session.refine(extra);
+}
+
+async function ensureReference() {
+  const meshId = $('mesh').value, order = $('order').value;
+  if (reference && reference.meshId === meshId) return draw(false);
+  reference = { meshId, order, decoder: null };
+  status('fetching the complete stream for the error colours …');
+  try {
+    const decoder = await fetchComplete(mw, wsUrl, meshId, order);
+    if (reference.meshId !== meshId) return decoder.delete();
+    reference.decoder = decoder;
+    status('error colours: grey = as the complete stream, red ≥ 0.5 % of the diagonal away');
+    draw(false);
+  } catch (e) {
+    reference = null;
+    showError(`error colours unavailable: ${e.message}`);
+  }
+}
+
+async function loadCatalog() {
+  const reply = await fetch('/v1/meshes?limit=1000');
+  if (!reply.ok) throw new Error(`the catalog request failed: HTTP ${reply.status}`);
+  const list = await reply.json();
+  const select = $('mesh');
+  for (const m of list.meshes ?? []) {
+    const option = new Option(`${m.name} (${m.vertices} vertices, ${kib(Number(m.bytes))})`, m.id);
+    select.add(option);
+  }
+  if (!select.options.length) status('the catalog is empty: `meshwave-server ingest` fills it');
+}
+
+async function loadDecoder() {
+  try {
+    const { default: createMeshwave } = await import('./meshwave_decoder.js');
+    return await createMeshwave();
+  } catch (e) {
+    throw new Error('the WebAssembly decoder (meshwave_decoder.js) could not be loaded; the ' +
+                    `server's viewer directory must hold it: ${e.message}`);
+  }
+}
+
+function prefillFromUrl() {
+  const q = new URLSearchParams(location.search);
+  for (const key of ['order', 'budget', 'rate']) if (q.has(key)) $(key).value = q.get(key);
+  if (q.has('mesh')) $('mesh').value = q.get('mesh');
+}
+
+async function main() {
+  $('stream').onclick = startStream;
+  $('refine').onclick = refine;
+  $('refine-kib').oninput = () => { $('refine-label').textContent = $('refine-kib').value; };
+  $('errors').onchange = () => ($('errors').checked && lastMesh ? ensureReference() : draw(false));
+  $('stream').disabled = true;
+  try {
+    const { MeshView } = await import('./scene.js');
+    view = new MeshView($('view'));
+  } catch (e) {
+    showError(`3D view unavailable (WebGL?): ${e.message}`);
+  }
+  try {
+    [mw] = await Promise.all([loadDecoder(), loadCatalog()]);
+  } catch (e) {
+    showError(e.message);
+    setState('error');
+    return;
+  }
+  prefillFromUrl();
+  $('stream').disabled = false;
+  setState('ready');
+}
+
+main();
