@@ -9,7 +9,8 @@ bash deploy/install-deps.sh
 source tools/compiler_cache.sh
 [[ ${CMAKE_CXX_COMPILER_LAUNCHER:-} == ccache ]] && ccache --zero-stats > /dev/null
 start=$SECONDS
-cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DMESHWAVE_WERROR=ON
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DMESHWAVE_WERROR=ON \
+  -DMESHWAVE_REQUIRE_SHARED_MESHES=ON
 cmake --build build -j2
 ctest --test-dir build --output-on-failure -j2 --timeout 900
 echo "test: Release stage passed ($((SECONDS - start)) s)"

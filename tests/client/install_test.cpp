@@ -4,6 +4,7 @@
 // not the codec, and the decoder links alone, without protobuf.
 #include <gtest/gtest.h>
 
+#include "test_data.h"
 #include "e2e/cli_runner.h"
 
 namespace meshwave {
@@ -66,8 +67,9 @@ TEST(ClientInstallTest, ExampleProjectBuildsAgainstTheInstalledPackage) {
   // The decoder alone decodes a real stream.
   const auto ply = dir / "decoded.ply";
   ASSERT_EQ(RunShell(ShellQuote((build / "decode_example").string()) + " " +
-                         ShellQuote(std::string(MESHWAVE_TEST_DATA) +
-                                    "/../fuzz/data/tetrahedron_sr2.mwv") +
+                         ShellQuote((testing::TestDataDir() / ".." / "fuzz" / "data" /
+                                     "tetrahedron_sr2.mwv")
+                                        .string()) +
                          " 100000 " + ShellQuote(ply.string()),
                      log),
             0)

@@ -26,7 +26,7 @@ constexpr size_t kMaxPackets =
 
 class Recorder final : public client::StreamSplitter::Events {
  public:
-  Status OnHeader(const proto::StreamHeader& header) override {
+  Status OnHeader(const StreamHeader& header) override {
     ++headers;
     // As the Session does (ProgressiveDecoder::Create) before it computes
     // an order: PacketOrder's precondition.

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "test_data.h"
 #include "e2e/cli_runner.h"
 #include "http_client_testonly.h"
 #include "server_process_testonly.h"
@@ -174,7 +175,7 @@ TEST(ServerViewerDefaultTest, ServesTheBuildTreesViewer) {
   ServerProcess server(tmp / "catalog", tmp / "work");
   ASSERT_TRUE(server.running()) << ReadBytes(server.log());
   const std::filesystem::path source =
-      std::filesystem::path(MESHWAVE_SAMPLE_DATA).parent_path() / "web" /
+      SampleDataDir().parent_path() / "web" /
       "viewer";
   const HttpReply index = HttpGet(server.port(), "/viewer/");
   EXPECT_EQ(index.status, 200u);

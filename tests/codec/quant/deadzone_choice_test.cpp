@@ -36,10 +36,10 @@ TEST(DeadzoneChoiceTest, AutoStreamsCarryTheirDeadzonesAndDecode) {
   options.auto_deadzone = true;
   auto stream = EncodeMesh(*mesh, options);
   ASSERT_TRUE(stream.ok()) << stream.status().message();
-  ASSERT_EQ(stream->header.quantizers_size(), 3 * 3);
-  for (const auto& q : stream->header.quantizers()) EXPECT_LE(q.deadzone(), 3u);
+  ASSERT_EQ(stream->header.quantizers.size(), 3u * 3);
+  for (const auto& q : stream->header.quantizers) EXPECT_LE(q.deadzone, 3u);
   // Gaussian noise on a smooth surface: a near-Laplacian source, UEQ.
-  EXPECT_EQ(stream->header.quantizers(3 * 2).deadzone(), 1u);
+  EXPECT_EQ(stream->header.quantizers[3 * 2].deadzone, 1u);
   // Every prefix decodes; the whole stream reaches the precision's quality.
   auto curve = MeasureRdCurve(*mesh, RdCoder::k3xC, options);
   ASSERT_TRUE(curve.ok()) << curve.status().message();

@@ -2,6 +2,7 @@
 // (or both refuse them), on every container shipped in the repository, on
 // encoder output of every coder and transform, and on hand-made wire-format
 // corner cases (unknown fields, groups, unpacked repeats, merges, bad UTF-8).
+#include "test_data.h"
 #include "meshwave/stream_header.h"
 
 #include <gtest/gtest.h>
@@ -56,7 +57,7 @@ std::string_view HeaderBytes(std::string_view container) {
 TEST(StreamHeaderTest, ShippedContainersReadAsProtobufReadsThem) {
   // Every .mwv in the repository: test data, fuzz data and fuzz seeds
   // (seeds cut short inside the header are compared too: both refuse).
-  const std::filesystem::path root = std::filesystem::path(MESHWAVE_TEST_DATA).parent_path();
+  const std::filesystem::path root = testing::TestDataDir().parent_path();
   std::set<std::string> seen;
   for (const auto& entry : std::filesystem::recursive_directory_iterator(root)) {
     if (entry.path().extension() != ".mwv") continue;
