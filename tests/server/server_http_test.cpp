@@ -345,7 +345,7 @@ TEST_F(ServerHttpTest, ContainerAnswersRangeRequests) {
 }
 
 TEST_F(ServerHttpTest, RangeFollowsRfc9110Syntax) {
-  const std::string id = ids_.at("holes_patch_sr2");
+  const std::string id = ids_.at("holes_patch");
   const std::string full = Container(id);
   const std::string base = "/v1/meshes/" + id + "/container";
   // Case-insensitive unit, empty list elements, whitespace, coalescing.
@@ -369,7 +369,7 @@ TEST_F(ServerHttpTest, RangeFollowsRfc9110Syntax) {
 }
 
 TEST_F(ServerHttpTest, IfRangeDecidesBetweenPartAndWhole) {
-  const std::string id = ids_.at("holes_patch_sr2");
+  const std::string id = ids_.at("holes_patch");
   const std::string base = "/v1/meshes/" + id + "/container";
   const HttpReply whole = HttpGet(port_, base);
   const std::string etag = whole.Header("etag");

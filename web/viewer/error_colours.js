@@ -1,6 +1,7 @@
 // Per-vertex colours for the distance between the mesh shown and the same
 // level of the complete stream: grey where they agree, through yellow to
-// red at `diagonalFraction` of the bounding-box diagonal and above.
+// red at `diagonalFraction` of the bounding-box diagonal and above (0.1 %,
+// as `meshwave render --threshold` by default).
 const GREY = [0.72, 0.72, 0.78], YELLOW = [1, 0.85, 0.2], RED = [0.9, 0.1, 0.1];
 
 function ramp(t) {
@@ -8,7 +9,7 @@ function ramp(t) {
   return [0, 1, 2].map((k) => a[k] + (b[k] - a[k]) * u);
 }
 
-export function errorColours(positions, reference, diagonalFraction = 0.005) {
+export function errorColours(positions, reference, diagonalFraction = 0.001) {
   if (reference.length !== positions.length) return null;  // not the same vertices
   let lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
   for (let i = 0; i < reference.length; i += 3) {
