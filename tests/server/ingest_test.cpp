@@ -9,7 +9,7 @@
 #include <fstream>
 #include <thread>
 
-#include "durable_file.h"
+#include "core/durable_file.h"
 #include "e2e/cli_runner.h"
 #include "server/catalog_backends_testonly.h"
 #include "meshwave/container.h"
@@ -113,7 +113,7 @@ TEST_P(IngestTest, RemovesOrphanAndTemporaryFiles) {
   ASSERT_TRUE(r.ok());
   // A container renamed into place but never committed, and a half write.
   const auto orphan = catalog->containers_dir() / (std::string(64, 'a') + ".mwv");
-  const auto temp = catalog->containers_dir() / (std::string(kTempPrefix) + "123-0-x.mwv");
+  const auto temp = catalog->containers_dir() / (std::string(kDurableTempPrefix) + "123-0-x.mwv");
   std::ofstream(orphan) << "orphan";
   std::ofstream(temp) << "half";
   auto report = RemoveOrphans(*catalog);
@@ -139,15 +139,6 @@ TEST_P(IngestTest, RemoveEntryDeletesRowThenFile) {
 INSTANTIATE_TEST_SUITE_P(Backends, IngestTest,
                          ::testing::Values(CatalogBackend::kSqlite, CatalogBackend::kPostgres),
                          meshwave::testing::CatalogBackendName);
-
-TEST(DurableFileTest, WritesWholeFileWithoutTemporaries) {
-  TempDir tmp;
-  std::filesystem::create_directories(tmp / "d");
-  ASSERT_TRUE(WriteFileDurably(tmp / "d/f.bin", "hello").ok());
-  EXPECT_EQ(ReadBytes(tmp / "d/f.bin"), "hello");
-  EXPECT_EQ(FilesIn(tmp / "d"), 1u);
-  EXPECT_FALSE(WriteFileDurably(tmp / "missing/f.bin", "x").ok());
-}
 
 TEST(Sha256Test, MatchesKnownDigest) {
   EXPECT_EQ(Sha256Hex("abc"),

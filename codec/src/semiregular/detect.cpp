@@ -9,17 +9,13 @@
 
 #include "meshwave/semiregular.h"
 #include "semiregular/vertex_rings.h"
+#include "core/edge_key.h"
 
 namespace meshwave {
 namespace {
 
 constexpr uint32_t kUnset = 0xffffffffu;
 enum Parity : uint8_t { kUnknown = 0, kEven = 1, kOdd = 2 };
-
-uint64_t EdgeKey(uint32_t a, uint32_t b) {
-  if (a > b) std::swap(a, b);
-  return (uint64_t{a} << 32) | b;
-}
 
 // A face as a key that ignores rotation but keeps orientation.
 struct FaceKey {

@@ -3,14 +3,10 @@
 #include <unordered_map>
 
 #include "meshwave/semiregular.h"
+#include "core/edge_key.h"
 
 namespace meshwave {
 namespace {
-
-uint64_t EdgeKey(uint32_t a, uint32_t b) {
-  if (a > b) std::swap(a, b);
-  return (uint64_t{a} << 32) | b;
-}
 
 }  // namespace
 

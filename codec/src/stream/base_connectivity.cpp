@@ -6,16 +6,12 @@
 #include <unordered_map>
 
 #include "entropy/adaptive_golomb.h"
+#include "core/edge_key.h"
 
 namespace meshwave {
 namespace {
 
 constexpr uint32_t kNone = 0xffffffffu;
-
-uint64_t EdgeKey(uint32_t a, uint32_t b) {
-  if (a > b) std::swap(a, b);
-  return (uint64_t{a} << 32) | b;
-}
 
 struct ConnectivityContexts {
   BinaryContext is_new_first;  // corners of a component's first face

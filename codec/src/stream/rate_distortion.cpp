@@ -11,7 +11,7 @@
 #include "meshwave/progression.h"
 #include "meshwave/progressive_decoder.h"
 #include "stream/packet_index.h"
-#include "stream/pgc_stream.h"
+#include "pgc/pgc_stream.h"
 
 namespace meshwave {
 namespace {

@@ -17,8 +17,8 @@
 #include "codec/stream/stream_test_util.h"
 #include "meshwave/container.h"
 #include "meshwave/encoder.h"
-#include "stream/pgc_stream.h"
-#include "stream/varint.h"
+#include "pgc/pgc_stream.h"
+#include "core/protobuf_wire.h"
 
 namespace meshwave {
 namespace {
