@@ -21,15 +21,10 @@ namespace {
 
 using meshwave::testing::CatalogBackend;
 using meshwave::testing::CatalogBackendTest;
+using meshwave::testing::CountFilesIn;
 using meshwave::testing::ReadBytes;
 using meshwave::testing::SampleMesh;
 using meshwave::testing::TempDir;
-
-size_t FilesIn(const std::filesystem::path& dir) {
-  size_t n = 0;
-  for ([[maybe_unused]] const auto& f : std::filesystem::directory_iterator(dir)) ++n;
-  return n;
-}
 
 using IngestTest = CatalogBackendTest;
 
@@ -64,7 +59,7 @@ TEST_P(IngestTest, SameFileTwiceGivesTheSameEntry) {
   EXPECT_TRUE(b->already_present);
   EXPECT_EQ(a->entry.id, b->entry.id);
   EXPECT_EQ(*catalog->Count(), 1u);
-  EXPECT_EQ(FilesIn(catalog->containers_dir()), 1u);
+  EXPECT_EQ(CountFilesIn(catalog->containers_dir()), 1u);
 }
 
 TEST_P(IngestTest, TwoHandlesIngestingTheSameMeshAtOnceMakeOneEntry) {
@@ -82,7 +77,7 @@ TEST_P(IngestTest, TwoHandlesIngestingTheSameMeshAtOnceMakeOneEntry) {
   EXPECT_EQ(ra->entry.id, rb->entry.id);
   EXPECT_NE(ra->already_present, rb->already_present);  // exactly one wrote it
   EXPECT_EQ(*a->Count(), 1u);
-  EXPECT_EQ(FilesIn(a->containers_dir()), 1u);
+  EXPECT_EQ(CountFilesIn(a->containers_dir()), 1u);
 }
 
 TEST(IngestSqliteTest, RemeshesIrregularInput) {
@@ -101,9 +96,9 @@ TEST_P(IngestTest, RejectsMalformedMeshLeavingNothing) {
                            MeshFormat::kPly, "bad", "bad.ply");
   EXPECT_FALSE(r.ok());
   EXPECT_EQ(*catalog->Count(), 0u);
-  EXPECT_EQ(FilesIn(catalog->containers_dir()), 0u);
+  EXPECT_EQ(CountFilesIn(catalog->containers_dir()), 0u);
   EXPECT_FALSE(IngestContainer(*catalog, "MWV1 not a container", "x", "x.mwv").ok());
-  EXPECT_EQ(FilesIn(catalog->containers_dir()), 0u);
+  EXPECT_EQ(CountFilesIn(catalog->containers_dir()), 0u);
 }
 
 TEST_P(IngestTest, RemovesOrphanAndTemporaryFiles) {

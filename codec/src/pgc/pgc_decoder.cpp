@@ -37,10 +37,8 @@ Result<std::unique_ptr<PgcDecoder>> PgcDecoder::Create(
   std::unique_ptr<PgcDecoder> d(new PgcDecoder());
   d->header_ = header;
   d->options_ = options;
-  MW_ASSIGN_OR_RETURN(DecoderSetup setup, SetUpDecoder(header, options.max_base_vertices));
-  d->base_ = std::move(setup.base);
-  d->hierarchy_ = std::move(setup.hierarchy);
-  d->transform_ = std::move(setup.transform);
+  MW_RETURN_IF_ERROR(
+      SetUpDecoder(header, options.max_base_vertices, d->base_, d->hierarchy_, d->transform_));
   const auto& h = *d->hierarchy_;
   const int levels = h.levels();
   for (int c = 0; c < 3; ++c) {

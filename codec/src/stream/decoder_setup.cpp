@@ -39,16 +39,17 @@ Status ValidateQuantizers(const StreamHeader& h) {
   return Status::Ok();
 }
 
-Result<DecoderSetup> SetUpDecoder(const StreamHeader& header, uint32_t max_base_vertices) {
+Status SetUpDecoder(const StreamHeader& header, uint32_t max_base_vertices, DecodedBase& base,
+                    std::shared_ptr<const SemiRegularHierarchy>& hierarchy,
+                    std::unique_ptr<WaveletTransform>& transform) {
   MW_ASSIGN_OR_RETURN(TransformSettings settings, ReadTransformSettings(header.transform));
-  DecoderSetup out;
-  MW_ASSIGN_OR_RETURN(out.base, DecodeBaseMesh(header.base, max_base_vertices));
+  MW_ASSIGN_OR_RETURN(base, DecodeBaseMesh(header.base, max_base_vertices));
   const int levels = static_cast<int>(header.transform.levels);
-  auto hierarchy = SemiRegularHierarchy::Build(static_cast<uint32_t>(out.base.positions.size()),
-                                               out.base.faces, levels);
-  if (!hierarchy.ok()) return hierarchy.status().WithContext("stream base mesh");
-  out.hierarchy = *hierarchy;
-  const auto& h = *out.hierarchy;
+  auto built = SemiRegularHierarchy::Build(static_cast<uint32_t>(base.positions.size()),
+                                           base.faces, levels);
+  if (!built.ok()) return built.status().WithContext("stream base mesh");
+  hierarchy = *built;
+  const auto& h = *hierarchy;
   if (header.vertices != h.vertex_count(levels) || header.faces != h.faces(levels).size()) {
     return ParseError("header: vertex or face count does not match the hierarchy");
   }
@@ -56,11 +57,11 @@ Result<DecoderSetup> SetUpDecoder(const StreamHeader& header, uint32_t max_base_
     return ParseError("header: bounding box needs 3 coordinates");
   }
   if (settings.predictor == Predictor::kSawt) {
-    MW_ASSIGN_OR_RETURN(settings.sawt, DecodeSawtChoices(*header.transform.sawt, h, out.base.grid));
+    MW_ASSIGN_OR_RETURN(settings.sawt, DecodeSawtChoices(*header.transform.sawt, h, base.grid));
   }
-  MW_ASSIGN_OR_RETURN(WaveletTransform t, WaveletTransform::Create(out.hierarchy, settings));
-  out.transform = std::make_unique<WaveletTransform>(std::move(t));
-  return out;
+  MW_ASSIGN_OR_RETURN(WaveletTransform t, WaveletTransform::Create(hierarchy, settings));
+  transform = std::make_unique<WaveletTransform>(std::move(t));
+  return Status::Ok();
 }
 
 }  // namespace meshwave

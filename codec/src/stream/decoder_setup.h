@@ -23,17 +23,14 @@ Status ValidateVersionAndLevels(const StreamHeader& h);
 // a known deadzone code and a top bitplane in [-1, kMaxBitplane].
 Status ValidateQuantizers(const StreamHeader& h);
 
-struct DecoderSetup {
-  DecodedBase base;
-  std::shared_ptr<const SemiRegularHierarchy> hierarchy;
-  std::unique_ptr<WaveletTransform> transform;  // inverse transform of the header's settings
-};
-
-// Decodes the base mesh (at most `max_base_vertices`), builds the hierarchy
-// and checks the header's vertex and face counts and bounding box against it,
-// then builds the transform (with the SAWT choices, when it has them).
-// ParseError on anything that does not fit.
-Result<DecoderSetup> SetUpDecoder(const StreamHeader& header, uint32_t max_base_vertices);
+// Decodes the base mesh (at most `max_base_vertices`) into `base`, builds
+// `hierarchy` and checks the header's vertex and face counts and bounding
+// box against it, then builds `transform`, the inverse transform of the
+// header's settings (with the SAWT choices, when it has them). ParseError on
+// anything that does not fit.
+Status SetUpDecoder(const StreamHeader& header, uint32_t max_base_vertices, DecodedBase& base,
+                    std::shared_ptr<const SemiRegularHierarchy>& hierarchy,
+                    std::unique_ptr<WaveletTransform>& transform);
 
 }  // namespace meshwave
 

@@ -57,10 +57,8 @@ Result<std::unique_ptr<ProgressiveDecoder>> ProgressiveDecoder::Create(
   impl->header = header;
   impl->header.present.clear();
   impl->options = options;
-  MW_ASSIGN_OR_RETURN(DecoderSetup setup, SetUpDecoder(header, options.max_base_vertices));
-  impl->base = std::move(setup.base);
-  impl->hierarchy = std::move(setup.hierarchy);
-  impl->transform = std::move(setup.transform);
+  MW_RETURN_IF_ERROR(SetUpDecoder(header, options.max_base_vertices, impl->base, impl->hierarchy,
+                                  impl->transform));
   const auto& h = *impl->hierarchy;
   impl->diagonal = HeaderDiagonal(header);
   impl->layouts = BuildSubbandLayouts(h, impl->base.grid, header.octree_leaf_size);

@@ -15,14 +15,10 @@
 namespace meshwave {
 namespace {
 
+using meshwave::testing::CountFilesIn;
 using meshwave::testing::ReadBytes;
 using meshwave::testing::TempDir;
 
-size_t FilesIn(const std::filesystem::path& dir) {
-  size_t n = 0;
-  for ([[maybe_unused]] const auto& f : std::filesystem::directory_iterator(dir)) ++n;
-  return n;
-}
 
 TEST(DurableFileTest, WritesAndReplacesWholeFilesWithoutTemporaries) {
   TempDir tmp;
@@ -32,7 +28,7 @@ TEST(DurableFileTest, WritesAndReplacesWholeFilesWithoutTemporaries) {
   EXPECT_EQ(ReadBytes(tmp / "f.bin"), "bye");
   ASSERT_TRUE(WriteFileDurably(tmp / "empty", "").ok());
   EXPECT_EQ(std::filesystem::file_size(tmp / "empty"), 0u);
-  EXPECT_EQ(FilesIn(tmp.path()), 2u);
+  EXPECT_EQ(CountFilesIn(tmp.path()), 2u);
 }
 
 TEST(DurableFileTest, RelativePathWritesIntoTheWorkingDirectory) {
@@ -56,7 +52,7 @@ TEST(DurableFileTest, MissingOrUnusableDirectoryIsAnIoErrorNamingThePath) {
   const Status not_dir = WriteFileDurably(tmp / "plain/f.bin", "x");
   EXPECT_EQ(not_dir.code(), StatusCode::kIoError);
   EXPECT_NE(not_dir.message().find("Not a directory"), std::string::npos) << not_dir.message();
-  EXPECT_EQ(FilesIn(tmp.path()), 1u);
+  EXPECT_EQ(CountFilesIn(tmp.path()), 1u);
 }
 
 TEST(DurableFileTest, FullDiskKeepsTheOldFileAndLeavesNoTemporary) {
@@ -77,7 +73,7 @@ TEST(DurableFileTest, FullDiskKeepsTheOldFileAndLeavesNoTemporary) {
   EXPECT_NE(s.message().find("cannot write"), std::string::npos) << s.message();
   EXPECT_NE(s.message().find(std::string(kDurableTempPrefix)), std::string::npos);
   EXPECT_EQ(ReadBytes(tmp / "f.bin"), "old");
-  EXPECT_EQ(FilesIn(tmp.path()), 1u);
+  EXPECT_EQ(CountFilesIn(tmp.path()), 1u);
 }
 
 TEST(DurableFileTest, SyncDirectoryRefusesAMissingDirectory) {
