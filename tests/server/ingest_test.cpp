@@ -11,8 +11,8 @@
 
 #include "core/durable_file.h"
 #include "e2e/cli_runner.h"
-#include "server/catalog_backends_testonly.h"
 #include "meshwave/container.h"
+#include "server/catalog_backends_testonly.h"
 #include "sha256.h"
 #include "test_data.h"
 

@@ -8,9 +8,9 @@
 #include "quant/subband_gains.h"
 #include "stream/distortion_index_writer.h"
 #include "stream/packet_index.h"
-#include "stream/stream_preparation.h"
 #include "stream/stream_format.h"
 #include "stream/stream_format_writer.h"
+#include "stream/stream_preparation.h"
 
 namespace meshwave {
 namespace {

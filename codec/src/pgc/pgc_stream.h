@@ -14,12 +14,12 @@
 #include <string_view>
 #include <vector>
 
-#include "pgc/zerotree_coder.h"
 #include "meshwave/encoder.h"
 #include "meshwave/progressive_decoder.h"
 #include "meshwave/semiregular.h"
 #include "meshwave/status.h"
 #include "meshwave/wavelet.h"
+#include "pgc/zerotree_coder.h"
 #include "stream/base_mesh_codec.h"
 #include "stream/packet_index.h"
 

@@ -11,8 +11,8 @@
 #include <utility>
 #include <vector>
 
-#include "remesh/union_find.h"
 #include "core/edge_key.h"
+#include "remesh/union_find.h"
 
 namespace meshwave::remesh {
 namespace {

@@ -10,9 +10,9 @@
 #include <queue>
 #include <utility>
 
+#include "core/edge_key.h"
 #include "remesh/quadric.h"
 #include "remesh/remesh_quality.h"
-#include "core/edge_key.h"
 
 namespace meshwave::remesh {
 namespace {

@@ -7,9 +7,10 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "core/edge_key.h"
+#include "core/hash_mix.h"
 #include "meshwave/semiregular.h"
 #include "semiregular/vertex_rings.h"
-#include "core/edge_key.h"
 
 namespace meshwave {
 namespace {
@@ -31,12 +32,7 @@ struct FaceKey {
   bool operator==(const FaceKey&) const = default;
 };
 struct FaceKeyHash {
-  size_t operator()(const FaceKey& k) const {
-    uint64_t h = k.a * 0x9E3779B97F4A7C15ull;
-    h ^= (h >> 29) + k.b * 0xBF58476D1CE4E5B9ull;
-    h ^= (h >> 31) + k.c * 0x94D049BB133111EBull;
-    return static_cast<size_t>(h ^ (h >> 32));
-  }
+  size_t operator()(const FaceKey& k) const { return HashTriple(k.a, k.b, k.c); }
 };
 
 // One undone level, in the local vertex numbering of the finer mesh.

@@ -6,10 +6,10 @@
 #include <string>
 #include <unordered_map>
 
-#include "meshwave/semiregular.h"
-#include "semiregular/vertex_rings.h"
 #include "core/edge_key.h"
+#include "meshwave/semiregular.h"
 #include "meshwave/stream_limits.h"
+#include "semiregular/vertex_rings.h"
 
 namespace meshwave {
 namespace {

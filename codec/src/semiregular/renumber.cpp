@@ -2,8 +2,8 @@
 #include <string>
 #include <unordered_map>
 
-#include "meshwave/semiregular.h"
 #include "core/edge_key.h"
+#include "meshwave/semiregular.h"
 
 namespace meshwave {
 namespace {

@@ -4,8 +4,8 @@
 #include <string>
 #include <unordered_map>
 
-#include "entropy/adaptive_golomb.h"
 #include "core/edge_key.h"
+#include "entropy/adaptive_golomb.h"
 
 namespace meshwave {
 namespace {

@@ -4,9 +4,9 @@
 #include <cstring>
 #include <unordered_set>
 
+#include "core/protobuf_wire.h"
 #include "stream/packet_index.h"
 #include "stream/stream_format.h"
-#include "core/protobuf_wire.h"
 
 namespace meshwave {
 namespace {

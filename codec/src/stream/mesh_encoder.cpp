@@ -13,10 +13,10 @@
 #include "stream/base_mesh_codec.h"
 #include "stream/distortion_index_writer.h"
 #include "stream/packet_index.h"
-#include "stream/stream_preparation.h"
-#include "wavelet/sawt_choice.h"
 #include "stream/stream_format.h"
 #include "stream/stream_format_writer.h"
+#include "stream/stream_preparation.h"
+#include "wavelet/sawt_choice.h"
 
 namespace meshwave {
 namespace {

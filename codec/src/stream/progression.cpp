@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/protobuf_wire.h"
 #include "meshwave/container.h"
 #include "quant/deadzone_quantizer.h"
 #include "stream/decoder_setup.h"
 #include "stream/packet_index.h"
 #include "stream/stream_format.h"
-#include "core/protobuf_wire.h"
 
 namespace meshwave {
 Result<Progression> ParseProgression(const std::string& name) {

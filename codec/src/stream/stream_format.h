@@ -7,9 +7,9 @@
 
 #include "core/crc.h"  // Crc32c: the SAWT field's check
 #include "meshwave/status.h"
-#include "meshwave/wavelet.h"
 #include "meshwave/stream_header.h"
 #include "meshwave/stream_limits.h"  // kMaxHeaderBytes, kMaxStreamLevels
+#include "meshwave/wavelet.h"
 
 namespace meshwave {
 

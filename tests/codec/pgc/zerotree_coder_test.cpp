@@ -13,8 +13,8 @@
 #include "codec/stream/stream_test_util.h"
 #include "codec/test_meshes.h"
 #include "meshwave/progressive_decoder.h"
-#include "stream/packet_index.h"
 #include "pgc/pgc_stream.h"
+#include "stream/packet_index.h"
 
 namespace meshwave {
 namespace {
