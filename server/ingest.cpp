@@ -9,7 +9,7 @@
 #include <sstream>
 #include <utility>
 
-#include "durable_file.h"
+#include "core/durable_file.h"
 #include "mesh_id.h"
 #include "meshwave/container.h"
 #include "meshwave/encoder.h"
@@ -115,7 +115,7 @@ Result<CleanupReport> RemoveOrphans(Catalog& catalog) {
   std::error_code ec;
   for (const auto& f : std::filesystem::directory_iterator(catalog.containers_dir(), ec)) {
     if (known.count(f.path())) continue;
-    const bool temp = f.path().filename().string().starts_with(kTempPrefix);
+    const bool temp = f.path().filename().string().starts_with(kDurableTempPrefix);
     std::error_code rm;
     std::filesystem::remove(f.path(), rm);
     if (rm) return IoError("cannot remove " + f.path().string() + ": " + rm.message());

@@ -7,7 +7,7 @@
 #include <thread>
 #include <vector>
 
-#include "durable_file.h"
+#include "core/durable_file.h"
 #include "ingest.h"
 #include "listener.h"
 #include "server_config.h"

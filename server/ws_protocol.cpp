@@ -1,5 +1,6 @@
 #include "ws_protocol.h"
 
+#include "core/protobuf_wire.h"
 #include "mesh_id.h"
 #include "stream_query.h"
 
@@ -52,23 +53,6 @@ Status CheckRate(uint64_t rate) {
                std::to_string(kMinRate) + " bytes per second (0: unpaced)");
   }
   return Status::Ok();
-}
-
-void AppendVarint(std::string& out, uint64_t v) {
-  while (v >= 0x80) {
-    out.push_back(static_cast<char>((v & 0x7f) | 0x80));
-    v >>= 7;
-  }
-  out.push_back(static_cast<char>(v));
-}
-
-size_t VarintSize(uint64_t v) {
-  size_t n = 1;
-  while (v >= 0x80) {
-    v >>= 7;
-    ++n;
-  }
-  return n;
 }
 
 // The fields a start and a resume share (same names in both messages):
@@ -140,32 +124,33 @@ std::string ErrorMessage(proto::Error::Code code, std::string_view message) {
 std::string PacketMessagePrefix(uint32_t cursor, uint32_t id,
                                 uint64_t payload_size) {
   // Wire format, fields in number order as protobuf writes them; proto3
-  // leaves zero numbers and empty bytes out.
-  constexpr char kPacketField =
-      (3 << 3) | 2;  // ServerMessage.packet, length-delimited
-  constexpr char kCursorField = (1 << 3) | 0;  // Packet.cursor, varint
-  constexpr char kIdField = (2 << 3) | 0;      // Packet.id, varint
-  constexpr char kPayloadField =
-      (3 << 3) | 2;  // Packet.payload, length-delimited
+  // leaves zero numbers and empty bytes out. Every tag is one byte (field
+  // numbers below 16).
+  constexpr uint32_t kPacketTag =
+      WireTag(proto::ServerMessage::kPacketFieldNumber, kLengthDelimited);
+  constexpr uint32_t kCursorTag = WireTag(proto::Packet::kCursorFieldNumber, kVarint);
+  constexpr uint32_t kIdTag = WireTag(proto::Packet::kIdFieldNumber, kVarint);
+  constexpr uint32_t kPayloadTag = WireTag(proto::Packet::kPayloadFieldNumber, kLengthDelimited);
+  static_assert(kPacketTag < 0x80 && kCursorTag < 0x80 && kIdTag < 0x80 && kPayloadTag < 0x80);
   uint64_t inner = 0;
   if (cursor != 0) inner += 1 + VarintSize(cursor);
   if (id != 0) inner += 1 + VarintSize(id);
   if (payload_size != 0) inner += 1 + VarintSize(payload_size) + payload_size;
   std::string out;
   out.reserve(24);
-  out.push_back(kPacketField);
-  AppendVarint(out, inner);
+  PutVarint(out, kPacketTag);
+  PutVarint(out, inner);
   if (cursor != 0) {
-    out.push_back(kCursorField);
-    AppendVarint(out, cursor);
+    PutVarint(out, kCursorTag);
+    PutVarint(out, cursor);
   }
   if (id != 0) {
-    out.push_back(kIdField);
-    AppendVarint(out, id);
+    PutVarint(out, kIdTag);
+    PutVarint(out, id);
   }
   if (payload_size != 0) {
-    out.push_back(kPayloadField);
-    AppendVarint(out, payload_size);
+    PutVarint(out, kPayloadTag);
+    PutVarint(out, payload_size);
   }
   return out;
 }

@@ -1,67 +1,18 @@
 #include "meshwave/client/local_state.h"
 
-#include <fcntl.h>
-#include <unistd.h>
-
-#include <cerrno>
-#include <cstring>
 #include <fstream>
 #include <sstream>
 
 #include "client_state.pb.h"
+#include "core/durable_file.h"
 #include "meshwave/container.h"
+#include "meshwave/stream_limits.h"
 
 namespace meshwave::client {
 namespace {
 
 constexpr uint32_t kStateVersion = 1;
 constexpr uintmax_t kMaxStateBytes = uintmax_t{1} << 32;
-
-Status Errno(const std::string& what, const std::filesystem::path& path) {
-  return IoError(what + " " + path.string() + ": " + std::strerror(errno));
-}
-
-// Writes `bytes` to a temporary file beside `path`, fsyncs it and renames it
-// over `path`, then fsyncs the directory: a crash leaves the old file or the
-// new one, never half of one.
-Status WriteAtomically(const std::filesystem::path& path,
-                       std::string_view bytes) {
-  const std::filesystem::path tmp =
-      path.string() + ".tmp-" + std::to_string(::getpid());
-  const int fd =
-      ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) return Errno("cannot create", tmp);
-  size_t done = 0;
-  while (done < bytes.size()) {
-    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      Status s = Errno("cannot write", tmp);
-      ::close(fd);
-      ::unlink(tmp.c_str());
-      return s;
-    }
-    done += static_cast<size_t>(n);
-  }
-  if (::fsync(fd) != 0 || ::close(fd) != 0) {
-    Status s = Errno("cannot flush", tmp);
-    ::unlink(tmp.c_str());
-    return s;
-  }
-  if (::rename(tmp.c_str(), path.c_str()) != 0) {
-    Status s = Errno("cannot rename to", path);
-    ::unlink(tmp.c_str());
-    return s;
-  }
-  const std::filesystem::path dir =
-      path.has_parent_path() ? path.parent_path() : ".";
-  const int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (dfd >= 0) {
-    ::fsync(dfd);
-    ::close(dfd);
-  }
-  return Status::Ok();
-}
 
 Result<std::string> ReadAll(const std::filesystem::path& path) {
   std::error_code ec;
@@ -94,8 +45,8 @@ std::string SessionBytes(const LocalState& state) {
 }
 
 Status SaveState(const std::filesystem::path& file, const LocalState& state) {
-  MW_RETURN_IF_ERROR(WriteAtomically(file, state.container));
-  return WriteAtomically(SidecarPath(file), SessionBytes(state));
+  MW_RETURN_IF_ERROR(WriteFileDurably(file, state.container));
+  return WriteFileDurably(SidecarPath(file), SessionBytes(state));
 }
 
 Result<LocalState> LoadState(const std::filesystem::path& file) {
@@ -126,7 +77,7 @@ Result<LocalState> ParseState(std::string_view session, std::string container,
   auto order = ParseProgression(meta.order());
   if (!order.ok()) return refuse(sidecar, order.status().message());
   state.order = *order;
-  if (meta.max_level() < -1 || meta.max_level() > 12) {
+  if (meta.max_level() < -1 || meta.max_level() > kMaxStreamLevels) {
     return refuse(sidecar, "max_level " + std::to_string(meta.max_level()) +
                                " out of range");
   }

@@ -6,18 +6,6 @@
 #include "meshwave/container.h"
 
 namespace meshwave::client {
-namespace {
-
-constexpr size_t kPreambleBytes = 8;  // "MWV1" and the header length
-
-uint64_t HeaderLength(std::string_view preamble) {
-  uint32_t v = 0;
-  for (int i = 7; i >= 4; --i) v = (v << 8) | static_cast<uint8_t>(preamble[i]);
-  return v;
-}
-
-}  // namespace
-
 Status StreamSplitter::Feed(std::string_view bytes) {
   pending_.append(bytes);
   const std::string_view all(pending_);
@@ -26,13 +14,14 @@ Status StreamSplitter::Feed(std::string_view bytes) {
   while (status.ok()) {
     const std::string_view rest = all.substr(pos);
     if (expect_header_) {
-      if (rest.size() < kPreambleBytes) break;
-      // ParseContainer checks the magic, the length limit, the version and
-      // the header; we only need the length to know when it is complete.
-      const uint64_t header_length = HeaderLength(rest);
-      status = CheckHeaderLength(header_length, max_header_bytes_);
+      if (rest.size() < kContainerPreambleBytes) break;
+      // The length says when the header is complete; ParseContainer then
+      // checks the format's length limit, the version and the header.
+      const Result<uint32_t> header_length = ReadContainerHeaderLength(rest);
+      status = header_length.ok() ? CheckHeaderLength(*header_length, max_header_bytes_)
+                                  : header_length.status();
       if (!status.ok()) break;
-      const uint64_t head = kPreambleBytes + header_length;
+      const uint64_t head = kContainerPreambleBytes + uint64_t{*header_length};
       auto parsed =
           ParseContainer(rest.substr(0, std::min<uint64_t>(rest.size(), head)),
                          /*allow_truncated=*/true);

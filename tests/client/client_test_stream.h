@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "codec/stream/stream_test_util.h"
+#include "meshwave/container.h"
 #include "meshwave/encoder.h"
 
 namespace meshwave::testing {
@@ -24,10 +25,9 @@ inline const EncodedStream& ClientTestStream() {
 // The header length field of a container (bytes 4-7, little endian): what
 // the client's max_header_bytes is compared with.
 inline uint64_t HeaderLengthField(std::string_view container) {
-  uint64_t length = 0;
-  for (int i = 7; i >= 4; --i)
-    length = (length << 8) | static_cast<uint8_t>(container[i]);
-  return length;
+  const Result<uint32_t> length = ReadContainerHeaderLength(container);
+  EXPECT_TRUE(length.ok()) << length.status().ToString();
+  return length.ok() ? *length : 0;
 }
 
 }  // namespace meshwave::testing

@@ -59,6 +59,13 @@ inline std::string ReadBytes(const std::filesystem::path& path) {
   return ss.str();
 }
 
+// How many entries a directory holds (files left behind, temporaries).
+inline size_t CountFilesIn(const std::filesystem::path& dir) {
+  size_t n = 0;
+  for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(dir)) ++n;
+  return n;
+}
+
 // A fresh temporary directory removed when the object goes away.
 class TempDir {
  public:

@@ -9,10 +9,10 @@
 #include <fstream>
 #include <thread>
 
-#include "durable_file.h"
+#include "core/durable_file.h"
 #include "e2e/cli_runner.h"
-#include "server/catalog_backends_testonly.h"
 #include "meshwave/container.h"
+#include "server/catalog_backends_testonly.h"
 #include "sha256.h"
 #include "test_data.h"
 
@@ -21,15 +21,10 @@ namespace {
 
 using meshwave::testing::CatalogBackend;
 using meshwave::testing::CatalogBackendTest;
+using meshwave::testing::CountFilesIn;
 using meshwave::testing::ReadBytes;
 using meshwave::testing::SampleMesh;
 using meshwave::testing::TempDir;
-
-size_t FilesIn(const std::filesystem::path& dir) {
-  size_t n = 0;
-  for ([[maybe_unused]] const auto& f : std::filesystem::directory_iterator(dir)) ++n;
-  return n;
-}
 
 using IngestTest = CatalogBackendTest;
 
@@ -64,7 +59,7 @@ TEST_P(IngestTest, SameFileTwiceGivesTheSameEntry) {
   EXPECT_TRUE(b->already_present);
   EXPECT_EQ(a->entry.id, b->entry.id);
   EXPECT_EQ(*catalog->Count(), 1u);
-  EXPECT_EQ(FilesIn(catalog->containers_dir()), 1u);
+  EXPECT_EQ(CountFilesIn(catalog->containers_dir()), 1u);
 }
 
 TEST_P(IngestTest, TwoHandlesIngestingTheSameMeshAtOnceMakeOneEntry) {
@@ -82,7 +77,7 @@ TEST_P(IngestTest, TwoHandlesIngestingTheSameMeshAtOnceMakeOneEntry) {
   EXPECT_EQ(ra->entry.id, rb->entry.id);
   EXPECT_NE(ra->already_present, rb->already_present);  // exactly one wrote it
   EXPECT_EQ(*a->Count(), 1u);
-  EXPECT_EQ(FilesIn(a->containers_dir()), 1u);
+  EXPECT_EQ(CountFilesIn(a->containers_dir()), 1u);
 }
 
 TEST(IngestSqliteTest, RemeshesIrregularInput) {
@@ -101,9 +96,9 @@ TEST_P(IngestTest, RejectsMalformedMeshLeavingNothing) {
                            MeshFormat::kPly, "bad", "bad.ply");
   EXPECT_FALSE(r.ok());
   EXPECT_EQ(*catalog->Count(), 0u);
-  EXPECT_EQ(FilesIn(catalog->containers_dir()), 0u);
+  EXPECT_EQ(CountFilesIn(catalog->containers_dir()), 0u);
   EXPECT_FALSE(IngestContainer(*catalog, "MWV1 not a container", "x", "x.mwv").ok());
-  EXPECT_EQ(FilesIn(catalog->containers_dir()), 0u);
+  EXPECT_EQ(CountFilesIn(catalog->containers_dir()), 0u);
 }
 
 TEST_P(IngestTest, RemovesOrphanAndTemporaryFiles) {
@@ -113,7 +108,7 @@ TEST_P(IngestTest, RemovesOrphanAndTemporaryFiles) {
   ASSERT_TRUE(r.ok());
   // A container renamed into place but never committed, and a half write.
   const auto orphan = catalog->containers_dir() / (std::string(64, 'a') + ".mwv");
-  const auto temp = catalog->containers_dir() / (std::string(kTempPrefix) + "123-0-x.mwv");
+  const auto temp = catalog->containers_dir() / (std::string(kDurableTempPrefix) + "123-0-x.mwv");
   std::ofstream(orphan) << "orphan";
   std::ofstream(temp) << "half";
   auto report = RemoveOrphans(*catalog);
@@ -139,15 +134,6 @@ TEST_P(IngestTest, RemoveEntryDeletesRowThenFile) {
 INSTANTIATE_TEST_SUITE_P(Backends, IngestTest,
                          ::testing::Values(CatalogBackend::kSqlite, CatalogBackend::kPostgres),
                          meshwave::testing::CatalogBackendName);
-
-TEST(DurableFileTest, WritesWholeFileWithoutTemporaries) {
-  TempDir tmp;
-  std::filesystem::create_directories(tmp / "d");
-  ASSERT_TRUE(WriteFileDurably(tmp / "d/f.bin", "hello").ok());
-  EXPECT_EQ(ReadBytes(tmp / "d/f.bin"), "hello");
-  EXPECT_EQ(FilesIn(tmp / "d"), 1u);
-  EXPECT_FALSE(WriteFileDurably(tmp / "missing/f.bin", "x").ok());
-}
 
 TEST(Sha256Test, MatchesKnownDigest) {
   EXPECT_EQ(Sha256Hex("abc"),

@@ -16,6 +16,7 @@
 #include "meshwave/mesh.h"
 #include "meshwave/rate_distortion.h"
 #include "meshwave/semiregular_input.h"
+#include "meshwave/stream_limits.h"
 #include "meshwave/wavelet.h"
 
 namespace meshwave::cli {
@@ -269,7 +270,7 @@ void AddAnalyzeCommand(CLI::App& app, int& exit_code) {
                   "With --plots: add a Draco RD curve from a CSV (header, then bpv,psnr_db)");
   cmd->add_flag("--rd", args->rd, "Also measure the 3xC/SIM/PGC rate-distortion curves");
   cmd->add_option("--subbands", args->subbands, "How many of the finest subbands to model")
-      ->check(CLI::Range(1, 12))
+      ->check(CLI::Range(1, kMaxStreamLevels))
       ->capture_default_str();
   cmd->add_flag("--no-mi", args->no_mi, "Skip the mutual information estimates");
   AddTransformOptions(cmd, args->predictor, args->update, args->levels, args->precision);

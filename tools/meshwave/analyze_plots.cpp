@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "cli_util.h"
+#include "core/durable_file.h"
 
 extern char** environ;
 
@@ -117,7 +118,7 @@ Result<std::vector<std::string>> WritePlots(const std::string& dir, const PlotIn
         for (int m = 0; m < 3; ++m) h += "," + Num(x->model_density[m][i]);
         h += "\n";
       }
-      MW_RETURN_IF_ERROR(WriteFileBytes(
+      MW_RETURN_IF_ERROR(WriteFileDurably(
           dir + "/hist_d" + std::to_string(j) + "_c" + std::to_string(c) + ".csv", h));
       std::string d = "series,n,rate,distortion\n";
       const auto add = [&d](const char* name, const std::vector<DrSample>& s) {
@@ -128,7 +129,7 @@ Result<std::vector<std::string>> WritePlots(const std::string& dir, const PlotIn
       };
       add("observed", x->observed_dr);
       for (int m = 0; m < 3; ++m) add(SourceModelName(kSourceModels[m]), x->model_dr[m]);
-      MW_RETURN_IF_ERROR(WriteFileBytes(
+      MW_RETURN_IF_ERROR(WriteFileDurably(
           dir + "/dr_d" + std::to_string(j) + "_c" + std::to_string(c) + ".csv", d));
     }
   }
@@ -173,13 +174,13 @@ Result<std::vector<std::string>> WritePlots(const std::string& dir, const PlotIn
       g += "\n";
     }
   }
-  MW_RETURN_IF_ERROR(WriteFileBytes(dir + "/snr_gain.csv", g));
+  MW_RETURN_IF_ERROR(WriteFileDurably(dir + "/snr_gain.csv", g));
   std::string fitted = "ratio,subband,component,auto_deadzone\n";
   for (const ComponentAnalysis& c : a.components) {
     fitted += Num(c.lm_sigma2 / c.lm_sigma1) + "," + std::to_string(c.subband) + "," +
               std::to_string(c.component) + "," + std::to_string(c.auto_deadzone) + "\n";
   }
-  MW_RETURN_IF_ERROR(WriteFileBytes(dir + "/fitted_ratios.csv", fitted));
+  MW_RETURN_IF_ERROR(WriteFileDurably(dir + "/fitted_ratios.csv", fitted));
   gp += "set terminal pngcairo noenhanced size 900,600 font ',10'\nset output 'snr_gain.png'\n"
         "set title 'EDSQ SNR gain over UEQ, Laplacian mixture beta = 0.9 "
         "(Satti et al. 2011, Fig. 7); "
@@ -208,7 +209,7 @@ Result<std::vector<std::string>> WritePlots(const std::string& dir, const PlotIn
       rd += c.name + "," + Num(c.bpv[i]) + "," + Num(c.bpv[i]) + "," + Num(c.psnr_db[i]) + "\n";
     }
   }
-  MW_RETURN_IF_ERROR(WriteFileBytes(dir + "/rd.csv", rd));
+  MW_RETURN_IF_ERROR(WriteFileDurably(dir + "/rd.csv", rd));
   if (!names.empty()) {
     std::string list;
     for (const auto& n : names) list += (list.empty() ? "" : " ") + n;
@@ -220,7 +221,7 @@ Result<std::vector<std::string>> WritePlots(const std::string& dir, const PlotIn
           "1/0):4 with linespoints pt 7 ps 0.5 title s\n";
     pngs.push_back(dir + "/rd.png");
   }
-  MW_RETURN_IF_ERROR(WriteFileBytes(dir + "/plots.gp", gp));
+  MW_RETURN_IF_ERROR(WriteFileDurably(dir + "/plots.gp", gp));
   if (run_gnuplot) MW_RETURN_IF_ERROR(RunGnuplot(dir));
   return pngs;
 }

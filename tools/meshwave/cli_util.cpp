@@ -2,10 +2,7 @@
 
 #include <google/protobuf/util/json_util.h>
 
-#include <unistd.h>
-
 #include <cctype>
-#include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -143,25 +140,6 @@ Result<std::string> ReadFileBytes(const std::string& path) {
   ss << in.rdbuf();
   if (in.bad()) return IoError(path + ": read failed");
   return ss.str();
-}
-
-Status WriteFileBytes(const std::string& path, std::string_view bytes) {
-  const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) return IoError(path + ": cannot create");
-    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    out.flush();
-    if (!out) {
-      std::remove(tmp.c_str());
-      return IoError(path + ": write failed");
-    }
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    return IoError(path + ": cannot rename the temporary file into place");
-  }
-  return Status::Ok();
 }
 
 }  // namespace meshwave::cli

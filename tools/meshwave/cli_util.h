@@ -46,8 +46,7 @@ Status ApplyQuantizerOption(const std::string& quantizer, EncodeOptions& options
 
 // Reads a whole file; IoError naming the path when it cannot.
 Result<std::string> ReadFileBytes(const std::string& path);
-// Writes bytes to `path` through a temporary file and a rename.
-Status WriteFileBytes(const std::string& path, std::string_view bytes);
+// Files are written with WriteFileDurably (core/durable_file.h).
 
 }  // namespace meshwave::cli
 

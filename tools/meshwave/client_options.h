@@ -10,6 +10,7 @@
 #include "meshwave/client/backoff.h"
 #include "meshwave/client/session.h"
 #include "meshwave/client/transport.h"
+#include "meshwave/stream_limits.h"
 
 namespace meshwave::cli {
 
@@ -30,7 +31,7 @@ Status ApplyClientOptions(const ClientArgs& args,
 // The limits of the commands that decode a server's stream (fetch, refine):
 // how big a header and a mesh the client accepts before allocating.
 struct DecodeLimitArgs {
-  std::string max_header = "64MiB";
+  std::string max_header = std::to_string(kMaxHeaderBytes >> 20) + "MiB";
   uint64_t max_faces = uint64_t{1} << 27;
 };
 

@@ -10,6 +10,7 @@
 #include "meshwave/mesh.h"
 #include "meshwave/progression.h"
 #include "meshwave/progressive_decoder.h"
+#include "meshwave/stream_limits.h"
 
 namespace meshwave::cli {
 namespace {
@@ -109,7 +110,7 @@ void AddDecodeCommand(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   cmd->add_option("--max-level", args->max_level,
                   "Stop at this subdivision level (a coarser mesh with fewer vertices)")
-      ->check(CLI::Range(0, 12));
+      ->check(CLI::Range(0, kMaxStreamLevels));
   cmd->add_flag("--json", args->json,
                 "Print one JSON object (counts, bytes, estimated PSNR, decode time)");
   cmd->callback([args, &exit_code] {

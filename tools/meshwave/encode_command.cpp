@@ -8,6 +8,7 @@
 
 #include "cli_util.h"
 #include "commands.h"
+#include "core/durable_file.h"
 #include "meshwave/container.h"
 #include "meshwave/encoder.h"
 #include "meshwave/mesh.h"
@@ -62,7 +63,7 @@ Status Run(const EncodeArgs& args) {
   MW_ASSIGN_OR_RETURN(SemiRegularMesh mesh, LoadSemiRegular(args));
   MW_ASSIGN_OR_RETURN(EncodedStream stream, EncodeMesh(mesh, options));
   const std::string bytes = SerializeFullContainer(stream);
-  MW_RETURN_IF_ERROR(WriteFileBytes(args.out, bytes));
+  MW_RETURN_IF_ERROR(WriteFileDurably(args.out, bytes));
   uint64_t payload = 0;
   for (const auto& p : stream.packets) payload += p.size();
   const double v = static_cast<double>(stream.header.vertices);

@@ -7,6 +7,7 @@
 #include "fetch_output.h"
 #include "meshwave/client/blocking_session.h"
 #include "meshwave/client/local_state.h"
+#include "meshwave/stream_limits.h"
 
 namespace meshwave::cli {
 namespace {
@@ -117,7 +118,7 @@ void AddFetchCommand(CLI::App& app, int& exit_code) {
   cmd->add_option(
          "--max-level", args->max_level,
          "Only subbands below this level (a coarser mesh for small devices)")
-      ->check(CLI::Range(0, 12));
+      ->check(CLI::Range(0, kMaxStreamLevels));
   AddFetchOutputOptions(cmd, args->output, "Output mesh (.ply, .obj, .glb or .gltf)",
                         /*out_required=*/true);
   cmd->add_option("--state", args->state,

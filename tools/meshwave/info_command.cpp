@@ -7,6 +7,7 @@
 #include "meshwave.pb.h"
 #include "meshwave/mesh.h"
 #include "meshwave/semiregular.h"
+#include "meshwave/stream_limits.h"
 
 namespace meshwave::cli {
 namespace {
@@ -14,7 +15,7 @@ namespace {
 struct InfoArgs {
   std::string file;
   bool json = false;
-  int max_levels = 12;
+  int max_levels = kMaxStreamLevels;
 };
 
 void FillTopology(const MeshStats& s, proto::Topology& t) {
@@ -163,7 +164,7 @@ void AddInfoCommand(CLI::App& app, int& exit_code) {
   cmd->add_flag("--json", args->json, "Print JSON instead of text");
   cmd->add_option("--max-levels", args->max_levels,
                   "Stop looking for subdivision levels after this many")
-      ->check(CLI::Range(0, 12));
+      ->check(CLI::Range(0, kMaxStreamLevels));
   cmd->callback([args, &exit_code] {
     auto info = Describe(*args);
     if (!info.ok()) {

@@ -13,6 +13,7 @@
 
 #include "cli_util.h"
 #include "commands.h"
+#include "core/durable_file.h"
 #include "meshwave.pb.h"
 #include "meshwave/mesh.h"
 #include "meshwave/rate_distortion.h"
@@ -193,7 +194,7 @@ Status Run(const RdArgs& given) {
     if (!curve.ok()) return curve.status().WithContext(RdCoderName(coder));
     curves.push_back(*std::move(curve));
   }
-  if (!args.csv.empty()) MW_RETURN_IF_ERROR(WriteFileBytes(args.csv, Csv(curves)));
+  if (!args.csv.empty()) MW_RETURN_IF_ERROR(WriteFileDurably(args.csv, Csv(curves)));
   if (args.json) {
     PrintJson(Report(args, loaded, curves));
   } else {

@@ -10,6 +10,7 @@
 
 #include "cli_util.h"
 #include "commands.h"
+#include "core/durable_file.h"
 #include "meshwave/mesh.h"
 #include "png_writer.h"
 #include "rasterizer.h"
@@ -69,7 +70,7 @@ Status Run(const RenderArgs& args) {
   }
   const std::vector<uint8_t> rgb = Rasterize(mesh, colours, view);
   MW_ASSIGN_OR_RETURN(std::string png, EncodePng(view.width, view.height, rgb));
-  return WriteFileBytes(args.out, png);
+  return WriteFileDurably(args.out, png);
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include "commands.h"
 #include "meshwave/mesh.h"
 #include "meshwave/semiregular.h"
+#include "meshwave/stream_limits.h"
 
 namespace meshwave::cli {
 namespace {
@@ -53,7 +54,7 @@ void AddSubdivideCommand(CLI::App& app, int& exit_code) {
       ->required();
   cmd->add_option("out", args->out, "Output mesh (.ply, .obj, .glb or .gltf)")->required();
   cmd->add_option("-l,--levels", args->levels, "Levels of subdivision")
-      ->check(CLI::Range(0, 12))
+      ->check(CLI::Range(0, kMaxStreamLevels))
       ->capture_default_str();
   cmd->add_option("-s,--scheme", args->scheme,
                   "midpoint, loop or butterfly (modified butterfly)")

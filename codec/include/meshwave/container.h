@@ -6,6 +6,8 @@
 #define MESHWAVE_CONTAINER_H_
 
 #include <concepts>
+#include <cstddef>
+#include <cstdint>
 #include <span>
 #include <string>
 #include <string_view>
@@ -42,6 +44,15 @@ uint64_t ContainerSize(const StreamHeader& header,
 // must hold ids of its index.
 std::vector<double> EstimatedPsnrCurve(const StreamHeader& header,
                                        std::span<const uint32_t> order);
+
+// The preamble: "MWV1" and the header length, 8 bytes.
+inline constexpr size_t kContainerPreambleBytes = 8;
+
+// The header length a container's preamble declares, the one reader of it
+// (ParseContainer, the client's stream splitter). ParseError for fewer than
+// 8 bytes or a wrong magic; the length is not checked against any limit
+// (ParseContainer refuses one over kMaxHeaderBytes, meshwave/stream_limits.h).
+Result<uint32_t> ReadContainerHeaderLength(std::string_view bytes);
 
 struct ParsedContainer {
   StreamHeader header;

@@ -27,6 +27,7 @@
 
 #include "meshwave/mesh.h"
 #include "meshwave/status.h"
+#include "meshwave/stream_limits.h"
 
 namespace meshwave {
 
@@ -115,7 +116,7 @@ Result<SemiRegularMesh> RenumberBase(const SemiRegularMesh& mesh,
                                      std::vector<Face> new_base_faces);
 
 struct DetectOptions {
-  int max_levels = 12;  // stop after this many levels even if more exist
+  int max_levels = kMaxStreamLevels;  // stop after this many levels even if more exist
 };
 
 struct DetectedSemiRegular {

@@ -1,5 +1,5 @@
-// File-level mesh I/O: format by extension, whole-file reads, atomic writes
-// (temporary file, fsync, rename), and the parser dispatch.
+// File-level mesh I/O: format by extension, whole-file reads, crash-safe
+// writes (core/durable_file.h), and the parser dispatch.
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -11,6 +11,7 @@
 #include <string>
 #include <utility>
 
+#include "core/durable_file.h"
 #include "mesh/mesh_readers.h"
 #include "meshwave/gltf.h"
 #include "meshwave/mesh.h"
@@ -37,59 +38,9 @@ class FdCloser {
   ~FdCloser() {
     if (fd_ >= 0) ::close(fd_);
   }
-  // Closes now and reports the result (close can report a failed write).
-  int Close() {
-    int result = ::close(fd_);
-    fd_ = -1;
-    return result;
-  }
-
  private:
   int fd_;
 };
-
-Status WriteAll(int fd, std::string_view bytes,
-                const std::filesystem::path& path) {
-  while (!bytes.empty()) {
-    ssize_t written = ::write(fd, bytes.data(), bytes.size());
-    if (written < 0) {
-      if (errno == EINTR) continue;
-      return ErrnoError(path, "write", errno);
-    }
-    bytes.remove_prefix(static_cast<size_t>(written));
-  }
-  return Status::Ok();
-}
-
-Status WriteFileAtomically(std::string_view bytes,
-                           const std::filesystem::path& path) {
-  std::filesystem::path temp = path;
-  temp += ".tmp-" + std::to_string(::getpid());
-  int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) return ErrnoError(temp, "create", errno);
-  FdCloser closer(fd);
-  Status status = WriteAll(fd, bytes, temp);
-  if (status.ok() && ::fsync(fd) != 0)
-    status = ErrnoError(temp, "fsync", errno);
-  if (closer.Close() != 0 && status.ok())
-    status = ErrnoError(temp, "close", errno);
-  if (status.ok() && ::rename(temp.c_str(), path.c_str()) != 0) {
-    status = ErrnoError(path, "rename the temporary file to", errno);
-  }
-  if (!status.ok()) {
-    ::unlink(temp.c_str());
-    return status;
-  }
-  // Make the rename itself durable; a failure here loses nothing written.
-  std::filesystem::path dir = path.parent_path();
-  int dir_fd = ::open(dir.empty() ? "." : dir.c_str(),
-                      O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (dir_fd >= 0) {
-    ::fsync(dir_fd);
-    ::close(dir_fd);
-  }
-  return Status::Ok();
-}
 
 }  // namespace
 
@@ -157,7 +108,7 @@ Result<TriMesh> ReadMesh(const std::filesystem::path& path) {
 
 Status WriteMesh(const TriMesh& mesh, const std::filesystem::path& path) {
   if (const auto gltf = GltfFormFromPath(path)) {
-    return WriteFileAtomically(SerializeGltf(mesh, *gltf), path);
+    return WriteFileDurably(path, SerializeGltf(mesh, *gltf));
   }
   const Result<MeshFormat> read_format = FormatFromPath(path);
   if (!read_format.ok()) {
@@ -167,9 +118,9 @@ Status WriteMesh(const TriMesh& mesh, const std::filesystem::path& path) {
   }
   switch (*read_format) {
     case MeshFormat::kPly:
-      return WriteFileAtomically(SerializePly(mesh), path);
+      return WriteFileDurably(path, SerializePly(mesh));
     case MeshFormat::kObj:
-      return WriteFileAtomically(SerializeObj(mesh), path);
+      return WriteFileDurably(path, SerializeObj(mesh));
     case MeshFormat::kOff:
       break;
   }

@@ -1,4 +1,5 @@
 #include "remesh/base_flips.h"
+#include "core/edge_key.h"
 
 #include <Eigen/Geometry>
 
@@ -18,11 +19,6 @@ constexpr int kMaxPasses = 20;
 constexpr double kMinGain = std::numbers::pi / 180;  // one degree
 // Normals of the new faces against the old ones (and each other).
 constexpr double kMinNormalCos = 0.5;
-
-uint64_t Key(uint32_t a, uint32_t b) {
-  if (a > b) std::swap(a, b);
-  return (uint64_t{a} << 32) | b;
-}
 
 double MinAngle(const Vec3& a, const Vec3& b, const Vec3& c) {
   auto angle = [](const Vec3& at, const Vec3& p, const Vec3& q) {
@@ -56,7 +52,7 @@ size_t FlipToImproveAngles(TriMesh& mesh) {
     edges.reserve(mesh.faces.size() * 2);
     for (uint32_t f = 0; f < mesh.faces.size(); ++f) {
       for (int i = 0; i < 3; ++i) {
-        edges[Key(mesh.faces[f][i], mesh.faces[f][(i + 1) % 3])].push_back(
+        edges[EdgeKey(mesh.faces[f][i], mesh.faces[f][(i + 1) % 3])].push_back(
             {f, i});
       }
     }
@@ -74,7 +70,7 @@ size_t FlipToImproveAngles(TriMesh& mesh) {
       const uint32_t d = mesh.faces[g][(k + 2) % 3];
       if (mesh.faces[g][k] != b || c == d) continue;
       if (faces_of_vertex[a] <= 3 || faces_of_vertex[b] <= 3) continue;
-      if (edges.count(Key(c, d)) != 0 || created.count(Key(c, d)) != 0) {
+      if (edges.count(EdgeKey(c, d)) != 0 || created.count(EdgeKey(c, d)) != 0) {
         continue;
       }
       const double before =
@@ -98,7 +94,7 @@ size_t FlipToImproveAngles(TriMesh& mesh) {
       ++faces_of_vertex[c];
       ++faces_of_vertex[d];
       touched[f] = touched[g] = 1;
-      created.insert(Key(c, d));
+      created.insert(EdgeKey(c, d));
       ++pass_flips;
     }
     flips += pass_flips;

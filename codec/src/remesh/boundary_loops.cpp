@@ -1,4 +1,5 @@
 #include "remesh/boundary_loops.h"
+#include "core/edge_key.h"
 
 #include <algorithm>
 #include <cmath>
@@ -15,7 +16,7 @@ BoundaryLoops::BoundaryLoops(const TriMesh& mesh)
   for (uint32_t f = 0; f < mesh.faces.size(); ++f) {
     for (int i = 0; i < 3; ++i) {
       const uint32_t a = mesh.faces[f][i], b = mesh.faces[f][(i + 1) % 3];
-      directed.push_back({(uint64_t{a} << 32) | b, f});
+      directed.push_back({DirectedEdgeKey(a, b), f});
     }
   }
   std::sort(directed.begin(), directed.end());
@@ -27,7 +28,7 @@ BoundaryLoops::BoundaryLoops(const TriMesh& mesh)
   for (const auto& [key, f] : directed) {
     const uint32_t a = static_cast<uint32_t>(key >> 32);
     const uint32_t b = static_cast<uint32_t>(key);
-    const uint64_t twin = (uint64_t{b} << 32) | a;
+    const uint64_t twin = DirectedEdgeKey(b, a);
     auto it =
         std::lower_bound(directed.begin(), directed.end(), twin,
                          [](const auto& e, uint64_t k) { return e.first < k; });

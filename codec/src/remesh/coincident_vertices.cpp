@@ -4,6 +4,8 @@
 #include <cstdint>
 #include <unordered_map>
 
+#include "core/hash_mix.h"
+
 namespace meshwave::remesh {
 namespace {
 
@@ -17,12 +19,7 @@ struct FloatKey {
   bool operator==(const FloatKey&) const = default;
 };
 struct FloatKeyHash {
-  size_t operator()(const FloatKey& k) const {
-    uint64_t h = k.x * 0x9E3779B97F4A7C15ull;
-    h ^= (h >> 29) + k.y * 0xBF58476D1CE4E5B9ull;
-    h ^= (h >> 31) + k.z * 0x94D049BB133111EBull;
-    return static_cast<size_t>(h ^ (h >> 32));
-  }
+  size_t operator()(const FloatKey& k) const { return HashTriple(k.x, k.y, k.z); }
 };
 
 FloatKey KeyOf(const Vec3& p) {

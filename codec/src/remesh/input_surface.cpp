@@ -1,4 +1,5 @@
 #include "remesh/input_surface.h"
+#include "core/edge_key.h"
 
 #include <Eigen/Geometry>
 
@@ -35,13 +36,13 @@ std::vector<uint8_t> BoundaryEdgeBits(const TriMesh& mesh) {
   for (uint32_t f = 0; f < mesh.faces.size(); ++f) {
     for (uint32_t i = 0; i < 3; ++i) {
       const uint32_t a = mesh.faces[f][i], b = mesh.faces[f][(i + 1) % 3];
-      directed.push_back({(uint64_t{a} << 32) | b, 3 * f + i});
+      directed.push_back({DirectedEdgeKey(a, b), 3 * f + i});
     }
   }
   std::sort(directed.begin(), directed.end());
   std::vector<uint8_t> bits(mesh.faces.size(), 0);
   for (const auto& [key, corner] : directed) {
-    const uint64_t twin = (key << 32) | (key >> 32);
+    const uint64_t twin = ReversedEdgeKey(key);
     auto it =
         std::lower_bound(directed.begin(), directed.end(), twin,
                          [](const auto& e, uint64_t k) { return e.first < k; });

@@ -11,17 +11,13 @@
 #include <utility>
 #include <vector>
 
+#include "core/edge_key.h"
 #include "remesh/union_find.h"
 
 namespace meshwave::remesh {
 namespace {
 
 constexpr uint32_t kNone = 0xffffffffu;
-
-uint64_t UndirectedKey(uint32_t a, uint32_t b) {
-  if (a > b) std::swap(a, b);
-  return (uint64_t{a} << 32) | b;
-}
 
 uint32_t CornerOf(const Face& f, uint32_t v) {
   return f[0] == v ? 0u : (f[1] == v ? 1u : 2u);
@@ -47,7 +43,7 @@ std::vector<uint32_t> PairHalfEdges(const TriMesh& mesh,
   std::vector<std::pair<uint64_t, uint32_t>> keyed(n);
   for (size_t f = 0; f < faces.size(); ++f) {
     for (int i = 0; i < 3; ++i) {
-      keyed[3 * f + i] = {UndirectedKey(faces[f][i], faces[f][(i + 1) % 3]),
+      keyed[3 * f + i] = {EdgeKey(faces[f][i], faces[f][(i + 1) % 3]),
                           static_cast<uint32_t>(3 * f + i)};
     }
   }
@@ -140,7 +136,7 @@ std::vector<uint32_t> FacesOnBadEdges(const std::vector<Face>& faces) {
   std::vector<std::pair<uint64_t, uint32_t>> keyed(faces.size() * 3);
   for (size_t f = 0; f < faces.size(); ++f) {
     for (int i = 0; i < 3; ++i) {
-      keyed[3 * f + i] = {UndirectedKey(faces[f][i], faces[f][(i + 1) % 3]),
+      keyed[3 * f + i] = {EdgeKey(faces[f][i], faces[f][(i + 1) % 3]),
                           static_cast<uint32_t>(3 * f + i)};
     }
   }

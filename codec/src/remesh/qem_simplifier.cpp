@@ -10,6 +10,7 @@
 #include <queue>
 #include <utility>
 
+#include "core/edge_key.h"
 #include "remesh/quadric.h"
 #include "remesh/remesh_quality.h"
 
@@ -188,9 +189,7 @@ class Simplifier {
         }
       }
       for (int i = 0; i < 3; ++i) {
-        uint32_t a = t[i], b = t[(i + 1) % 3];
-        if (a > b) std::swap(a, b);
-        keyed.push_back({(uint64_t{a} << 32) | b, f});
+        keyed.push_back({EdgeKey(t[i], t[(i + 1) % 3]), f});
       }
     }
     std::sort(keyed.begin(), keyed.end());

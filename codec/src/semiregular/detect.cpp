@@ -7,6 +7,8 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "core/edge_key.h"
+#include "core/hash_mix.h"
 #include "meshwave/semiregular.h"
 #include "semiregular/vertex_rings.h"
 
@@ -15,11 +17,6 @@ namespace {
 
 constexpr uint32_t kUnset = 0xffffffffu;
 enum Parity : uint8_t { kUnknown = 0, kEven = 1, kOdd = 2 };
-
-uint64_t EdgeKey(uint32_t a, uint32_t b) {
-  if (a > b) std::swap(a, b);
-  return (uint64_t{a} << 32) | b;
-}
 
 // A face as a key that ignores rotation but keeps orientation.
 struct FaceKey {
@@ -35,12 +32,7 @@ struct FaceKey {
   bool operator==(const FaceKey&) const = default;
 };
 struct FaceKeyHash {
-  size_t operator()(const FaceKey& k) const {
-    uint64_t h = k.a * 0x9E3779B97F4A7C15ull;
-    h ^= (h >> 29) + k.b * 0xBF58476D1CE4E5B9ull;
-    h ^= (h >> 31) + k.c * 0x94D049BB133111EBull;
-    return static_cast<size_t>(h ^ (h >> 32));
-  }
+  size_t operator()(const FaceKey& k) const { return HashTriple(k.a, k.b, k.c); }
 };
 
 // One undone level, in the local vertex numbering of the finer mesh.

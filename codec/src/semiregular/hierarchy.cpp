@@ -6,27 +6,23 @@
 #include <string>
 #include <unordered_map>
 
+#include "core/edge_key.h"
 #include "meshwave/semiregular.h"
+#include "meshwave/stream_limits.h"
 #include "semiregular/vertex_rings.h"
 
 namespace meshwave {
 namespace {
 
-constexpr int kMaxLevels = 12;
 constexpr double kMaxFinestFaces = 134217728.0;  // 2^27
-
-uint64_t EdgeKey(uint32_t a, uint32_t b) {
-  if (a > b) std::swap(a, b);
-  return (uint64_t{a} << 32) | b;
-}
 
 }  // namespace
 
 Result<std::shared_ptr<const SemiRegularHierarchy>> SemiRegularHierarchy::Build(
     uint32_t base_vertex_count, std::vector<Face> base_faces, int levels) {
-  if (levels < 0 || levels > kMaxLevels) {
+  if (levels < 0 || levels > kMaxStreamLevels) {
     return InvalidArgument("levels must be in [0, " +
-                           std::to_string(kMaxLevels) + "], got " +
+                           std::to_string(kMaxStreamLevels) + "], got " +
                            std::to_string(levels));
   }
   if (base_faces.empty()) return InvalidArgument("base mesh has no faces");

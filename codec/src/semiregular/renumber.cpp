@@ -2,15 +2,11 @@
 #include <string>
 #include <unordered_map>
 
+#include "core/edge_key.h"
 #include "meshwave/semiregular.h"
 
 namespace meshwave {
 namespace {
-
-uint64_t EdgeKey(uint32_t a, uint32_t b) {
-  if (a > b) std::swap(a, b);
-  return (uint64_t{a} << 32) | b;
-}
 
 }  // namespace
 

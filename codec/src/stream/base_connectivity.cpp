@@ -5,17 +5,13 @@
 #include <string>
 #include <unordered_map>
 
+#include "core/edge_key.h"
 #include "entropy/adaptive_golomb.h"
 
 namespace meshwave {
 namespace {
 
 constexpr uint32_t kNone = 0xffffffffu;
-
-uint64_t EdgeKey(uint32_t a, uint32_t b) {
-  if (a > b) std::swap(a, b);
-  return (uint64_t{a} << 32) | b;
-}
 
 struct ConnectivityContexts {
   BinaryContext is_new_first;  // corners of a component's first face

@@ -4,15 +4,11 @@
 #include <string>
 #include <unordered_map>
 
+#include "core/edge_key.h"
 #include "entropy/adaptive_golomb.h"
 
 namespace meshwave {
 namespace {
-
-uint64_t EdgeKey(uint32_t a, uint32_t b) {
-  if (a > b) std::swap(a, b);
-  return (uint64_t{a} << 32) | b;
-}
 
 // Contexts of the position code.
 struct PositionContexts {

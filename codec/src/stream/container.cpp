@@ -1,26 +1,18 @@
 #include "meshwave/container.h"
 
 #include <algorithm>
-#include <cmath>
 #include <cstring>
-#include <limits>
 #include <unordered_set>
 
+#include "core/protobuf_wire.h"
 #include "stream/packet_index.h"
 #include "stream/stream_format.h"
-#include "stream/varint.h"
 
 namespace meshwave {
 namespace {
 
 void PutU32(std::string& out, uint32_t v) {
   for (int i = 0; i < 4; ++i) out.push_back(static_cast<char>((v >> (8 * i)) & 0xff));
-}
-
-uint32_t GetU32(std::string_view b) {
-  uint32_t v = 0;
-  for (int i = 3; i >= 0; --i) v = (v << 8) | static_cast<uint8_t>(b[i]);
-  return v;
 }
 
 }  // namespace
@@ -33,7 +25,7 @@ uint64_t ContainerSize(const StreamHeader& header,
                        std::span<const uint32_t> ids) {
   // Sizes are added, not serialized: this runs once per packet when a
   // budget is fitted.
-  uint64_t size = 8 + header.bytes_without_present.size();
+  uint64_t size = kContainerPreambleBytes + header.bytes_without_present.size();
   uint64_t id_bytes = 0;
   for (uint32_t id : ids) {
     id_bytes += VarintSize(id);
@@ -49,15 +41,14 @@ std::string SerializeContainerHead(const StreamHeader& header,
 
 std::string SerializeContainerHead(std::string_view header_without_present,
                                    std::span<const uint32_t> ids) {
-  // `present` (field 14, packed varints) has the highest field number, so
-  // protobuf's own serializer would write it last: appending it gives the
-  // same bytes as serializing the header with the list set.
-  constexpr uint32_t kPresentTag = 14 << 3 | 2;  // field 14, length-delimited
+  // `present` (packed varints) has the highest field number, so protobuf's
+  // own serializer would write it last: appending it gives the same bytes as
+  // serializing the header with the list set.
   std::string present;
   for (uint32_t id : ids) PutVarint(present, id);
   std::string field;
   if (!ids.empty()) {
-    PutVarint(field, kPresentTag);
+    PutVarint(field, WireTag(kHeaderPresentField, kLengthDelimited));
     PutVarint(field, present.size());
   }
   std::string out(kContainerMagic, 4);
@@ -72,18 +63,10 @@ std::string SerializeContainerHead(std::string_view header_without_present,
 
 std::vector<double> EstimatedPsnrCurve(const StreamHeader& header,
                                        std::span<const uint32_t> order) {
-  // Mirrors ProgressiveDecoder::EstimatedPsnr, packet by packet.
-  double diagonal = 0;
-  for (size_t a = 0; a < 3 && a < header.bbox_min.size() && a < header.bbox_max.size(); ++a) {
-    const double d = header.bbox_max[a] - header.bbox_min[a];
-    diagonal += d * d;
-  }
-  diagonal = std::sqrt(diagonal);
-  const double vertices = static_cast<double>(std::max<uint64_t>(header.vertices, 1));
+  // ProgressiveDecoder::EstimatedPsnr, packet by packet.
+  const double diagonal = HeaderDiagonal(header);
   auto psnr = [&](double distortion) {
-    const double mse = std::max(distortion, 0.0) / vertices;
-    if (mse <= 0) return std::numeric_limits<double>::infinity();
-    return 20 * std::log10(diagonal / std::sqrt(mse));
+    return EstimatedPsnrFromDistortion(header, diagonal, distortion);
   };
   std::vector<double> out;
   out.reserve(order.size() + 1);
@@ -102,29 +85,35 @@ std::vector<double> EstimatedPsnrCurve(const StreamHeader& header,
   return out;
 }
 
-Result<ParsedContainer> ParseContainer(std::string_view bytes,
-                                       bool allow_truncated) {
-  if (bytes.size() < 8) {
+Result<uint32_t> ReadContainerHeaderLength(std::string_view bytes) {
+  if (bytes.size() < kContainerPreambleBytes) {
     return ParseError("container: " + std::to_string(bytes.size()) +
                       " bytes, shorter than the 8-byte preamble");
   }
   if (std::memcmp(bytes.data(), kContainerMagic, 4) != 0) {
     return ParseError("container: wrong magic (not a meshwave .mwv stream)");
   }
-  const uint32_t header_length = GetU32(bytes.substr(4, 4));
+  uint32_t v = 0;  // little-endian
+  for (int i = 7; i >= 4; --i) v = (v << 8) | static_cast<uint8_t>(bytes[static_cast<size_t>(i)]);
+  return v;
+}
+
+Result<ParsedContainer> ParseContainer(std::string_view bytes,
+                                       bool allow_truncated) {
+  MW_ASSIGN_OR_RETURN(const uint32_t header_length, ReadContainerHeaderLength(bytes));
   if (header_length > kMaxHeaderBytes) {
     return ParseError("container: header length " + std::to_string(header_length) +
                       " exceeds the limit");
   }
-  if (header_length > bytes.size() - 8) {
+  if (header_length > bytes.size() - kContainerPreambleBytes) {
     return Status(allow_truncated ? StatusCode::kNeedMoreInput
                                   : StatusCode::kParseError,
                   "container: header of " + std::to_string(header_length) +
-                      " bytes but only " + std::to_string(bytes.size() - 8) +
+                      " bytes but only " + std::to_string(bytes.size() - kContainerPreambleBytes) +
                       " follow");
   }
   ParsedContainer out;
-  auto header = ReadStreamHeader(bytes.substr(8, header_length));
+  auto header = ReadStreamHeader(bytes.substr(kContainerPreambleBytes, header_length));
   if (!header.ok()) return ParseError("container: the stream header does not parse");
   out.header = std::move(*header);
   if (out.header.format_version != kFormatVersion) {
@@ -137,7 +126,7 @@ Result<ParsedContainer> ParseContainer(std::string_view bytes,
   const auto& index = out.header.packets;
   const size_t count = index.length.size();
   std::unordered_set<uint32_t> seen;
-  std::string_view rest = bytes.substr(8 + header_length);
+  std::string_view rest = bytes.substr(kContainerPreambleBytes + header_length);
   for (uint32_t id : out.header.present) {
     if (id >= count) {
       return ParseError("container: packet id " + std::to_string(id) +

@@ -48,4 +48,14 @@ void WriteDistortionIndex(const DistortionModel& model, double true_start_distor
   index.set_distortion_step(steps);
 }
 
+void AddCodedPacket(std::string_view payload, uint32_t chain, double reduction,
+                    proto::PacketIndex& index, DistortionModel& model) {
+  index.add_length(static_cast<uint32_t>(payload.size()));
+  const uint16_t check = PacketCheck(payload);
+  index.mutable_check()->push_back(static_cast<char>(check >> 8));
+  index.mutable_check()->push_back(static_cast<char>(check & 0xff));
+  model.chain.push_back(chain);
+  model.reduction.push_back(reduction);
+}
+
 }  // namespace meshwave

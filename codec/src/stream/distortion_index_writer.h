@@ -5,6 +5,7 @@
 #define MESHWAVE_STREAM_DISTORTION_INDEX_WRITER_H_
 
 #include <cstdint>
+#include <string_view>
 #include <vector>
 
 #include "stream.pb.h"
@@ -30,6 +31,11 @@ struct DistortionModel {
 // keeps every PSNR read off the index close to it.
 void WriteDistortionIndex(const DistortionModel& model, double true_start_distortion,
                           proto::StreamHeader& header);
+
+// Records a coded packet, the next id: its length and check in `index`, its
+// chain and estimated distortion reduction in `model`.
+void AddCodedPacket(std::string_view payload, uint32_t chain, double reduction,
+                    proto::PacketIndex& index, DistortionModel& model);
 
 }  // namespace meshwave
 

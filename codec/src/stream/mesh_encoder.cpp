@@ -13,30 +13,13 @@
 #include "stream/base_mesh_codec.h"
 #include "stream/distortion_index_writer.h"
 #include "stream/packet_index.h"
-#include "stream/stream_preparation.h"
-#include "wavelet/sawt_choice.h"
 #include "stream/stream_format.h"
 #include "stream/stream_format_writer.h"
+#include "stream/stream_preparation.h"
+#include "wavelet/sawt_choice.h"
 
 namespace meshwave {
 namespace {
-
-// Quantised coefficients of one (subband, component).
-struct QuantizedComponent {
-  std::vector<double> value;
-  std::vector<uint32_t> q0;
-  std::vector<uint8_t> negative;
-  double step = 0;
-  double xi0 = 0;
-  int top = -1;
-};
-
-double SquaredError(double x, uint32_t mag, int n, bool negative,
-                    const QuantizedComponent& q) {
-  const double r =
-      (mag >> n) == 0 ? 0.0 : Dequantize(mag >> n, n, negative, q.step, q.xi0);
-  return (x - r) * (x - r);
-}
 
 }  // namespace
 
@@ -63,9 +46,7 @@ Result<EncodedStream> EncodeMesh(const SemiRegularMesh& input,
   const SemiRegularMesh& mesh = out.mesh;
   const SemiRegularHierarchy& h = *mesh.hierarchy;
   const int levels = h.levels();
-  const double step0 = prepared.step0;
   const SubbandGains& gains = prepared.gains;
-  const Pyramid& pyramid = prepared.pyramid;
   const DecodedBase& base = prepared.base;
   proto::StreamHeader& header = prepared.header;
   header.set_coder(options.coder == CoderKind::k3xC ? proto::CODER_3XC
@@ -80,30 +61,12 @@ Result<EncodedStream> EncodeMesh(const SemiRegularMesh& input,
   // Quantise every (subband, component).
   std::vector<std::array<QuantizedComponent, 3>> quantized(levels);
   for (int j = 0; j < levels; ++j) {
-    const auto& band = pyramid.subbands[j];
     for (int c = 0; c < 3; ++c) {
-      QuantizedComponent& q = quantized[j][c];
-      q.step = step0 / std::sqrt(gains.subband[j]);
-      q.value.resize(band.size());
-      for (size_t k = 0; k < band.size(); ++k) q.value[k] = band[k][c];
-      const int deadzone = options.auto_deadzone
-                               ? ChooseDeadzoneCode(q.value, options.deadzone)
-                               : options.deadzone;
-      q.xi0 = DeadzoneXi(deadzone);
-      q.q0.resize(band.size());
-      q.negative.resize(band.size());
-      uint32_t max_q = 0;
-      for (size_t k = 0; k < band.size(); ++k) {
-        q.q0[k] = QuantizeMagnitude(q.value[k], q.step, q.xi0);
-        q.negative[k] = q.value[k] < 0;
-        max_q = std::max(max_q, q.q0[k]);
-        model.chain_start[j] += gains.subband[j] * q.value[k] * q.value[k];
-      }
-      q.top = TopBitplane(max_q);
-      proto::Quantizer* pq = header.add_quantizers();
-      pq->set_step(q.step);
-      pq->set_deadzone(static_cast<uint32_t>(deadzone));
-      pq->set_top_bitplane(q.top);
+      std::vector<double> values = SubbandComponent(prepared, j, c);
+      const int deadzone = options.auto_deadzone ? ChooseDeadzoneCode(values, options.deadzone)
+                                                 : options.deadzone;
+      quantized[j][c] =
+          QuantizeComponent(prepared, j, std::move(values), deadzone, model.chain_start[j]);
     }
   }
 
@@ -137,17 +100,11 @@ Result<EncodedStream> EncodeMesh(const SemiRegularMesh& input,
           const uint32_t mag = state[c].mag[k];
           const uint32_t before = mag & ~(1u << b);
           reduction += gains.subband[j] *
-                       (SquaredError(q.value[k], before, b + 1, q.negative[k], q) -
-                        SquaredError(q.value[k], mag, b, q.negative[k], q));
+                       (q.SquaredError(k, before, b + 1) - q.SquaredError(k, mag, b));
         }
       }
       std::string payload = enc.Finish();
-      index.add_length(static_cast<uint32_t>(payload.size()));
-      const uint16_t check = PacketCheck(payload);
-      index.mutable_check()->push_back(static_cast<char>(check >> 8));
-      index.mutable_check()->push_back(static_cast<char>(check & 0xff));
-      model.chain.push_back(static_cast<uint32_t>(j));
-      model.reduction.push_back(reduction);
+      AddCodedPacket(payload, static_cast<uint32_t>(j), reduction, index, model);
       out.packets.push_back(std::move(payload));
     }
   }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "core/crc.h"
@@ -59,20 +60,31 @@ int PacketLayout::Bitplane(uint32_t id) const {
   return top_[static_cast<size_t>(j)] - (static_cast<int>(id) - first_[static_cast<size_t>(j)]);
 }
 
-int ChainCount(const StreamHeader& header) {
-  if (static_cast<int32_t>(header.coder) == kPgcCoderValue) return 1;
-  return static_cast<int>(header.transform.levels);
-}
-
 std::vector<uint32_t> PacketChains(const StreamHeader& header) {
   const int count = static_cast<int>(header.packets.length.size());
   std::vector<uint32_t> chain(static_cast<size_t>(count), 0);
-  if (static_cast<int32_t>(header.coder) == kPgcCoderValue) return chain;
   const PacketLayout layout(header);
   for (int id = 0; id < count && id < layout.count(); ++id) {
     chain[static_cast<size_t>(id)] = static_cast<uint32_t>(layout.Subband(static_cast<uint32_t>(id)));
   }
   return chain;
+}
+
+double HeaderDiagonal(const StreamHeader& header) {
+  double diagonal = 0;
+  for (size_t a = 0; a < 3 && a < header.bbox_min.size() && a < header.bbox_max.size(); ++a) {
+    const double d = header.bbox_max[a] - header.bbox_min[a];
+    diagonal += d * d;
+  }
+  return std::sqrt(diagonal);
+}
+
+double EstimatedPsnrFromDistortion(const StreamHeader& header, double diagonal,
+                                   double distortion) {
+  const double vertices = static_cast<double>(std::max<uint64_t>(header.vertices, 1));
+  const double mse = std::max(distortion, 0.0) / vertices;
+  if (mse <= 0) return std::numeric_limits<double>::infinity();
+  return 20 * std::log10(diagonal / std::sqrt(mse));
 }
 
 double DistortionEstimates::Estimate(const std::vector<double>& current) const {

@@ -4,7 +4,8 @@
 //
 // Distortion model. The packets form chains: in a 3xC or SIM stream the
 // packets of one subband (j, B_j) ... (j, 0), which the dependencies force
-// to arrive in that order; in a PGC stream all packets form one chain. The
+// to arrive in that order (the PGC measurement coder, pgc/, makes all its
+// packets one chain). The
 // estimated distortion of a decoder holding some packets is
 //   base_distortion + sum over chains of E_c(last packet of c held),
 // with E_c(none) = chain_distortion[c]. Every term is positive, so a coarse
@@ -25,10 +26,6 @@
 #include "meshwave/stream_header.h"
 
 namespace meshwave {
-
-// The value of StreamHeader.coder in a PGC header (stream/pgc_stream.h):
-// its packets form one distortion chain.
-inline constexpr int32_t kPgcCoderValue = 2;
 
 // Steps of the per-packet distortion code per octave.
 inline constexpr double kDistortionCodesPerOctave = 32;
@@ -92,9 +89,16 @@ struct DistortionEstimates {
 };
 DistortionEstimates ReadDistortionIndex(const StreamHeader& header,
                                         std::span<const uint32_t> chain_of);
-// The chain of each packet: its subband for 3xC and SIM, 0 for PGC.
+// The chain of each packet: its subband (3xC and SIM).
 std::vector<uint32_t> PacketChains(const StreamHeader& header);
-int ChainCount(const StreamHeader& header);
+
+// The estimated PSNR rule, the one ProgressiveDecoder::EstimatedPsnr and
+// EstimatedPsnrCurve share: dB with the bounding-box diagonal of the header
+// as peak, from an estimated squared error summed over the header's
+// vertices; +infinity when no error is left.
+double HeaderDiagonal(const StreamHeader& header);
+double EstimatedPsnrFromDistortion(const StreamHeader& header, double diagonal,
+                                   double distortion);
 
 // Shape checks of the compact fields against `packet_count` packets.
 Status ValidateCompactIndex(const StreamHeader& header, int packet_count,

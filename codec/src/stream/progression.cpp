@@ -3,11 +3,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/protobuf_wire.h"
 #include "meshwave/container.h"
 #include "quant/deadzone_quantizer.h"
+#include "stream/decoder_setup.h"
 #include "stream/packet_index.h"
 #include "stream/stream_format.h"
-#include "stream/varint.h"
 
 namespace meshwave {
 Result<Progression> ParseProgression(const std::string& name) {
@@ -28,13 +29,8 @@ const char* ProgressionName(Progression p) {
 }
 
 Status ValidateStreamHeader(const StreamHeader& h) {
-  if (h.format_version != kFormatVersion) {
-    return Status(StatusCode::kUnsupported,
-                  "stream format version " + std::to_string(h.format_version) +
-                      " (this build reads version " + std::to_string(kFormatVersion) + ")");
-  }
+  MW_RETURN_IF_ERROR(ValidateVersionAndLevels(h));
   const uint32_t levels = h.transform.levels;
-  if (levels > 12) return ParseError("header: " + std::to_string(levels) + " levels (at most 12)");
   MW_RETURN_IF_ERROR(ReadTransformSettings(h.transform).status());
   if (h.coder != StreamCoder::k3xC && h.coder != StreamCoder::kSim) {
     return ParseError("header: unknown coder " + std::to_string(static_cast<int32_t>(h.coder)));
@@ -42,16 +38,7 @@ Status ValidateStreamHeader(const StreamHeader& h) {
   if (h.octree_leaf_size == 0 || h.octree_leaf_size > (1u << 20)) {
     return ParseError("header: octree leaf size out of range");
   }
-  if (h.quantizers.size() != 3 * static_cast<size_t>(levels)) {
-    return ParseError("header: " + std::to_string(h.quantizers.size()) +
-                      " quantizers for " + std::to_string(levels) + " subbands");
-  }
-  for (const auto& q : h.quantizers) {
-    if (!(q.step > 0) || !std::isfinite(q.step) || q.deadzone > 3 || q.top_bitplane < -1 ||
-        q.top_bitplane > kMaxBitplane) {
-      return ParseError("header: a quantizer is out of range");
-    }
-  }
+  MW_RETURN_IF_ERROR(ValidateQuantizers(h));
   const auto& index = h.packets;
   const PacketLayout map(h);
   MW_RETURN_IF_ERROR(ValidateCompactIndex(h, map.count(), static_cast<int>(levels)));

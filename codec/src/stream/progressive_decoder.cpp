@@ -12,6 +12,7 @@
 #include "meshwave/wavelet.h"
 #include "quant/deadzone_quantizer.h"
 #include "stream/base_mesh_codec.h"
+#include "stream/decoder_setup.h"
 #include "stream/packet_index.h"
 #include "stream/sawt_field.h"
 #include "stream/stream_format.h"
@@ -56,32 +57,10 @@ Result<std::unique_ptr<ProgressiveDecoder>> ProgressiveDecoder::Create(
   impl->header = header;
   impl->header.present.clear();
   impl->options = options;
-  MW_ASSIGN_OR_RETURN(TransformSettings settings, ReadTransformSettings(header.transform));
-  MW_ASSIGN_OR_RETURN(impl->base,
-                      DecodeBaseMesh(header.base, options.max_base_vertices));
-  const int levels = static_cast<int>(header.transform.levels);
-  auto hierarchy = SemiRegularHierarchy::Build(
-      static_cast<uint32_t>(impl->base.positions.size()), impl->base.faces, levels);
-  if (!hierarchy.ok()) return hierarchy.status().WithContext("stream base mesh");
-  impl->hierarchy = *hierarchy;
+  MW_RETURN_IF_ERROR(SetUpDecoder(header, options.max_base_vertices, impl->base, impl->hierarchy,
+                                  impl->transform));
   const auto& h = *impl->hierarchy;
-  if (header.vertices != h.vertex_count(levels) || header.faces != h.faces(levels).size()) {
-    return ParseError("header: vertex or face count does not match the hierarchy");
-  }
-  if (header.bbox_min.size() != 3 || header.bbox_max.size() != 3) {
-    return ParseError("header: bounding box needs 3 coordinates");
-  }
-  for (size_t a = 0; a < 3; ++a) {
-    const double d = header.bbox_max[a] - header.bbox_min[a];
-    impl->diagonal += d * d;
-  }
-  impl->diagonal = std::sqrt(impl->diagonal);
-  if (settings.predictor == Predictor::kSawt) {
-    MW_ASSIGN_OR_RETURN(settings.sawt,
-                        DecodeSawtChoices(*header.transform.sawt, h, impl->base.grid));
-  }
-  MW_ASSIGN_OR_RETURN(WaveletTransform t, WaveletTransform::Create(impl->hierarchy, settings));
-  impl->transform = std::make_unique<WaveletTransform>(std::move(t));
+  impl->diagonal = HeaderDiagonal(header);
   impl->layouts = BuildSubbandLayouts(h, impl->base.grid, header.octree_leaf_size);
   impl->packets = std::make_unique<PacketLayout>(header);
   impl->estimates = ReadDistortionIndex(header, PacketChains(header));
@@ -200,10 +179,7 @@ int ProgressiveDecoder::CompleteLevels() const {
 }
 
 double ProgressiveDecoder::EstimatedPsnr() const {
-  const Impl& m = *impl_;
-  const double mse = std::max(m.distortion, 0.0) / static_cast<double>(m.header.vertices);
-  if (mse <= 0) return std::numeric_limits<double>::infinity();
-  return 20 * std::log10(m.diagonal / std::sqrt(mse));
+  return EstimatedPsnrFromDistortion(impl_->header, impl_->diagonal, impl_->distortion);
 }
 
 std::vector<Vec3> ProgressiveDecoder::Positions(int max_level) const {

@@ -10,8 +10,8 @@
 #include "meshwave/metrics.h"
 #include "meshwave/progression.h"
 #include "meshwave/progressive_decoder.h"
+#include "pgc/pgc_stream.h"
 #include "stream/packet_index.h"
-#include "stream/pgc_stream.h"
 
 namespace meshwave {
 namespace {

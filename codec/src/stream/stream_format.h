@@ -7,16 +7,20 @@
 
 #include "core/crc.h"  // Crc32c: the SAWT field's check
 #include "meshwave/status.h"
-#include "meshwave/wavelet.h"
 #include "meshwave/stream_header.h"
+#include "meshwave/stream_limits.h"  // kMaxHeaderBytes, kMaxStreamLevels
+#include "meshwave/wavelet.h"
 
 namespace meshwave {
 
 inline constexpr uint32_t kFormatVersion = 4;  // 3: Transform.sawt; 4: compact packet index
 inline constexpr char kContainerMagic[4] = {'M', 'W', 'V', '1'};
+// StreamHeader.present's field number in stream.proto, for the decoder
+// library, which has no generated code (stream_format_writer.cpp asserts it
+// equals the generated constant).
+inline constexpr uint32_t kHeaderPresentField = 14;
 // Limits on what a stream may ask a decoder to build.
 inline constexpr uint32_t kMaxBaseVertices = 1u << 24;
-inline constexpr uint32_t kMaxHeaderBytes = 64u << 20;
 
 inline Result<TransformSettings> ReadTransformSettings(const StreamHeader::Transform& t) {
   TransformSettings s;

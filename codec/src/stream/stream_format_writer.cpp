@@ -1,6 +1,11 @@
 #include "stream/stream_format_writer.h"
 
+#include "stream/stream_format.h"
+
 namespace meshwave {
+
+// The decoder library names this field without generated code.
+static_assert(kHeaderPresentField == proto::StreamHeader::kPresentFieldNumber);
 
 void ToProto(const StreamHeader::BaseMesh& base, proto::BaseMesh& out) {
   out.set_vertex_count(base.vertex_count);

@@ -7,20 +7,13 @@
 #include <cstring>
 #include <type_traits>
 
+#include "core/protobuf_wire.h"
 #include "meshwave/stream_header.h"
+#include "stream/stream_format.h"
 #include "stream/utf8.h"
 
 namespace meshwave {
 namespace {
-
-enum WireType : uint32_t {
-  kVarint = 0,
-  kFixed64 = 1,
-  kLengthDelimited = 2,
-  kStartGroup = 3,
-  kEndGroup = 4,
-  kFixed32 = 5,
-};
 
 // Protobuf's default recursion limit: embedded messages and groups nest at
 // most this deep below the header.
@@ -311,8 +304,6 @@ Field ReadIndex(uint32_t number, uint32_t wire, WireReader& r, StreamHeader::Pac
   }
 }
 
-constexpr uint32_t kPresentField = 14;
-
 Field ReadHeaderField(uint32_t number, uint32_t wire, WireReader& r, int depth,
                       StreamHeader& h) {
   switch (number) {
@@ -351,7 +342,7 @@ Field ReadHeaderField(uint32_t number, uint32_t wire, WireReader& r, int depth,
         return ReadIndex(n, w, f, h.packets);
       });
     case 13: return ReadDouble(wire, r, h.base_distortion);
-    case kPresentField: return ReadRepeatedU32(wire, r, h.present);
+    case kHeaderPresentField: return ReadRepeatedU32(wire, r, h.present);
     default: return Field::kUnknown;
   }
 }
@@ -366,7 +357,7 @@ Result<StreamHeader> ReadStreamHeader(std::string_view bytes) {
         return ReadHeaderField(number, wire, r, depth, h);
       },
       [&](uint32_t tag, const char* begin, const char* end, bool known) {
-        if (!(known && (tag >> 3) == kPresentField)) h.bytes_without_present.append(begin, end);
+        if (!(known && (tag >> 3) == kHeaderPresentField)) h.bytes_without_present.append(begin, end);
       });
   if (!ok) return ParseError("the stream header does not parse (malformed protobuf bytes)");
   return h;

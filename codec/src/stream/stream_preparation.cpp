@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "quant/deadzone_quantizer.h"
 #include "stream/sawt_field.h"
 #include "stream/stream_format.h"
 #include "stream/stream_format_writer.h"
@@ -137,6 +138,42 @@ Result<PreparedStream> PrepareStream(const SemiRegularMesh& input,
     out.zero_packet_distortion += (start[v] - out.mesh.positions[v]).squaredNorm();
   }
   return out;
+}
+
+double QuantizedComponent::SquaredError(size_t k, uint32_t mag, int n) const {
+  const double r = (mag >> n) == 0 ? 0.0 : Dequantize(mag >> n, n, negative[k], step, xi0);
+  return (value[k] - r) * (value[k] - r);
+}
+
+std::vector<double> SubbandComponent(const PreparedStream& prepared, int j, int c) {
+  const auto& band = prepared.pyramid.subbands[static_cast<size_t>(j)];
+  std::vector<double> values(band.size());
+  for (size_t k = 0; k < band.size(); ++k) values[k] = band[k][c];
+  return values;
+}
+
+QuantizedComponent QuantizeComponent(PreparedStream& prepared, int j, std::vector<double> values,
+                                     int deadzone, double& energy) {
+  const double gain = prepared.gains.subband[static_cast<size_t>(j)];
+  QuantizedComponent q;
+  q.value = std::move(values);
+  q.step = prepared.step0 / std::sqrt(gain);
+  q.xi0 = DeadzoneXi(deadzone);
+  q.q0.reserve(q.value.size());
+  q.negative.reserve(q.value.size());
+  uint32_t max_q = 0;
+  for (const double x : q.value) {
+    q.q0.push_back(QuantizeMagnitude(x, q.step, q.xi0));
+    q.negative.push_back(x < 0);
+    max_q = std::max(max_q, q.q0.back());
+    energy += gain * x * x;
+  }
+  q.top = TopBitplane(max_q);
+  proto::Quantizer* pq = prepared.header.add_quantizers();
+  pq->set_step(q.step);
+  pq->set_deadzone(static_cast<uint32_t>(deadzone));
+  pq->set_top_bitplane(q.top);
+  return q;
 }
 
 }  // namespace meshwave

@@ -7,8 +7,8 @@
 
 #include "meshwave/encoder.h"
 #include "quant/subband_gains.h"
-#include "stream/base_mesh_codec.h"
 #include "stream.pb.h"
+#include "stream/base_mesh_codec.h"
 
 namespace meshwave {
 
@@ -27,6 +27,29 @@ struct PreparedStream {
 
 Result<PreparedStream> PrepareStream(const SemiRegularMesh& input,
                                      const EncodeOptions& options);
+
+// The quantised coefficients of one (subband, component).
+struct QuantizedComponent {
+  std::vector<double> value;      // the coefficients
+  std::vector<uint32_t> q0;       // magnitudes at bitplane 0
+  std::vector<uint8_t> negative;  // signs
+  double step = 0;
+  double xi0 = 0;  // the deadzone's reconstruction offset
+  int top = -1;    // highest bitplane of any magnitude, -1 when all are 0
+  // Squared error of value[k] once its magnitude `mag` is known from
+  // bitplane n up (0 when nothing is known yet).
+  double SquaredError(size_t k, uint32_t mag, int n) const;
+};
+
+// Component c (0 = x, 1 = y, 2 = z) of subband j of the pyramid.
+std::vector<double> SubbandComponent(const PreparedStream& prepared, int j, int c);
+
+// Quantises `values`, component of subband j, with the step step0 / sqrt(G_j)
+// and deadzone code `deadzone` (docs/FORMAT.md), appends that quantizer to
+// the header and adds the values' gain-weighted energy G_j x^2 to `energy`
+// (the start of their distortion chain). Every coder quantises through this.
+QuantizedComponent QuantizeComponent(PreparedStream& prepared, int j, std::vector<double> values,
+                                     int deadzone, double& energy);
 
 }  // namespace meshwave
 

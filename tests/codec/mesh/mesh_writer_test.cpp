@@ -7,6 +7,7 @@
 #include <string>
 
 #include "codec/mesh/mesh_builders_testonly.h"
+#include "e2e/cli_runner.h"
 #include "meshwave/mesh.h"
 
 namespace meshwave {
@@ -78,11 +79,7 @@ TEST_F(MeshWriterTest, WritesAndReadsBackByExtension) {
     EXPECT_EQ(back->positions, mesh.positions);
   }
   // Only the two meshes are left: no temporary files.
-  size_t files = 0;
-  for ([[maybe_unused]] const auto& entry :
-       std::filesystem::directory_iterator(dir_))
-    ++files;
-  EXPECT_EQ(files, 2u);
+  EXPECT_EQ(testing::CountFilesIn(dir_), 2u);
 }
 
 TEST_F(MeshWriterTest, ReplacesAnExistingFile) {
@@ -101,11 +98,7 @@ TEST_F(MeshWriterTest, FailsWithIoErrorAndLeavesNothingBehind) {
   Status status = WriteMesh(testing::Tetrahedron(), target);
   EXPECT_EQ(status.code(), StatusCode::kIoError);
   EXPECT_THAT(status.message(), HasSubstr("taken.ply"));
-  size_t files = 0;
-  for ([[maybe_unused]] const auto& entry :
-       std::filesystem::directory_iterator(dir_))
-    ++files;
-  EXPECT_EQ(files, 1u);  // only the directory
+  EXPECT_EQ(testing::CountFilesIn(dir_), 1u);  // only the directory
 
   status = WriteMesh(testing::Tetrahedron(), dir_ / "missing_dir" / "m.ply");
   EXPECT_EQ(status.code(), StatusCode::kIoError);

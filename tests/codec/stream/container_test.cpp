@@ -127,6 +127,28 @@ TEST(ContainerTest, RejectsBadMagicVersionTrailingBytes) {
   EXPECT_FALSE(ParseContainer("MWV1").ok());
 }
 
+TEST(ContainerTest, PreambleGivesTheLittleEndianHeaderLength) {
+  const std::string bytes = SerializeFullContainer(Stream());
+  const Result<uint32_t> length = ReadContainerHeaderLength(bytes);
+  ASSERT_TRUE(length.ok()) << length.status().ToString();
+  // The header's protobuf bytes follow the preamble and end where it says.
+  proto::StreamHeader p;
+  EXPECT_TRUE(p.ParseFromString(bytes.substr(kContainerPreambleBytes, *length)));
+  size_t payloads = 0;
+  for (const std::string& packet : Stream().packets) payloads += packet.size();
+  EXPECT_EQ(*length, bytes.size() - kContainerPreambleBytes - payloads);
+  // Byte order: 0x04030201, not checked against the 64 MiB limit here.
+  EXPECT_EQ(*ReadContainerHeaderLength(std::string("MWV1\x01\x02\x03\x04", 8)), 0x04030201u);
+  EXPECT_EQ(*ReadContainerHeaderLength(std::string("MWV1\xff\xff\xff\xff", 8)), 0xffffffffu);
+  EXPECT_NE(ParseContainer(std::string_view("MWV1\xff\xff\xff\xff", 8)).status().message().find(
+                "exceeds the limit"),
+            std::string::npos);
+  EXPECT_EQ(ReadContainerHeaderLength("MWV1\x01\x02").status().code(), StatusCode::kParseError);
+  EXPECT_NE(ReadContainerHeaderLength(std::string("MWV2\0\0\0\0", 8)).status().message().find(
+                "wrong magic"),
+            std::string::npos);
+}
+
 TEST(ContainerTest, EveryTruncationIsRefusedOrDecodesAPrefix) {
   const std::string bytes = SerializeFullContainer(Stream());
   for (size_t n = 0; n < bytes.size(); n += 7) {

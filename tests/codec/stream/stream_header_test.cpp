@@ -2,8 +2,8 @@
 // (or both refuse them), on every container shipped in the repository, on
 // encoder output of every coder and transform, and on hand-made wire-format
 // corner cases (unknown fields, groups, unpacked repeats, merges, bad UTF-8).
-#include "test_data.h"
 #include "meshwave/stream_header.h"
+#include "test_data.h"
 
 #include <gtest/gtest.h>
 
@@ -15,10 +15,10 @@
 
 #include "codec/stream/stream_header_compare_testonly.h"
 #include "codec/stream/stream_test_util.h"
+#include "core/protobuf_wire.h"
 #include "meshwave/container.h"
 #include "meshwave/encoder.h"
-#include "stream/pgc_stream.h"
-#include "stream/varint.h"
+#include "pgc/pgc_stream.h"
 
 namespace meshwave {
 namespace {

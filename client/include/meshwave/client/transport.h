@@ -17,15 +17,15 @@
 #include "meshwave/client/url.h"
 #include "meshwave/progression.h"
 #include "meshwave/status.h"
+#include "meshwave/stream_limits.h"
 
 namespace meshwave::client {
 
 namespace net = boost::asio;
 
 // The default limit on a stream header (SessionOptions::max_header_bytes):
-// large enough for any header the encoder writes, small enough that a
-// hostile server cannot make the client buffer without bound.
-inline constexpr uint64_t kDefaultMaxHeaderBytes = uint64_t{64} << 20;
+// the format's own limit (meshwave/stream_limits.h).
+inline constexpr uint64_t kDefaultMaxHeaderBytes = kMaxHeaderBytes;
 
 struct TransportOptions {
   std::chrono::milliseconds connect_timeout{

@@ -1,4 +1,4 @@
-#include "bitplane/zerotree_coder.h"
+#include "pgc/zerotree_coder.h"
 
 #include <gtest/gtest.h>
 
@@ -13,8 +13,8 @@
 #include "codec/stream/stream_test_util.h"
 #include "codec/test_meshes.h"
 #include "meshwave/progressive_decoder.h"
+#include "pgc/pgc_stream.h"
 #include "stream/packet_index.h"
-#include "stream/pgc_stream.h"
 
 namespace meshwave {
 namespace {
@@ -143,7 +143,7 @@ TEST(ZerotreeCoderTest, DistortionFiguresMatchTheDecodedError) {
   const Fixture& f = Encoded();
   auto d = NewDecoder(f.stream);
   const DistortionEstimates estimates =
-      ReadDistortionIndex(f.stream.header, PacketChains(f.stream.header));
+      ReadDistortionIndex(f.stream.header, PgcPacketChains(f.stream.header));
   double estimate = estimates.start();
   for (size_t i = 0; i < f.stream.packets.size(); ++i) {
     ASSERT_TRUE(d->AddPacket(f.stream.packets[i]).ok());

@@ -8,8 +8,8 @@
 // Like bitplane_passes.h, the passes are written once as a template over the
 // symbol I/O, so that the encoder (which knows every coefficient) and the
 // decoder (which learns them from the stream) run the very same steps.
-#ifndef MESHWAVE_BITPLANE_ZEROTREE_CODER_H_
-#define MESHWAVE_BITPLANE_ZEROTREE_CODER_H_
+#ifndef MESHWAVE_PGC_ZEROTREE_CODER_H_
+#define MESHWAVE_PGC_ZEROTREE_CODER_H_
 
 #include <algorithm>
 #include <array>
@@ -246,4 +246,4 @@ class ZerotreeDecoderIo {
 
 }  // namespace meshwave
 
-#endif  // MESHWAVE_BITPLANE_ZEROTREE_CODER_H_
+#endif  // MESHWAVE_PGC_ZEROTREE_CODER_H_

@@ -1,14 +1,15 @@
-#include "durable_file.h"
+#include "core/durable_file.h"
 
 #include <fcntl.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <cerrno>
+#include <cstdint>
 #include <cstring>
 #include <string>
 
-namespace meshwave::server {
+namespace meshwave {
 namespace {
 
 Status Errno(const std::string& what, const std::filesystem::path& path) {
@@ -40,12 +41,14 @@ Status SyncDirectory(const std::filesystem::path& dir) {
 
 Status WriteFileDurably(const std::filesystem::path& path, std::string_view bytes) {
   static std::atomic<uint64_t> counter{0};
-  // The host name too: replicas in containers share a store and often a pid.
+  // The host name, pid and a counter make the temporary name unique: server
+  // replicas in containers share a store and often a pid, and threads of one
+  // process may write beside each other.
   char host[64] = {};
   ::gethostname(host, sizeof host - 1);
-  const std::filesystem::path dir = path.parent_path();
+  const std::filesystem::path dir = path.has_parent_path() ? path.parent_path() : ".";
   const std::filesystem::path temp =
-      dir / (std::string(kTempPrefix) + host + "-" + std::to_string(::getpid()) + "-" +
+      dir / (std::string(kDurableTempPrefix) + host + "-" + std::to_string(::getpid()) + "-" +
              std::to_string(counter++) + "-" + path.filename().string());
   const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
   if (fd < 0) return Errno("cannot create", temp);
@@ -62,4 +65,4 @@ Status WriteFileDurably(const std::filesystem::path& path, std::string_view byte
   return SyncDirectory(dir);
 }
 
-}  // namespace meshwave::server
+}  // namespace meshwave

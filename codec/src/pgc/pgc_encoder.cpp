@@ -3,32 +3,25 @@
 #include <cmath>
 #include <string>
 
+#include "pgc/pgc_stream.h"
 #include "quant/deadzone_quantizer.h"
 #include "quant/subband_gains.h"
 #include "stream/distortion_index_writer.h"
 #include "stream/packet_index.h"
-#include "stream/pgc_stream.h"
-#include "stream/stream_preparation.h"
 #include "stream/stream_format.h"
 #include "stream/stream_format_writer.h"
+#include "stream/stream_preparation.h"
 
 namespace meshwave {
 namespace {
 
-// Magnitudes, signs and values of one component, per subband.
-struct QuantizedTrees {
+// Magnitudes and signs of one component, per subband, as the zerotree coder
+// reads them.
+struct ComponentTrees {
   std::vector<std::vector<uint32_t>> q0;
   std::vector<std::vector<uint8_t>> negative;
-  std::vector<std::vector<double>> value;
   std::vector<int> top;
 };
-
-double SquaredError(double x, uint32_t mag, int n, bool negative, double step,
-                    double xi0) {
-  const double r =
-      (mag >> n) == 0 ? 0.0 : Dequantize(mag >> n, n, negative, step, xi0);
-  return (x - r) * (x - r);
-}
 
 }  // namespace
 
@@ -43,46 +36,25 @@ Result<PgcStream> EncodePgc(const SemiRegularMesh& input,
   const SemiRegularMesh& mesh = out.mesh;
   const SemiRegularHierarchy& h = *mesh.hierarchy;
   const int levels = h.levels();
-  const double step0 = prepared.step0;
   const SubbandGains& gains = prepared.gains;
-  const Pyramid& pyramid = prepared.pyramid;
   proto::StreamHeader& header = prepared.header;
   header.set_coder(static_cast<proto::Coder>(kPgcCoderValue));
   DistortionModel model;
   model.base = prepared.base_distortion;
   model.chain_start.assign(1, 0.0);
 
-  const double xi0 = DeadzoneXi(options.deadzone);
-  std::vector<double> steps(levels);
-  std::array<QuantizedTrees, 3> trees;
-  for (auto& t : trees) {
-    t.q0.resize(levels);
-    t.negative.resize(levels);
-    t.value.resize(levels);
-    t.top.assign(levels, -1);
-  }
+  // One deadzone for all (auto_deadzone is not applied): PGC is measured
+  // against SIM and 3xC with the same quantiser.
+  std::vector<std::array<QuantizedComponent, 3>> quantized(static_cast<size_t>(levels));
+  std::array<ComponentTrees, 3> trees;
   for (int j = 0; j < levels; ++j) {
-    steps[j] = step0 / std::sqrt(gains.subband[j]);
-    const auto& band = pyramid.subbands[j];
     for (int c = 0; c < 3; ++c) {
-      QuantizedTrees& t = trees[c];
-      t.q0[j].resize(band.size());
-      t.negative[j].resize(band.size());
-      t.value[j].resize(band.size());
-      uint32_t max_q = 0;
-      for (size_t k = 0; k < band.size(); ++k) {
-        const double x = band[k][c];
-        t.value[j][k] = x;
-        t.q0[j][k] = QuantizeMagnitude(x, steps[j], xi0);
-        t.negative[j][k] = x < 0;
-        max_q = std::max(max_q, t.q0[j][k]);
-        model.chain_start[0] += gains.subband[j] * x * x;
-      }
-      t.top[j] = TopBitplane(max_q);
-      proto::Quantizer* pq = header.add_quantizers();
-      pq->set_step(steps[j]);
-      pq->set_deadzone(static_cast<uint32_t>(options.deadzone));
-      pq->set_top_bitplane(t.top[j]);
+      QuantizedComponent& q = quantized[j][c];
+      q = QuantizeComponent(prepared, j, SubbandComponent(prepared, j, c), options.deadzone,
+                            model.chain_start[0]);
+      trees[c].q0.push_back(q.q0);
+      trees[c].negative.push_back(q.negative);
+      trees[c].top.push_back(q.top);
     }
   }
 
@@ -107,20 +79,13 @@ Result<PgcStream> EncodePgc(const SemiRegularMesh& input,
       // Every coefficient whose reconstruction changed is significant now.
       for (const TreeNode& n : s.lsp()) {
         const uint32_t mag = s.mag(n.j)[n.k];
-        const double x = trees[c].value[n.j][n.k];
-        const bool neg = trees[c].negative[n.j][n.k];
+        const QuantizedComponent& q = quantized[n.j][c];
         reduction += gains.subband[n.j] *
-                     (SquaredError(x, mag & ~(1u << b), b + 1, neg, steps[n.j], xi0) -
-                      SquaredError(x, mag, b, neg, steps[n.j], xi0));
+                     (q.SquaredError(n.k, mag & ~(1u << b), b + 1) - q.SquaredError(n.k, mag, b));
       }
     }
     std::string payload = enc.Finish();
-    index.add_length(static_cast<uint32_t>(payload.size()));
-    const uint16_t check = PacketCheck(payload);
-    index.mutable_check()->push_back(static_cast<char>(check >> 8));
-    index.mutable_check()->push_back(static_cast<char>(check & 0xff));
-    model.chain.push_back(0);
-    model.reduction.push_back(reduction);
+    AddCodedPacket(payload, 0, reduction, index, model);
     out.packets.push_back(std::move(payload));
   }
   WriteDistortionIndex(model, prepared.zero_packet_distortion, header);

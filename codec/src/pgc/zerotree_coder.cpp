@@ -1,4 +1,4 @@
-#include "bitplane/zerotree_coder.h"
+#include "pgc/zerotree_coder.h"
 
 namespace meshwave {
 

@@ -1,12 +1,12 @@
 // The PGC baseline (Khodakovsky et al. 2000) as a whole codec: the same
 // transform, base mesh coding, quantisers (per (subband, component), steps
 // step0 / sqrt(G_j)) and arithmetic coder as EncodeMesh, but the bitplanes
-// coded by the zerotree coder of bitplane/zerotree_coder.h, one packet per
+// coded by the zerotree coder of pgc/zerotree_coder.h, one packet per
 // bitplane spanning every subband and component. It exists to be compared
 // with SIM and 3xC (rate_distortion.h); it is not a .mwv format: there is no
 // resolution order and no packet can be skipped, only truncated.
-#ifndef MESHWAVE_STREAM_PGC_STREAM_H_
-#define MESHWAVE_STREAM_PGC_STREAM_H_
+#ifndef MESHWAVE_PGC_PGC_STREAM_H_
+#define MESHWAVE_PGC_PGC_STREAM_H_
 
 #include <array>
 #include <memory>
@@ -14,22 +14,26 @@
 #include <string_view>
 #include <vector>
 
-#include "bitplane/zerotree_coder.h"
 #include "meshwave/encoder.h"
 #include "meshwave/progressive_decoder.h"
 #include "meshwave/semiregular.h"
 #include "meshwave/status.h"
 #include "meshwave/wavelet.h"
+#include "pgc/zerotree_coder.h"
 #include "stream/base_mesh_codec.h"
 #include "stream/packet_index.h"
 
 namespace meshwave {
 
-// kPgcCoderValue (stream/packet_index.h) is the value of StreamHeader.coder
-// in a PGC header. Deliberately not in stream.proto: PGC headers never go
-// into a .mwv stream, and with this value ValidateStreamHeader (hence
-// ProgressiveDecoder) refuses them as an unknown coder instead of misreading
-// their packets.
+// The value of StreamHeader.coder in a PGC header. Deliberately not in
+// stream.proto: PGC headers never go into a .mwv stream, and with this value
+// ValidateStreamHeader (hence ProgressiveDecoder) refuses them as an unknown
+// coder instead of misreading their packets. Only this folder names it.
+inline constexpr int32_t kPgcCoderValue = 2;
+
+// The distortion chain of each packet of a PGC header (stream/packet_index.h):
+// one chain, 0, for all, since a packet spans every subband.
+std::vector<uint32_t> PgcPacketChains(const StreamHeader& header);
 
 // A PGC encoding. `header` is a StreamHeader as EncodeMesh fills it (base
 // mesh, transform, quantizers, bounding box, base distortion) except that
@@ -94,4 +98,4 @@ class PgcDecoder {
 
 }  // namespace meshwave
 
-#endif  // MESHWAVE_STREAM_PGC_STREAM_H_
+#endif  // MESHWAVE_PGC_PGC_STREAM_H_

@@ -1,49 +1,35 @@
 #include <cmath>
 #include <string>
 
+#include "pgc/pgc_stream.h"
 #include "quant/deadzone_quantizer.h"
+#include "stream/decoder_setup.h"
 #include "stream/packet_index.h"
-#include "stream/pgc_stream.h"
 #include "stream/sawt_field.h"
 #include "stream/stream_format.h"
 
 namespace meshwave {
 namespace {
 
-// The header checks that matter before anything is built from it.
+// The header checks that matter before anything is built from it: those
+// of every stream, then PGC's coder and one-chain index.
 Status ValidatePgcHeader(const StreamHeader& h) {
-  if (h.format_version != kFormatVersion) {
-    return Status(StatusCode::kUnsupported,
-                  "PGC header: format version " + std::to_string(h.format_version));
-  }
+  MW_RETURN_IF_ERROR(ValidateVersionAndLevels(h));
   if (static_cast<int32_t>(h.coder) != kPgcCoderValue) {
     return ParseError("PGC header: coder " + std::to_string(static_cast<int32_t>(h.coder)) +
                       " is not PGC");
   }
-  const uint32_t levels = h.transform.levels;
-  if (levels > 12) {
-    return ParseError("PGC header: " + std::to_string(levels) + " levels (at most 12)");
-  }
-  if (h.quantizers.size() != 3 * static_cast<size_t>(levels)) {
-    return ParseError("PGC header: " + std::to_string(h.quantizers.size()) +
-                      " quantizers for " + std::to_string(levels) + " subbands");
-  }
+  MW_RETURN_IF_ERROR(ValidateQuantizers(h));
   int top = -1;
-  for (const auto& q : h.quantizers) {
-    if (!(q.step > 0) || !std::isfinite(q.step) || q.deadzone > 3 || q.top_bitplane < -1 ||
-        q.top_bitplane > kMaxBitplane) {
-      return ParseError("PGC header: a quantizer is out of range");
-    }
-    top = std::max(top, q.top_bitplane);
-  }
-  MW_RETURN_IF_ERROR(ValidateCompactIndex(h, top + 1, 1));
-  if (h.bbox_min.size() != 3 || h.bbox_max.size() != 3) {
-    return ParseError("PGC header: bounding box needs 3 coordinates");
-  }
-  return Status::Ok();
+  for (const auto& q : h.quantizers) top = std::max(top, q.top_bitplane);
+  return ValidateCompactIndex(h, top + 1, 1);
 }
 
 }  // namespace
+
+std::vector<uint32_t> PgcPacketChains(const StreamHeader& header) {
+  return std::vector<uint32_t>(header.packets.length.size(), 0);
+}
 
 Result<std::unique_ptr<PgcDecoder>> PgcDecoder::Create(
     const StreamHeader& header, const DecoderOptions& options) {
@@ -51,23 +37,10 @@ Result<std::unique_ptr<PgcDecoder>> PgcDecoder::Create(
   std::unique_ptr<PgcDecoder> d(new PgcDecoder());
   d->header_ = header;
   d->options_ = options;
-  MW_ASSIGN_OR_RETURN(TransformSettings settings, ReadTransformSettings(header.transform));
-  MW_ASSIGN_OR_RETURN(d->base_, DecodeBaseMesh(header.base, options.max_base_vertices));
-  const int levels = static_cast<int>(header.transform.levels);
-  auto hierarchy = SemiRegularHierarchy::Build(
-      static_cast<uint32_t>(d->base_.positions.size()), d->base_.faces, levels);
-  if (!hierarchy.ok()) return hierarchy.status().WithContext("PGC base mesh");
-  d->hierarchy_ = *hierarchy;
+  MW_RETURN_IF_ERROR(
+      SetUpDecoder(header, options.max_base_vertices, d->base_, d->hierarchy_, d->transform_));
   const auto& h = *d->hierarchy_;
-  if (header.vertices != h.vertex_count(levels) || header.faces != h.faces(levels).size()) {
-    return ParseError("PGC header: vertex or face count does not match the hierarchy");
-  }
-  if (settings.predictor == Predictor::kSawt) {
-    MW_ASSIGN_OR_RETURN(settings.sawt,
-                        DecodeSawtChoices(*header.transform.sawt, h, d->base_.grid));
-  }
-  MW_ASSIGN_OR_RETURN(WaveletTransform t, WaveletTransform::Create(d->hierarchy_, settings));
-  d->transform_ = std::make_unique<WaveletTransform>(std::move(t));
+  const int levels = h.levels();
   for (int c = 0; c < 3; ++c) {
     std::vector<int> top(levels);
     for (int j = 0; j < levels; ++j) top[j] = header.quantizers[static_cast<size_t>(3 * j + c)].top_bitplane;

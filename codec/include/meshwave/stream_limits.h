@@ -1,0 +1,21 @@
+// Limits of the .mwv stream (docs/FORMAT.md), each written once: the
+// encoder, the decoders, the server, the client and the CLI read them here.
+#ifndef MESHWAVE_STREAM_LIMITS_H_
+#define MESHWAVE_STREAM_LIMITS_H_
+
+#include <cstdint>
+
+namespace meshwave {
+
+// Subdivision levels J of a stream: 12 levels of a one-triangle base mesh
+// are already 4^12 = 16.8 million faces.
+inline constexpr int kMaxStreamLevels = 12;
+
+// Bytes of a stream header (the container preamble's length field): large
+// enough for any header the encoder writes, small enough that a hostile
+// stream cannot make a reader buffer without bound.
+inline constexpr uint32_t kMaxHeaderBytes = 64u << 20;
+
+}  // namespace meshwave
+
+#endif  // MESHWAVE_STREAM_LIMITS_H_

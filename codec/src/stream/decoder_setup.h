@@ -1,0 +1,37 @@
+// What both decoders of the codec, ProgressiveDecoder and the PGC
+// measurement decoder (pgc/), check in a header and build from it before
+// any packet: one home for those checks and that setup.
+#ifndef MESHWAVE_STREAM_DECODER_SETUP_H_
+#define MESHWAVE_STREAM_DECODER_SETUP_H_
+
+#include <cstdint>
+#include <memory>
+
+#include "meshwave/semiregular.h"
+#include "meshwave/status.h"
+#include "meshwave/stream_header.h"
+#include "meshwave/wavelet.h"
+#include "stream/base_mesh_codec.h"
+
+namespace meshwave {
+
+// The format version this build reads (kUnsupported otherwise) and at most
+// kMaxStreamLevels levels.
+Status ValidateVersionAndLevels(const StreamHeader& h);
+
+// One quantizer per (subband, component), each with a finite positive step,
+// a known deadzone code and a top bitplane in [-1, kMaxBitplane].
+Status ValidateQuantizers(const StreamHeader& h);
+
+// Decodes the base mesh (at most `max_base_vertices`) into `base`, builds
+// `hierarchy` and checks the header's vertex and face counts and bounding
+// box against it, then builds `transform`, the inverse transform of the
+// header's settings (with the SAWT choices, when it has them). ParseError on
+// anything that does not fit.
+Status SetUpDecoder(const StreamHeader& header, uint32_t max_base_vertices, DecodedBase& base,
+                    std::shared_ptr<const SemiRegularHierarchy>& hierarchy,
+                    std::unique_ptr<WaveletTransform>& transform);
+
+}  // namespace meshwave
+
+#endif  // MESHWAVE_STREAM_DECODER_SETUP_H_
