@@ -3,6 +3,8 @@
 option(MESHWAVE_TESTS "Build the unit and end-to-end tests" ON)
 option(MESHWAVE_BENCH "Build the Google Benchmark programs in bench/" OFF)
 option(MESHWAVE_WERROR "Treat compiler warnings as errors" OFF)
+option(MESHWAVE_WASM
+  "Build the browser viewer's WebAssembly decoder when emscripten and node are installed" ON)
 option(MESHWAVE_DECODER_ONLY
   "Build only the decoder library (and with emscripten its WebAssembly module, web/decoder)" OFF)
 set(MESHWAVE_SANITIZE "" CACHE STRING
@@ -35,6 +37,12 @@ target_compile_options(meshwave_options INTERFACE
 if(MESHWAVE_WERROR)
   target_compile_options(meshwave_options INTERFACE -Werror)
 endif()
+# __FILE__ relative to the repository (GoogleTest's messages name files by
+# it): objects then do not depend on where the clone is, also in unity
+# builds, whose batch files include sources by absolute path, and the
+# compiler cache shares them between clones (tools/compiler_cache.sh).
+target_compile_options(meshwave_options INTERFACE
+  -fmacro-prefix-map=${PROJECT_SOURCE_DIR}/=)
 if(MESHWAVE_SANITIZE)
   list(JOIN MESHWAVE_SANITIZE "," _mw_sanitizers)
   target_compile_options(meshwave_options INTERFACE

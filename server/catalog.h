@@ -21,6 +21,11 @@
 
 namespace meshwave::server {
 
+// The columns of a catalog row in CatalogEntry's order, as the `meshes`
+// table of both backends names them (their SELECTs and INSERTs list these).
+inline constexpr char kCatalogColumns[] =
+    "id, name, source, vertices, faces, levels, packets, bytes, container, sha256, created";
+
 struct CatalogEntry {
   std::string id;  // IsValidMeshId
   std::string name;

@@ -10,9 +10,6 @@
 namespace meshwave::server {
 namespace {
 
-constexpr char kColumns[] =
-    "id, name, source, vertices, faces, levels, packets, bytes, container, sha256, created";
-
 // pg_advisory_lock key of the ingest lock (any constant every replica
 // shares; postgres_migrations.cpp uses the next one).
 constexpr char kIngestLockKey[] = "4270537001";
@@ -96,7 +93,7 @@ Status PostgresCatalog::Insert(const CatalogEntry& e) {
   PgError error;
   // One statement: its own transaction, committed (synchronous_commit on
   // the server decides durability) before this returns.
-  auto r = Run(std::string("INSERT INTO meshes (") + kColumns +
+  auto r = Run(std::string("INSERT INTO meshes (") + kCatalogColumns +
                    ") VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $9, $10, $11)",
                {e.id, e.name, e.source, std::to_string(e.vertices), std::to_string(e.faces),
                 std::to_string(e.levels), std::to_string(e.packets), std::to_string(e.bytes),
@@ -111,7 +108,7 @@ Status PostgresCatalog::Insert(const CatalogEntry& e) {
 
 Result<std::optional<CatalogEntry>> PostgresCatalog::Find(const std::string& id) {
   if (!IsValidMeshId(id)) return InvalidArgument("catalog: invalid id");
-  MW_ASSIGN_OR_RETURN(PgResult r, Run(std::string("SELECT ") + kColumns +
+  MW_ASSIGN_OR_RETURN(PgResult r, Run(std::string("SELECT ") + kCatalogColumns +
                                           " FROM meshes WHERE id = $1",
                                       {id}, /*read_only=*/true));
   if (r.rows() == 0) return std::optional<CatalogEntry>();
@@ -122,7 +119,7 @@ Result<std::vector<CatalogEntry>> PostgresCatalog::List(uint64_t limit, uint64_t
   // bigint is signed 64-bit; larger values mean "all" anyway.
   constexpr uint64_t kMax = static_cast<uint64_t>(INT64_MAX);
   MW_ASSIGN_OR_RETURN(
-      PgResult r, Run(std::string("SELECT ") + kColumns +
+      PgResult r, Run(std::string("SELECT ") + kCatalogColumns +
                           " FROM meshes ORDER BY created, id LIMIT $1 OFFSET $2",
                       {std::to_string(std::min(limit, kMax)), std::to_string(std::min(offset, kMax))},
                       /*read_only=*/true));

@@ -25,10 +25,6 @@ CREATE TABLE IF NOT EXISTS meshes (
 CREATE INDEX IF NOT EXISTS meshes_by_created ON meshes (created, id);
 )sql";
 
-constexpr char kColumns[] =
-    "id, name, source, vertices, faces, levels, packets, bytes, container, "
-    "sha256, created";
-
 // A prepared statement, finalized on scope exit.
 class Statement {
  public:
@@ -147,7 +143,7 @@ Status SqliteCatalog::Insert(const CatalogEntry& e) {
   if (!IsValidMeshId(e.id)) return InvalidArgument("catalog: invalid id '" + e.id + "'");
   std::lock_guard lock(mutex_);
   MW_RETURN_IF_ERROR(Exec("BEGIN IMMEDIATE;"));
-  Statement st(db_, (std::string("INSERT INTO meshes (") + kColumns +
+  Statement st(db_, (std::string("INSERT INTO meshes (") + kCatalogColumns +
                      ") VALUES (?,?,?,?,?,?,?,?,?,?,?);").c_str());
   if (!st.ok()) {
     (void)Exec("ROLLBACK;");
@@ -178,7 +174,7 @@ Status SqliteCatalog::Insert(const CatalogEntry& e) {
 Result<std::optional<CatalogEntry>> SqliteCatalog::Find(const std::string& id) {
   if (!IsValidMeshId(id)) return InvalidArgument("catalog: invalid id");
   std::lock_guard lock(mutex_);
-  Statement st(db_, (std::string("SELECT ") + kColumns +
+  Statement st(db_, (std::string("SELECT ") + kCatalogColumns +
                      " FROM meshes WHERE id = ?;").c_str());
   if (!st.ok()) return SqlError(db_, "prepare find");
   st.Bind(1, id);
@@ -190,7 +186,7 @@ Result<std::optional<CatalogEntry>> SqliteCatalog::Find(const std::string& id) {
 
 Result<std::vector<CatalogEntry>> SqliteCatalog::List(uint64_t limit, uint64_t offset) {
   std::lock_guard lock(mutex_);
-  Statement st(db_, (std::string("SELECT ") + kColumns +
+  Statement st(db_, (std::string("SELECT ") + kCatalogColumns +
                      " FROM meshes ORDER BY created, id LIMIT ? OFFSET ?;").c_str());
   if (!st.ok()) return SqlError(db_, "prepare list");
   // SQLite integers are signed 64-bit; larger values mean "all" anyway.

@@ -9,6 +9,11 @@ bool SharedMeshesRequired() { return MESHWAVE_REQUIRE_SHARED_MESHES != 0; }
 std::filesystem::path SampleDataDir() { return MESHWAVE_SAMPLE_DATA; }
 std::filesystem::path TestDataDir() { return MESHWAVE_TEST_DATA; }
 std::filesystem::path CliPath() { return MESHWAVE_CLI_PATH; }
+std::filesystem::path ServerPath() { return MESHWAVE_SERVER_PATH; }
+std::filesystem::path DieWithChildrenPath() { return MESHWAVE_DIE_WITH_CHILDREN; }
+std::filesystem::path SourceDir() { return MESHWAVE_SOURCE_DIR; }
+std::filesystem::path BuildDir() { return MESHWAVE_BUILD_DIR; }
+std::filesystem::path CMakeCommand() { return MESHWAVE_CMAKE_COMMAND; }
 
 std::vector<std::filesystem::path> AllSharedMeshes() {
   std::vector<std::filesystem::path> out;

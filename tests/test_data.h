@@ -1,7 +1,9 @@
 // Paths to test data: the shared development meshes, the project's own
 // sample meshes and the test corpus. One helper so every test finds them
 // alike. The paths come from CMake and live in test_data.cpp alone, so that
-// pointing MESHWAVE_SHARED_MESHES elsewhere rebuilds one file.
+// pointing MESHWAVE_SHARED_MESHES elsewhere rebuilds one file, and so that
+// no other test object names a path of this clone (the compiler cache
+// shares them between clones in other folders: tools/compiler_cache.sh).
 //
 // The shared meshes (../shared/data/meshes beside the repository) are not
 // part of it: a test that needs them starts with
@@ -22,12 +24,33 @@
 
 namespace meshwave::testing {
 
+// Whether this build runs under ASan or TSan (10-20 times slower): the
+// suites on real meshes then check the same code paths on smaller
+// refinements (the sanitizer stages of tools/sanitize.sh).
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+inline constexpr bool kUnderSanitizer = true;  // GCC
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
+inline constexpr bool kUnderSanitizer = true;  // clang
+#else
+inline constexpr bool kUnderSanitizer = false;
+#endif
+#else
+inline constexpr bool kUnderSanitizer = false;
+#endif
+
 std::filesystem::path SharedMeshDir();
 // Whether a missing shared mesh fails a test rather than skips it.
 bool SharedMeshesRequired();
 std::filesystem::path SampleDataDir();
 std::filesystem::path TestDataDir();
 std::filesystem::path CliPath();
+// The programs and directories of this build that the end-to-end tests use.
+std::filesystem::path ServerPath();           // meshwave-server
+std::filesystem::path DieWithChildrenPath();  // tests/process's helper
+std::filesystem::path SourceDir();            // the repository
+std::filesystem::path BuildDir();             // this build tree
+std::filesystem::path CMakeCommand();         // the cmake that configured it
 
 inline std::filesystem::path SharedMesh(const std::string& name) {
   return SharedMeshDir() / name;

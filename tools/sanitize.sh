@@ -27,6 +27,7 @@ jobs=${SANITIZE_JOBS:-2}
 source tools/sanitize_targets.sh
 bash deploy/install-deps.sh
 source tools/compiler_cache.sh
+source tools/build_flags.sh
 if ! command -v clang++ > /dev/null; then
   echo "sanitize: the sanitizer stages need clang (apt-get install clang libclang-rt-14-dev)" >&2
   exit 1
@@ -34,8 +35,9 @@ fi
 # Build type flags: -O1 (sanitizers' advice for speed with usable reports),
 # no -g (half the compile time; reports still name functions).
 # CI runs every test: a missing shared mesh fails rather than skips.
+# No WebAssembly decoder: the Release stage builds and tests it.
 flags=(-G Ninja -DCMAKE_BUILD_TYPE=Release "-DCMAKE_CXX_FLAGS_RELEASE=-O1 -DNDEBUG"
-       -DMESHWAVE_REQUIRE_SHARED_MESHES=ON)
+       -DMESHWAVE_REQUIRE_SHARED_MESHES=ON -DMESHWAVE_WASM=OFF "${ci_build_flags[@]}")
 [[ -n ${CMAKE_CXX_COMPILER_LAUNCHER:-} ]] &&
   flags+=(-DCMAKE_CXX_COMPILER_LAUNCHER="$CMAKE_CXX_COMPILER_LAUNCHER")
 

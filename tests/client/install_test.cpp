@@ -21,9 +21,9 @@ int RunShell(const std::string& cmd, const std::filesystem::path& log) {
 TEST(ClientInstallTest, ExampleProjectBuildsAgainstTheInstalledPackage) {
   TempDir dir;
   const auto log = dir / "log.txt";
-  const std::string cmake = ShellQuote(MESHWAVE_CMAKE_COMMAND);
+  const std::string cmake = ShellQuote(testing::CMakeCommand().string());
   const auto prefix = dir / "prefix";
-  ASSERT_EQ(RunShell(cmake + " --install " + ShellQuote(MESHWAVE_BUILD_DIR) +
+  ASSERT_EQ(RunShell(cmake + " --install " + ShellQuote(testing::BuildDir().string()) +
                     " --prefix " + ShellQuote(prefix.string()),
                 log),
             0)
@@ -35,7 +35,7 @@ TEST(ClientInstallTest, ExampleProjectBuildsAgainstTheInstalledPackage) {
       prefix / "lib/cmake/meshwave/meshwaveConfig.cmake"));
 
   const auto build = dir / "example";
-  ASSERT_EQ(RunShell(cmake + " -S " + ShellQuote(MESHWAVE_EXAMPLE_DIR) + " -B " +
+  ASSERT_EQ(RunShell(cmake + " -S " + ShellQuote((testing::SourceDir() / "docs/client-example").string()) + " -B " +
                     ShellQuote(build.string()) + " -DCMAKE_BUILD_TYPE=Release" +
                     " -DCMAKE_PREFIX_PATH=" + ShellQuote(prefix.string()),
                 log),

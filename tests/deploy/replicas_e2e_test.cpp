@@ -124,7 +124,7 @@ TEST_F(ReplicasE2eTest, IngestOnOneReplicaFetchThroughNginxSurvivesAKillAndIsCac
   TcpProxy hold_a(a->port());
   hold_a.StallAfter(5000);
   NginxProcess nginx({hold_a.port(), b->port()},
-                     std::filesystem::path(MESHWAVE_SOURCE_DIR) /
+                     testing::SourceDir() /
                          "deploy/nginx/meshwave-locations.conf");
   ASSERT_TRUE(nginx.ok()) << nginx.error();
   TcpProxy client_side(nginx.port());  // records nginx's responses

@@ -1,4 +1,4 @@
-// A small real container (MESHWAVE_FUZZ_CONTAINER: the octahedron subdivided
+// A small real container (FixtureContainerPath(): the octahedron subdivided
 // three times, or for the decoder targets the tetrahedron subdivided twice;
 // tests/fuzz/CMakeLists.txt) loaded once per fuzzing process: the fixed
 // header and payloads the packet and decoder-order targets mutate around.
@@ -24,6 +24,10 @@
 
 namespace meshwave::fuzz {
 
+// The container's path: one small file generated per target
+// (meshwave_add_fuzz), so no other object names a path of this clone.
+const char* FixtureContainerPath();
+
 struct Fixture {
   std::string bytes;                  // the whole container
   StreamHeader header;                // present cleared
@@ -42,13 +46,13 @@ inline const bool kQuietProtobuf = [] {
 inline const Fixture& GetFixture() {
   static const Fixture fixture = [] {
     Fixture f;
-    std::ifstream in(MESHWAVE_FUZZ_CONTAINER, std::ios::binary);
+    std::ifstream in(FixtureContainerPath(), std::ios::binary);
     std::stringstream ss;
     ss << in.rdbuf();
     f.bytes = ss.str();
     auto parsed = ParseContainer(f.bytes);
     if (!parsed.ok()) {
-      std::fprintf(stderr, "fuzz fixture %s: %s\n", MESHWAVE_FUZZ_CONTAINER,
+      std::fprintf(stderr, "fuzz fixture %s: %s\n", FixtureContainerPath(),
                    parsed.status().message().c_str());
       std::abort();
     }

@@ -31,7 +31,7 @@ TEST_P(ChildProcessTest, NothingOutlivesATestProcessThatDies) {
   // directory, not to the stage's (tools/sanitize.sh fails on any), and the
   // objects it leaks on purpose are no finding.
   const pid_t test = SpawnChild(
-      {MESHWAVE_DIE_WITH_CHILDREN, mode, dir.path().string()}, dir / "test.log",
+      {DieWithChildrenPath().string(), mode, dir.path().string()}, dir / "test.log",
       std::nullopt,
       {"ASAN_OPTIONS=detect_leaks=0:log_path=" + (dir / "asan").string(),
        "UBSAN_OPTIONS=log_path=" + (dir / "ubsan").string()});

@@ -15,10 +15,9 @@
 #include <vector>
 
 #include "process/child_process_testonly.h"
+#include "test_data.h"
 
 namespace meshwave::testing {
-
-inline std::filesystem::path ServerPath() { return MESHWAVE_SERVER_PATH; }
 
 // Spawns meshwave-server with `args`, stdout and stderr to `log`; extra
 // environment entries ("K=V") are added. Returns the pid (-1 on failure).

@@ -7,6 +7,7 @@
 
 #include "cli_util.h"
 #include "commands.h"
+#include "scaled_distance.h"
 #include "meshwave.pb.h"
 #include "meshwave/mesh.h"
 #include "meshwave/metrics.h"
@@ -35,14 +36,6 @@ struct CompareArgs {
   // reorders vertices (Draco) at rates where "far better" is not clear.
   std::string match = "auto";
 };
-
-proto::ScaledDistance Scaled(double distance, double diagonal) {
-  proto::ScaledDistance out;
-  out.set_absolute(distance);
-  out.set_percent_of_diagonal(100 * distance / diagonal);
-  out.set_psnr_db(PsnrDb(diagonal, distance));
-  return out;
-}
 
 // Fills report->vertex_error (when the counts agree) and vertex_note.
 Status AddVertexError(const TriMesh& a, const TriMesh& b, double diagonal,

@@ -11,6 +11,7 @@
 
 #include "cli_util.h"
 #include "commands.h"
+#include "scaled_distance.h"
 #include "meshwave.pb.h"
 #include "meshwave/mesh.h"
 #include "meshwave/metrics.h"
@@ -61,14 +62,6 @@ class ProgressLine {
   int last_percent_ = -1;
   std::string last_stage_;
 };
-
-proto::ScaledDistance Scaled(double distance, double diagonal) {
-  proto::ScaledDistance out;
-  out.set_absolute(distance);
-  out.set_percent_of_diagonal(100 * distance / diagonal);
-  out.set_psnr_db(PsnrDb(diagonal, distance));
-  return out;
-}
 
 void FillReport(const RemeshResult& r, proto::RemeshReport& p) {
   proto::Cleaning& c = *p.mutable_cleaning();

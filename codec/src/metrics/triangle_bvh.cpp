@@ -21,7 +21,6 @@ constexpr uint32_t kLeafSize = 4;
 constexpr int kSahBins = 16;
 constexpr int kMaxSahDepth = 32;
 static_assert(kLeafSize >= 4 && kMaxSahDepth + 30 <= TriangleBvh::kMaxDepth);
-constexpr int kMaxStack = TriangleBvh::kMaxDepth + 1;
 constexpr double kHuge = std::numeric_limits<double>::max();
 // Below this sin² of the angle at a corner a triangle gets no normal:
 // rounding makes the direction of a sliver's cross product unreliable.
@@ -41,17 +40,6 @@ float RoundUp(double x) {
     f = std::nextafter(f, std::numeric_limits<float>::infinity());
   }
   return f;
-}
-
-double BoxDistanceSquared(const float lo[3], const float hi[3], const Vec3& p) {
-  double sum = 0;
-  for (int k = 0; k < 3; ++k) {
-    const double below = static_cast<double>(lo[k]) - p[k];
-    const double above = p[k] - static_cast<double>(hi[k]);
-    const double gap = std::max({below, above, 0.0});
-    sum += gap * gap;
-  }
-  return sum;
 }
 
 // Half the surface area of a box (the factor does not change the choice).

@@ -3,6 +3,7 @@
 #ifndef MESHWAVE_METRICS_TRIANGLE_BVH_H_
 #define MESHWAVE_METRICS_TRIANGLE_BVH_H_
 
+#include <algorithm>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -26,6 +27,7 @@ class TriangleBvh {
   // leaf. A depth-first traversal that keeps one pending sibling per level
   // needs a stack of kMaxDepth + 1 entries.
   static constexpr int kMaxDepth = 62;
+  static constexpr int kMaxStack = kMaxDepth + 1;
 
   struct Hit {
     double distance_squared = std::numeric_limits<double>::infinity();
@@ -115,6 +117,19 @@ class TriangleBvh {
   std::vector<uint32_t> slot_of_face_;  // face index -> triangles_ index
   int depth_ = 0;
 };
+
+// Squared distance from p to the box [lo, hi] (0 inside): the traversals'
+// lower bound for a node's faces.
+inline double BoxDistanceSquared(const float lo[3], const float hi[3], const Vec3& p) {
+  double sum = 0;
+  for (int k = 0; k < 3; ++k) {
+    const double below = static_cast<double>(lo[k]) - p[k];
+    const double above = p[k] - static_cast<double>(hi[k]);
+    const double gap = std::max({below, above, 0.0});
+    sum += gap * gap;
+  }
+  return sum;
+}
 
 }  // namespace meshwave::metrics
 

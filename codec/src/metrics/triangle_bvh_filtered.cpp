@@ -14,22 +14,9 @@
 namespace meshwave::metrics {
 namespace {
 
-// Same bound as the unfiltered traversal: depth below 32 for < 2^32 faces.
-constexpr int kMaxStack = 64;
 // Barycentric slack of the line-triangle test: a line through the edge
 // shared by two faces must hit one of them despite rounding.
 constexpr double kBarycentricSlack = 1e-9;
-
-double BoxDistanceSquared(const float lo[3], const float hi[3], const Vec3& p) {
-  double sum = 0;
-  for (int k = 0; k < 3; ++k) {
-    const double below = static_cast<double>(lo[k]) - p[k];
-    const double above = p[k] - static_cast<double>(hi[k]);
-    const double gap = std::max({below, above, 0.0});
-    sum += gap * gap;
-  }
-  return sum;
-}
 
 // The smallest |t| at which the line origin + t·direction is inside the box,
 // or infinity when the line misses it.

@@ -12,12 +12,12 @@ namespace {
 
 using ::testing::HasSubstr;
 
-Result<TriMesh> Parse(std::string_view text) {
+Result<TriMesh> ParseObj(std::string_view text) {
   return ParseMesh(text, MeshFormat::kObj, "a.obj");
 }
 
 TEST(ObjReaderTest, ReadsVerticesAndOneBasedFaces) {
-  Result<TriMesh> mesh = Parse("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  Result<TriMesh> mesh = ParseObj("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
   ASSERT_TRUE(mesh.ok()) << mesh.status().ToString();
   EXPECT_EQ(mesh->positions[1], Vec3(1, 0, 0));
   EXPECT_EQ(mesh->faces, (std::vector<Face>{{0, 1, 2}}));
@@ -48,7 +48,7 @@ TEST(ObjReaderTest, FanTriangulatesPolygonsAndIgnoresW) {
 }
 
 TEST(ObjReaderTest, ReadsDoublesExactly) {
-  Result<TriMesh> mesh = Parse(
+  Result<TriMesh> mesh = ParseObj(
       "v 0.1 -2.5e-300 1.7976931348623157e308\nv +1 2 3\nv 4 5 6\nf 1 2 3\n");
   ASSERT_TRUE(mesh.ok()) << mesh.status().ToString();
   EXPECT_EQ(mesh->positions[0], Vec3(0.1, -2.5e-300, 1.7976931348623157e308));
@@ -56,19 +56,19 @@ TEST(ObjReaderTest, ReadsDoublesExactly) {
 }
 
 TEST(ObjReaderTest, AcceptsForwardReferencesWithinTheFile) {
-  Result<TriMesh> mesh = Parse("f 1 2 3\nv 0 0 0\nv 1 0 0\nv 0 1 0\n");
+  Result<TriMesh> mesh = ParseObj("f 1 2 3\nv 0 0 0\nv 1 0 0\nv 0 1 0\n");
   ASSERT_TRUE(mesh.ok()) << mesh.status().ToString();
   EXPECT_EQ(mesh->faces.size(), 1u);
 }
 
 TEST(ObjReaderTest, RejectsBadNumberNamingTheLine) {
-  EXPECT_EQ(Parse("v 0 0 0\n# c\nv 1.2.3 0 0\n").status().message(),
+  EXPECT_EQ(ParseObj("v 0 0 0\n# c\nv 1.2.3 0 0\n").status().message(),
             "a.obj: line 3: bad number \"1.2.3\"");
 }
 
 TEST(ObjReaderTest, RejectsNonFiniteCoordinates) {
   for (const char* bad : {"nan", "-inf", "infinity", "1e400"}) {
-    Status status = Parse("v 0 0 " + std::string(bad) + "\n").status();
+    Status status = ParseObj("v 0 0 " + std::string(bad) + "\n").status();
     EXPECT_EQ(status.code(), StatusCode::kParseError);
     EXPECT_THAT(status.message(), HasSubstr("a.obj: line 1:")) << bad;
   }
@@ -76,33 +76,33 @@ TEST(ObjReaderTest, RejectsNonFiniteCoordinates) {
 
 TEST(ObjReaderTest, RejectsIndicesOutOfRange) {
   const std::string v = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
-  EXPECT_EQ(Parse(v + "f 1 2 4\n").status().message(),
+  EXPECT_EQ(ParseObj(v + "f 1 2 4\n").status().message(),
             "a.obj: line 4: vertex index 4 out of range (3 vertices)");
-  EXPECT_EQ(Parse(v + "f -1 -2 -4\n").status().message(),
+  EXPECT_EQ(ParseObj(v + "f -1 -2 -4\n").status().message(),
             "a.obj: line 4: vertex index -4 out of range (3 vertices so far)");
-  EXPECT_THAT(Parse(v + "f 0 1 2\n").status().message(),
+  EXPECT_THAT(ParseObj(v + "f 0 1 2\n").status().message(),
               HasSubstr("line 4: vertex index 0"));
-  EXPECT_THAT(Parse(v + "f 1 2 99999999999\n").status().message(),
+  EXPECT_THAT(ParseObj(v + "f 1 2 99999999999\n").status().message(),
               HasSubstr("line 4: vertex index 99999999999 out of range"));
 }
 
 TEST(ObjReaderTest, RejectsFacesWithFewerThanThreeCorners) {
-  EXPECT_EQ(Parse("v 0 0 0\nv 1 0 0\nf 1 2\n").status().message(),
+  EXPECT_EQ(ParseObj("v 0 0 0\nv 1 0 0\nf 1 2\n").status().message(),
             "a.obj: line 3: face with 2 corners (at least 3 needed)");
-  EXPECT_THAT(Parse("v 0 0 0\nf\n").status().message(),
+  EXPECT_THAT(ParseObj("v 0 0 0\nf\n").status().message(),
               HasSubstr("face with 0 corners"));
 }
 
 TEST(ObjReaderTest, RejectsMalformedCorners) {
   const std::string v = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
-  EXPECT_THAT(Parse(v + "f 1 2 /3\n").status().message(),
+  EXPECT_THAT(ParseObj(v + "f 1 2 /3\n").status().message(),
               HasSubstr("bad vertex index \"/3\""));
-  EXPECT_THAT(Parse(v + "f 1 2 3x\n").status().message(),
+  EXPECT_THAT(ParseObj(v + "f 1 2 3x\n").status().message(),
               HasSubstr("bad vertex index \"3x\""));
 }
 
 TEST(ObjReaderTest, RejectsFileWithoutFaces) {
-  Status status = Parse("v 0 0 0\nv 1 0 0\nv 0 1 0\n").status();
+  Status status = ParseObj("v 0 0 0\nv 1 0 0\nv 0 1 0\n").status();
   EXPECT_EQ(status.code(), StatusCode::kParseError);
   EXPECT_EQ(status.message(), "a.obj: no faces (3 vertices)");
 }

@@ -12,7 +12,7 @@ namespace {
 
 using ::testing::HasSubstr;
 
-Result<TriMesh> Parse(std::string_view text) {
+Result<TriMesh> ParseOff(std::string_view text) {
   return ParseMesh(text, MeshFormat::kOff, "a.off");
 }
 
@@ -42,7 +42,7 @@ TEST(OffReaderTest, ReadsNoffIgnoringNormals) {
 }
 
 TEST(OffReaderTest, AcceptsAMissingKeyword) {
-  Result<TriMesh> mesh = Parse("3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  Result<TriMesh> mesh = ParseOff("3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
   ASSERT_TRUE(mesh.ok()) << mesh.status().ToString();
   EXPECT_EQ(mesh->faces.size(), 1u);
 }
@@ -61,21 +61,21 @@ TEST(OffReaderTest, ReadsTheProjectSampleMeshes) {
 
 TEST(OffReaderTest, RejectsIndexOutOfRangeNamingTheLine) {
   EXPECT_EQ(
-      Parse("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n").status().message(),
+      ParseOff("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n").status().message(),
       "a.off: line 6: vertex index 3 out of range (3 vertices)");
   EXPECT_THAT(
-      Parse("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 -1 2\n").status().message(),
+      ParseOff("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 -1 2\n").status().message(),
       HasSubstr("line 6: vertex index -1 out of range"));
 }
 
 TEST(OffReaderTest, RejectsCountsTheFileCannotHold) {
-  Status status = Parse("OFF\n4000000000 1 0\n0 0 0\n").status();
+  Status status = ParseOff("OFF\n4000000000 1 0\n0 0 0\n").status();
   EXPECT_EQ(status.code(), StatusCode::kParseError);
   EXPECT_THAT(status.message(),
               HasSubstr("line 2: 4000000000 vertices and 1 faces cannot fit"));
-  EXPECT_THAT(Parse("OFF\n3 18446744073709551615 0\n").status().message(),
+  EXPECT_THAT(ParseOff("OFF\n3 18446744073709551615 0\n").status().message(),
               HasSubstr("line 2:"));
-  EXPECT_THAT(Parse("OFF\n5000000000 1 0\n").status().message(),
+  EXPECT_THAT(ParseOff("OFF\n5000000000 1 0\n").status().message(),
               HasSubstr("more than 32-bit indices"));
 }
 
@@ -83,30 +83,30 @@ TEST(OffReaderTest, RejectsTruncatedFiles) {
   const std::string whole = "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
   for (size_t n = 0; n + 2 < whole.size(); ++n) {
     std::string prefix = whole.substr(0, n);
-    EXPECT_EQ(Parse(prefix).status().code(), StatusCode::kParseError) << prefix;
+    EXPECT_EQ(ParseOff(prefix).status().code(), StatusCode::kParseError) << prefix;
   }
 }
 
 TEST(OffReaderTest, RejectsBadNumbersAndShortFaces) {
-  EXPECT_EQ(Parse("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1.2.3 0\n3 0 1 2\n")
+  EXPECT_EQ(ParseOff("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1.2.3 0\n3 0 1 2\n")
                 .status()
                 .message(),
             "a.off: line 5: bad number \"1.2.3\"");
-  EXPECT_THAT(Parse("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2 0 1  # short\n")
+  EXPECT_THAT(ParseOff("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2 0 1  # short\n")
                   .status()
                   .message(),
               HasSubstr("line 6: face with 2 corners"));
   EXPECT_THAT(
-      Parse("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n4 0 1 2\n").status().message(),
+      ParseOff("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n4 0 1 2\n").status().message(),
       HasSubstr("line 6: face has 3 of its 4 indices"));
 }
 
 TEST(OffReaderTest, RejectsUnsupportedVariants) {
-  EXPECT_THAT(Parse("OFF BINARY\n").status().message(),
+  EXPECT_THAT(ParseOff("OFF BINARY\n").status().message(),
               HasSubstr("binary OFF"));
-  EXPECT_THAT(Parse("4OFF\n1 0 0\n").status().message(),
+  EXPECT_THAT(ParseOff("4OFF\n1 0 0\n").status().message(),
               HasSubstr("not supported"));
-  EXPECT_THAT(Parse("PLY\n").status().message(),
+  EXPECT_THAT(ParseOff("PLY\n").status().message(),
               HasSubstr("line 1: not an OFF file"));
 }
 

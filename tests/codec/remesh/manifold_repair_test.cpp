@@ -7,6 +7,7 @@
 #include <numbers>
 #include <set>
 
+#include "codec/remesh/manifold_checks_testonly.h"
 #include "codec/remesh/remesh_meshes_testonly.h"
 #include "codec/test_meshes.h"
 #include "remesh/components.h"
@@ -15,17 +16,9 @@
 namespace meshwave::remesh {
 namespace {
 
+using testing::ExpectOrientedManifold;
 using testing::Icosahedron;
 using testing::UvSphere;
-
-void ExpectOrientedManifold(const TriMesh& mesh) {
-  auto rings = VertexRings::Build(static_cast<uint32_t>(mesh.positions.size()),
-                                  mesh.faces);
-  EXPECT_TRUE(rings.ok()) << rings.status().ToString();
-  const MeshStats stats = ComputeStats(mesh);
-  EXPECT_TRUE(stats.manifold);
-  EXPECT_EQ(stats.inconsistently_oriented_edges, 0u);
-}
 
 Face Rotated(Face f) {
   std::rotate(f.begin(), std::min_element(f.begin(), f.end()), f.end());

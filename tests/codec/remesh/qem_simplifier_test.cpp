@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "codec/remesh/manifold_checks_testonly.h"
 #include "codec/remesh/remesh_meshes_testonly.h"
 #include "codec/test_meshes.h"
 #include "remesh/boundary_loops.h"
@@ -12,6 +13,7 @@ namespace meshwave::remesh {
 namespace {
 
 using testing::Combined;
+using testing::ExpectOrientedManifold;
 using testing::Icosahedron;
 using testing::Torus;
 using testing::Translated;
@@ -25,12 +27,6 @@ SimplifiedMesh Simplify(const TriMesh& mesh, size_t target,
   options.target_faces = target;
   options.min_faces.assign(components.count, min_faces);
   return SimplifyByEdgeCollapse(mesh, components, options);
-}
-
-void ExpectOrientedManifold(const TriMesh& mesh) {
-  auto rings = VertexRings::Build(static_cast<uint32_t>(mesh.positions.size()),
-                                  mesh.faces);
-  EXPECT_TRUE(rings.ok()) << rings.status().ToString();
 }
 
 TEST(QemSimplifierTest, ReachesTheTargetOnASphere) {

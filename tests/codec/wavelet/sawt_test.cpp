@@ -8,6 +8,7 @@
 
 #include "codec/test_meshes.h"
 #include "codec/wavelet/jittered_mesh_testonly.h"
+#include "codec/wavelet/reconstruction_testonly.h"
 #include "meshwave/mesh.h"
 #include "meshwave/semiregular.h"
 #include "meshwave/wavelet.h"
@@ -22,6 +23,7 @@ namespace {
 
 using testing::Icosahedron;
 using testing::Jittered;
+using testing::MaxError;
 using testing::OpenPatch;
 using testing::Torus;
 
@@ -32,12 +34,6 @@ std::vector<IntVec3> Grid(const SemiRegularMesh& mesh, double step) {
     for (int a = 0; a < 3; ++a) grid[v][a] = std::llround(mesh.positions[v][a] / step);
   }
   return grid;
-}
-
-double MaxError(const std::vector<Vec3>& a, std::span<const Vec3> b) {
-  double e = 0;
-  for (size_t i = 0; i < a.size(); ++i) e = std::max(e, (a[i] - b[i]).norm());
-  return e;
 }
 
 // The shipped copy of the shared holes_patch_sr2 mesh (data/README.md):

@@ -4,6 +4,7 @@
 
 #include "codec/test_meshes.h"
 #include "codec/wavelet/jittered_mesh_testonly.h"
+#include "codec/wavelet/reconstruction_testonly.h"
 #include "meshwave/semiregular.h"
 #include "meshwave/wavelet.h"
 #include "semiregular/vertex_rings.h"
@@ -15,14 +16,9 @@ namespace {
 
 using testing::Icosahedron;
 using testing::Jittered;
+using testing::MaxError;
 using testing::OpenPatch;
 using testing::Torus;
-
-double MaxError(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
-  double e = 0;
-  for (size_t i = 0; i < a.size(); ++i) e = std::max(e, (a[i] - b[i]).norm());
-  return e;
-}
 
 struct Case {
   Predictor predictor;
