@@ -14,7 +14,7 @@ namespace {
 // Closest-point projection accepts faces whose normal makes less than about
 // 85° with the vertex normal: a sheet seen edge-on still counts (creases,
 // rims of thin parts), the back of a thin part does not.
-constexpr double kMinFacingCos = 0.08;
+constexpr double kMinProjectionFacingCos = 0.08;
 
 std::vector<Vec3> UnitNormals(const TriMesh& mesh) {
   std::vector<Vec3> out(mesh.faces.size());
@@ -77,7 +77,7 @@ InputSurface::Projection InputSurface::Closest(const Vec3& q, const Vec3& n,
                                                uint32_t hint,
                                                double max_distance) const {
   const double n_length = n.norm();
-  const double min_dot = kMinFacingCos * n_length;
+  const double min_dot = kMinProjectionFacingCos * n_length;
   const bool oriented = n_length > 0;
   const auto hit = bvh_.ClosestPointIf(
       q, hint,

@@ -17,7 +17,7 @@
 namespace meshwave::remesh {
 namespace {
 
-constexpr uint32_t kNone = 0xffffffffu;
+constexpr uint32_t kUnglued = 0xffffffffu;
 
 uint32_t CornerOf(const Face& f, uint32_t v) {
   return f[0] == v ? 0u : (f[1] == v ? 1u : 2u);
@@ -32,7 +32,7 @@ Vec3 UnitNormal(const TriMesh& mesh, uint32_t f) {
 }
 
 // glue[3f + i] is the half-edge (edge i of face f, corner i -> i+1) glued to
-// it, or kNone. An edge of two faces is glued; of an edge with more, the
+// it, or kUnglued. An edge of two faces is glued; of an edge with more, the
 // two faces that run it in opposite directions and continue each other
 // most smoothly (largest dot product of normals) are glued and the others
 // cut off: a fin hanging off a surface leaves the surface whole.
@@ -48,7 +48,7 @@ std::vector<uint32_t> PairHalfEdges(const TriMesh& mesh,
     }
   }
   std::sort(keyed.begin(), keyed.end());
-  std::vector<uint32_t> glue(n, kNone);
+  std::vector<uint32_t> glue(n, kUnglued);
   for (size_t i = 0; i < n;) {
     size_t j = i + 1;
     while (j < n && keyed[j].first == keyed[i].first) ++j;
@@ -92,7 +92,7 @@ std::vector<uint8_t> Orient(const std::vector<Face>& faces,
   std::vector<uint32_t> queue, members;
   for (uint32_t h = 0; h < glue.size(); ++h) {
     const uint32_t g = glue[h];
-    if (g != kNone && h < g && faces[h / 3][h % 3] == faces[g / 3][g % 3]) {
+    if (g != kUnglued && h < g && faces[h / 3][h % 3] == faces[g / 3][g % 3]) {
       ++report.misoriented_edges;
     }
   }
@@ -107,7 +107,7 @@ std::vector<uint8_t> Orient(const std::vector<Face>& faces,
       for (uint32_t i = 0; i < 3; ++i) {
         const uint32_t h = 3 * f + i;
         const uint32_t gh = glue[h];
-        if (gh == kNone) continue;
+        if (gh == kUnglued) continue;
         const uint32_t g = gh / 3;
         const bool same_direction = faces[f][i] == faces[g][gh % 3];
         const uint8_t want = flip[f] ^ static_cast<uint8_t>(same_direction);
@@ -116,7 +116,7 @@ std::vector<uint8_t> Orient(const std::vector<Face>& faces,
           flip[g] = want;
           queue.push_back(g);
         } else if (flip[g] != want) {
-          glue[h] = glue[gh] = kNone;
+          glue[h] = glue[gh] = kUnglued;
           ++report.non_orientable_cuts;
         }
       }
@@ -186,7 +186,7 @@ RepairReport RepairManifold(TriMesh& mesh) {
     UnionFind fans(corners);
     for (uint32_t h = 0; h < corners; ++h) {
       const uint32_t g = glue[h];
-      if (g == kNone || g < h) continue;
+      if (g == kUnglued || g < h) continue;
       const uint32_t f = h / 3, k = g / 3;
       for (const uint32_t v :
            {original[f][h % 3], original[f][(h % 3 + 1) % 3]}) {
@@ -196,12 +196,12 @@ RepairReport RepairManifold(TriMesh& mesh) {
     }
     // The first fan met keeps the vertex; later fans get copies.
     mesh.positions.resize(vertex_count);
-    std::vector<uint32_t> id_of_root(corners, kNone);
+    std::vector<uint32_t> id_of_root(corners, kUnglued);
     std::vector<uint8_t> fans_of_vertex(vertex_count, 0);
     for (uint32_t c = 0; c < corners; ++c) {
       const uint32_t root = fans.Find(c);
       const uint32_t v = mesh.faces[c / 3][c % 3];
-      if (id_of_root[root] == kNone) {
+      if (id_of_root[root] == kUnglued) {
         if (fans_of_vertex[v] == 0) {
           id_of_root[root] = v;
         } else {
@@ -226,8 +226,8 @@ RepairReport RepairManifold(TriMesh& mesh) {
     for (uint32_t f : bad) {
       for (uint32_t i = 0; i < 3; ++i) {
         const uint32_t g = glue[3 * f + i];
-        if (g == kNone) continue;
-        glue[g] = glue[3 * f + i] = kNone;
+        if (g == kUnglued) continue;
+        glue[g] = glue[3 * f + i] = kUnglued;
         ++report.fallback_cuts;
       }
     }

@@ -50,7 +50,7 @@ constexpr double kGoodQuality = 0.3;
 constexpr double kMinCornerNormalCos = 0.0;
 // A face made by a collapse must face within acos(0.2) ≈ 78° of the mean
 // input normal of its corners.
-constexpr double kMinFacingCos = 0.2;
+constexpr double kMinCollapseFacingCos = 0.2;
 // Inner vertices of valence 3 make cones: after subdivision and projection
 // their corner faces fold easily, so making one is put off.
 constexpr size_t kMinInnerValence = 4;
@@ -383,7 +383,7 @@ class Simplifier {
       if (length > 0) mean += n / length;
     }
     const double scale = mean.norm() * normal.norm();
-    return !(scale > 0) || normal.dot(mean) >= kMinFacingCos * scale;
+    return !(scale > 0) || normal.dot(mean) >= kMinCollapseFacingCos * scale;
   }
 
   // The smallest cosine between the input normals carried by two corners

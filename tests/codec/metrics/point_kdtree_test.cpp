@@ -5,8 +5,12 @@
 #include <cmath>
 #include <random>
 
+#include "random_points_testonly.h"
+
 namespace meshwave::metrics {
 namespace {
+
+using testing::RandomPoints;
 
 PointKdTree::Nearest BruteForceNearest(const std::vector<Vec3>& points,
                                        const Vec3& q) {
@@ -18,18 +22,10 @@ PointKdTree::Nearest BruteForceNearest(const std::vector<Vec3>& points,
   return best;
 }
 
-std::vector<Vec3> RandomPoints(size_t n, uint64_t seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> coord(-1, 1);
-  std::vector<Vec3> out(n);
-  for (Vec3& p : out) p = Vec3(coord(rng), coord(rng), coord(rng));
-  return out;
-}
-
 TEST(PointKdTreeTest, MatchesBruteForceOnRandomPoints) {
-  const std::vector<Vec3> points = RandomPoints(5000, 1);
+  const std::vector<Vec3> points = RandomPoints(5000, 1.0, 1);
   const PointKdTree tree(points);
-  for (const Vec3& q : RandomPoints(3000, 2)) {
+  for (const Vec3& q : RandomPoints(3000, 1.0, 2)) {
     const PointKdTree::Nearest expected = BruteForceNearest(points, q);
     const PointKdTree::Nearest found = tree.FindNearest(q);
     ASSERT_EQ(found.index, expected.index);
@@ -38,7 +34,7 @@ TEST(PointKdTreeTest, MatchesBruteForceOnRandomPoints) {
 }
 
 TEST(PointKdTreeTest, FindsEveryPointOfItsOwnSet) {
-  const std::vector<Vec3> points = RandomPoints(2000, 3);
+  const std::vector<Vec3> points = RandomPoints(2000, 1.0, 3);
   const PointKdTree tree(points);
   for (uint32_t i = 0; i < points.size(); ++i) {
     const PointKdTree::Nearest found = tree.FindNearest(points[i]);

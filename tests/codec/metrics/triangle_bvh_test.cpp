@@ -6,10 +6,13 @@
 #include <random>
 
 #include "metrics/closest_point_triangle.h"
+#include "random_points_testonly.h"
 #include "test_meshes_testonly.h"
 
 namespace meshwave::metrics {
 namespace {
+
+using testing::RandomPoints;
 
 double BruteForceDistanceSquared(const TriMesh& mesh, const Vec3& p) {
   double best = std::numeric_limits<double>::infinity();
@@ -43,14 +46,6 @@ void ExpectMatchesBruteForce(const TriMesh& mesh,
     ASSERT_EQ(hinted.distance_squared, expected) << "query " << i;
     hint = hinted.face;
   }
-}
-
-std::vector<Vec3> RandomPoints(size_t n, double range, uint64_t seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> coord(-range, range);
-  std::vector<Vec3> out(n);
-  for (Vec3& p : out) p = Vec3(coord(rng), coord(rng), coord(rng));
-  return out;
 }
 
 TEST(TriangleBvhTest, MatchesBruteForceOnRandomTriangleSoup) {
