@@ -13,8 +13,8 @@
 #   tsan: clang, TSan (build-tsan): the server's concurrency tests, i.e. the
 #     HTTP and WebSocket integration suites and the fault and abuse tests,
 #     whose meshwave-server processes (2 io threads) are TSan builds.
-# Both stages build with clang, whose precompiled headers pay off
-# (cmake/MeshwavePch.cmake); the Release stage is gcc's.
+# Both stages build with clang in unity batches (tools/build_flags.sh) and
+# without the WebAssembly module; the Release stage is gcc's.
 # Left out for time: the analysis and CLI suites (the CLI's code is the
 # libraries' that the suites above run, plus argument parsing).
 # A report from any process (test, server, CLI) fails the stage: the
