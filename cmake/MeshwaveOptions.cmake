@@ -23,7 +23,8 @@ endif()
 # Where the shared development meshes live. They are not part of the
 # repository: without them the tests that need them skip with one line
 # saying so (tests/test_data.h), unless MESHWAVE_REQUIRE_SHARED_MESHES is ON
-# (CI: tools/test.sh and tools/sanitize.sh), which fails them instead.
+# (the test command sets it where ../shared is beside the clone or CI is
+# set: tools/build_flags.sh), which fails them instead.
 set(MESHWAVE_SHARED_MESHES "${PROJECT_SOURCE_DIR}/../shared/data/meshes" CACHE PATH
     "Directory of the shared development meshes")
 option(MESHWAVE_REQUIRE_SHARED_MESHES

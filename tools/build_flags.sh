@@ -11,3 +11,14 @@ ci_build_flags=()
 if [[ ${MESHWAVE_UNITY:-1} != 0 ]]; then
   ci_build_flags+=(-DCMAKE_UNITY_BUILD=ON -DMESHWAVE_PCH=OFF)
 fi
+
+# The shared development meshes (../shared/data/meshes): a clone with nothing
+# beside it skips the tests that need them, one line each; where shared/ is
+# beside the clone (CI's layout) or CI is set, a missing mesh fails the test
+# instead, so nothing is silently skipped there.
+if [[ -n ${CI:-} || -d ../shared ]]; then
+  ci_build_flags+=(-DMESHWAVE_REQUIRE_SHARED_MESHES=ON)
+else
+  ci_build_flags+=(-DMESHWAVE_REQUIRE_SHARED_MESHES=OFF)
+  echo "build: no ../shared beside the clone: the tests that need its meshes will be skipped" >&2
+fi
