@@ -28,6 +28,7 @@ class Decoder {
   }
   faces() { return Uint32Array.from([0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3]); }
   level() { return 0; }
+  detailLevels() { return 0; }
   levels() { return 0; }
   estimatedPsnr() { return 0; }
   packetsDecoded() { return this.ids.size; }

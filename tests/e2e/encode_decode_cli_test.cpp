@@ -95,6 +95,50 @@ TEST(EncodeDecodeCliTest, BudgetAndMaxLevelGiveCoarserMeshes) {
   EXPECT_NE(r.err.find("smaller than the stream header"), std::string::npos) << r.err;
 }
 
+// A prefix of the resolution order that holds only the first level's
+// details: by default the mesh goes one level past them (their smoothing
+// subdivision), --extra-levels 0 stops at them, --extra-levels 12 writes
+// every level.
+TEST(EncodeDecodeCliTest, ExtraLevelsSetHowFarPastTheDetailsTheMeshGoes) {
+  TempDir dir;
+  const auto in = testing::SampleMesh("holes.off");  // 2 levels over 518 base faces
+  ASSERT_EQ(RunCli({"encode", in.string(), (dir / "h.mwv").string()}).exit_code, 0);
+  const std::string bytes = testing::ReadBytes(dir / "h.mwv");
+  uint32_t header = 0;
+  for (int i = 7; i >= 4; --i) header = header << 8 | static_cast<uint8_t>(bytes[i]);
+  const size_t payload = bytes.size() - 8 - header;
+  auto decode = [&](std::vector<std::string> extra) {
+    std::vector<std::string> args = {"decode", "--json", "--order", "resolution", "--budget",
+                                     std::to_string(8 + header + payload / 8),
+                                     (dir / "h.mwv").string(), (dir / "out.ply").string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    auto r = RunCli(args);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    proto::DecodeReport report;
+    EXPECT_TRUE(google::protobuf::util::JsonStringToMessage(r.out, &report).ok()) << r.out;
+    auto mesh = ReadMesh(dir / "out.ply");
+    EXPECT_TRUE(mesh.ok());
+    if (mesh.ok()) {
+      EXPECT_EQ(report.faces(), mesh->faces.size());
+    }
+    return report;
+  };
+  const proto::DecodeReport details = decode({"--extra-levels", "0"});
+  EXPECT_EQ(details.level(), 1);
+  EXPECT_EQ(details.faces(), 518u * 4);
+  const proto::DecodeReport smoothed = decode({});
+  EXPECT_EQ(smoothed.level(), 2);
+  EXPECT_EQ(smoothed.faces(), 518u * 16);
+  EXPECT_EQ(decode({"--extra-levels", "12"}).faces(), 518u * 16);
+  // The whole stream has detail at every level: the same mesh whatever the extra.
+  auto r = RunCli({"decode", "--json", "--extra-levels", "0", (dir / "h.mwv").string(),
+                   (dir / "all.ply").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  proto::DecodeReport all;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(r.out, &all).ok()) << r.out;
+  EXPECT_EQ(all.level(), 2);
+}
+
 TEST(EncodeDecodeCliTest, JsonReportDescribesTheDecode) {
   TempDir dir;
   const auto in = testing::SampleMesh("holes.off");

@@ -82,6 +82,8 @@ for (const dir of dirs) {
              what + ': faces');
       expect(dec.faces(0).length < dec.faces().length, what + ': fewer faces at level 0');
       expect(dec.level() === c.level, what + ': level ' + dec.level() + ' vs ' + c.level);
+      expect(dec.detailLevels() === c.detailLevels,
+             what + ': detailLevels ' + dec.detailLevels() + ' vs ' + c.detailLevels);
       expect(dec.levels() === c.levels, what + ': levels');
       expect(dec.packetsDecoded() === c.packets, what + ': packetsDecoded');
       expect(dec.payloadBytesDecoded() === c.payloadBytes, what + ': payloadBytesDecoded');

@@ -112,6 +112,7 @@ int Run(const std::string& in, const std::string& dir) {
                   ", \"packets\": " + std::to_string((*decoder)->packets_decoded()) +
                   ", \"payloadBytes\": " + std::to_string((*decoder)->payload_bytes_decoded()) +
                   ", \"level\": " + std::to_string((*decoder)->CompleteLevels()) +
+                  ", \"detailLevels\": " + std::to_string((*decoder)->DetailLevels()) +
                   ", \"levels\": " + std::to_string(header.transform.levels) +
                   ", \"packetCount\": " + std::to_string((*decoder)->packet_count()) +
                   ", \"psnr\": " + Number((*decoder)->EstimatedPsnr()) + "}";

@@ -2,6 +2,7 @@
 
 #include <google/protobuf/util/json_util.h>
 
+#include <algorithm>
 #include <cctype>
 #include <fstream>
 #include <iostream>
@@ -140,6 +141,12 @@ Result<std::string> ReadFileBytes(const std::string& path) {
   ss << in.rdbuf();
   if (in.bad()) return IoError(path + ": read failed");
   return ss.str();
+}
+
+int OutputLevel(const ProgressiveDecoder& decoder, int max_level, int extra_levels) {
+  const int levels = static_cast<int>(decoder.header().transform.levels);
+  const int cap = (max_level < 0 || max_level > levels) ? levels : max_level;
+  return std::min(cap, decoder.DetailLevels() + std::max(extra_levels, 0));
 }
 
 }  // namespace meshwave::cli

@@ -11,6 +11,7 @@
 #include <CLI/CLI.hpp>
 
 #include "meshwave/encoder.h"
+#include "meshwave/progressive_decoder.h"
 #include "meshwave/status.h"
 
 namespace meshwave::cli {
@@ -43,6 +44,20 @@ Status ApplyTransformOptions(const std::string& predictor,
 // Laplacian mixture (Satti et al. 2011).
 void AddQuantizerOption(CLI::App* cmd, std::string& quantizer);
 Status ApplyQuantizerOption(const std::string& quantizer, EncodeOptions& options);
+
+// The level of the mesh a command writes: `extra_levels` past the finest
+// level that received detail (ProgressiveDecoder::DetailLevels), at most
+// max_level (-1: the stream's finest). A level past the details is the
+// wavelet's own subdivision with zero details: the first one smooths the
+// surface (bunny and horse: +1.3 to +3.4 dB of surface PSNR against the
+// original), the next ones add little for four times the faces each
+// (about +0.1 dB; docs/RD_RESULTS.md, "Decoded vertex count").
+int OutputLevel(const ProgressiveDecoder& decoder, int max_level, int extra_levels);
+inline constexpr int kDefaultExtraLevels = 1;
+inline constexpr const char* kExtraLevelsHelp =
+    "Levels subdivided past the finest level that received detail (zero details: "
+    "each smooths the surface and quadruples the faces); 12 writes every level up "
+    "to --max-level";
 
 // Reads a whole file; IoError naming the path when it cannot.
 Result<std::string> ReadFileBytes(const std::string& path);

@@ -18,6 +18,7 @@ namespace {
 struct DecodeArgs {
   std::string in, out, order = "quality", budget;
   int max_level = -1;
+  int extra_levels = kDefaultExtraLevels;
   bool json = false;
 };
 
@@ -66,7 +67,8 @@ Status Run(const DecodeArgs& args) {
   for (uint32_t id : selection.ids) {
     MW_RETURN_IF_ERROR((*decoder)->AddPacket(id, parsed->payloads[slot[id]]));
   }
-  const TriMesh mesh = (*decoder)->Mesh(max_level);
+  const int level = OutputLevel(**decoder, max_level, args.extra_levels);
+  const TriMesh mesh = (*decoder)->Mesh(level);
   const double decode_ms = MillisecondsSince(start);
   MW_RETURN_IF_ERROR(WriteMesh(mesh, args.out));
   if (args.json) {
@@ -74,7 +76,7 @@ Status Run(const DecodeArgs& args) {
     report.set_output(args.out);
     report.set_vertices(mesh.positions.size());
     report.set_faces(mesh.faces.size());
-    report.set_level(max_level);
+    report.set_level(level);
     report.set_levels(levels);
     report.set_order(ProgressionName(progression));
     report.set_packets(selection.ids.size());
@@ -86,7 +88,7 @@ Status Run(const DecodeArgs& args) {
     return Status::Ok();
   }
   std::printf("wrote %s: %zu vertices, %zu faces (level %d of %d)\n", args.out.c_str(),
-              mesh.positions.size(), mesh.faces.size(), max_level, levels);
+              mesh.positions.size(), mesh.faces.size(), level, levels);
   std::printf("%zu of %zu packets in %s order, %llu bytes, estimated PSNR %.2f dB\n",
               selection.ids.size(), order.size(), ProgressionName(progression),
               static_cast<unsigned long long>(selection.bytes),
@@ -111,6 +113,9 @@ void AddDecodeCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--max-level", args->max_level,
                   "Stop at this subdivision level (a coarser mesh with fewer vertices)")
       ->check(CLI::Range(0, kMaxStreamLevels));
+  cmd->add_option("--extra-levels", args->extra_levels, kExtraLevelsHelp)
+      ->check(CLI::Range(0, kMaxStreamLevels))
+      ->capture_default_str();
   cmd->add_flag("--json", args->json,
                 "Print one JSON object (counts, bytes, estimated PSNR, decode time)");
   cmd->callback([args, &exit_code] {

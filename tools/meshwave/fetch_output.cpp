@@ -21,6 +21,9 @@ void AddFetchOutputOptions(CLI::App* cmd, FetchOutputOptions& options,
                   "Original mesh (the one uploaded): print at every step the "
                   "PSNR of the symmetric surface distance to it, as "
                   "`meshwave compare ORIGINAL DECODED` gives it");
+  cmd->add_option("--extra-levels", options.extra_levels, kExtraLevelsHelp)
+      ->check(CLI::Range(0, kMaxStreamLevels))
+      ->capture_default_str();
   cmd->add_flag("--json", options.json,
                 "Print one JSON object (steps, bytes, PSNR, timings)");
 }
@@ -77,9 +80,13 @@ Result<std::unique_ptr<FetchOutput>> FetchOutput::Create(
 // original, so no vertex-to-vertex matching measures it).
 double FetchOutput::SurfacePsnr(const ProgressiveDecoder& decoder) const {
   if (!reference_) return 0;
-  auto d =
-      SymmetricSurfaceDistance(*reference_, decoder.Mesh(options_.max_level));
+  auto d = SymmetricSurfaceDistance(*reference_, OutputMesh(decoder));
   return d.ok() ? d->PsnrDb(d->rms) : 0;
+}
+
+TriMesh FetchOutput::OutputMesh(const ProgressiveDecoder& decoder) const {
+  return decoder.Mesh(
+      OutputLevel(decoder, options_.max_level, options_.extra_levels));
 }
 
 void FetchOutput::OnProgress(const client::Progress& p,
@@ -96,7 +103,7 @@ void FetchOutput::OnProgress(const client::Progress& p,
     std::snprintf(name, sizeof name, "lod_%04zu.ply", p.packets);
     const std::string path =
         (std::filesystem::path(options_.lods) / name).string();
-    lod_error_ = WriteMesh(decoder.Mesh(options_.max_level), path);
+    lod_error_ = WriteMesh(OutputMesh(decoder), path);
     step->set_lod_file(path);
   }
   step->set_elapsed_ms(MsSince(start_));
@@ -128,7 +135,7 @@ Status FetchOutput::Finish(const client::Session& session,
   if (decoder == nullptr)
     return Status(StatusCode::kInternal, "no stream header received");
   const client::Progress p = session.progress();
-  const TriMesh mesh = decoder->Mesh(options_.max_level);
+  const TriMesh mesh = OutputMesh(*decoder);
   if (!options_.out.empty()) MW_RETURN_IF_ERROR(WriteMesh(mesh, options_.out));
 
   report_.set_mesh_url(url);

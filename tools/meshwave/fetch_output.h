@@ -12,6 +12,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "cli_util.h"
 #include "client_state.pb.h"
 #include "meshwave/client/session.h"
 #include "meshwave/mesh.h"
@@ -23,11 +24,12 @@ struct FetchOutputOptions {
   std::string lods;       // directory for one mesh per refinement, or empty
   std::string reference;  // original mesh for the surface PSNR, or empty
   bool json = false;
+  int extra_levels = kDefaultExtraLevels;
   int max_level = -1;
 };
 
 // Registers --out (with `out_help`; required when `out_required`), --lods,
-// --reference and --json on a command that refines a mesh.
+// --reference, --extra-levels and --json on a command that refines a mesh.
 void AddFetchOutputOptions(CLI::App* cmd, FetchOutputOptions& options,
                            const std::string& out_help, bool out_required);
 
@@ -50,6 +52,8 @@ class FetchOutput {
   explicit FetchOutput(FetchOutputOptions options)
       : options_(std::move(options)) {}
   double SurfacePsnr(const ProgressiveDecoder& decoder) const;
+  // The mesh written and measured (OutputLevel).
+  TriMesh OutputMesh(const ProgressiveDecoder& decoder) const;
   void OnProgress(const client::Progress& p, const ProgressiveDecoder& decoder);
 
   FetchOutputOptions options_;

@@ -50,6 +50,9 @@
     positions64(maxLevel) { return this.live_()['positions64'](level(maxLevel)); }
     faces(maxLevel) { return this.live_()['faces'](level(maxLevel)); }
     level() { return this.live_()['level'](); }
+    // The finest level that received detail: positions(detailLevels() + 1)
+    // is the smallest mesh that shows it smoothed (docs/API.md).
+    detailLevels() { return this.live_()['detailLevels'](); }
     levels() { return this.live_()['levels'](); }
     estimatedPsnr() { return this.live_()['estimatedPsnr'](); }
     packetsDecoded() { return this.live_()['packetsDecoded'](); }

@@ -46,6 +46,7 @@ class RawDecoder {
   bool HasPacket(uint32_t id) const { return decoder_->HasPacket(id); }
   bool DependenciesMet(uint32_t id) const { return decoder_->DependenciesMet(id); }
   int Level() const { return decoder_->CompleteLevels(); }
+  int DetailLevels() const { return decoder_->DetailLevels(); }
   int Levels() const { return static_cast<int>(decoder_->header().transform.levels); }
   double EstimatedPsnr() const { return decoder_->EstimatedPsnr(); }
   size_t PacketsDecoded() const { return decoder_->packets_decoded(); }
@@ -120,6 +121,7 @@ EMSCRIPTEN_BINDINGS(meshwave_decoder) {
       .function("hasPacket", &RawDecoder::HasPacket)
       .function("dependenciesMet", &RawDecoder::DependenciesMet)
       .function("level", &RawDecoder::Level)
+      .function("detailLevels", &RawDecoder::DetailLevels)
       .function("levels", &RawDecoder::Levels)
       .function("estimatedPsnr", &RawDecoder::EstimatedPsnr)
       .function("packetsDecoded", &RawDecoder::PacketsDecoded)

@@ -107,8 +107,11 @@ export class StreamSession {
   }
 
   updateLevel() {
-    this.stats.level = this.decoder.level();
+    // The level drawn: one past the finest that received detail (its
+    // subdivision smooths the surface; more levels would add faces, not
+    // detail), as `meshwave decode` writes it.
     this.stats.levels = this.decoder.levels();
+    this.stats.level = Math.min(this.stats.levels, this.decoder.detailLevels() + 1);
     this.stats.psnr = this.decoder.estimatedPsnr();
   }
 
@@ -122,7 +125,8 @@ export class StreamSession {
     if (!this.dirty || !this.decoder) return;
     this.dirty = false;
     this.callbacks.onMesh({
-      positions: this.decoder.positions(), faces: this.decoder.faces(), level: this.stats.level,
+      positions: this.decoder.positions(this.stats.level), faces: this.decoder.faces(this.stats.level),
+      level: this.stats.level,
       levels: this.stats.levels, psnr: this.stats.psnr,
     });
   }

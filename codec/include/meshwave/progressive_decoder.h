@@ -57,6 +57,12 @@ class ProgressiveDecoder {
   // The finest level whose subbands have all received at least one packet
   // (0: only the base mesh).
   int CompleteLevels() const;
+  // The finest level at which a packet held gave some detail a nonzero
+  // value (0: the base mesh alone). Every finer level holds zero details:
+  // its mesh would be this one subdivided, four times the faces a level
+  // and none of the received detail, so Mesh(DetailLevels()) is the
+  // smallest mesh that carries everything received.
+  int DetailLevels() const;
   // Estimated PSNR (peak = bounding-box diagonal) from the index's
   // distortion figures for the packets held.
   double EstimatedPsnr() const;

@@ -178,6 +178,21 @@ int ProgressiveDecoder::CompleteLevels() const {
   return level;
 }
 
+int ProgressiveDecoder::DetailLevels() const {
+  const Impl& m = *impl_;
+  for (int j = static_cast<int>(m.states.size()) - 1; j >= 0; --j) {
+    for (const ComponentState& s : m.states[j]) {
+      const int n = s.known_from();
+      if (n > s.top) continue;
+      // Nonzero exactly as Positions dequantises it.
+      for (uint32_t k : s.lsc) {
+        if ((s.mag[k] >> n) != 0) return j + 1;
+      }
+    }
+  }
+  return 0;
+}
+
 double ProgressiveDecoder::EstimatedPsnr() const {
   return EstimatedPsnrFromDistortion(impl_->header, impl_->diagonal, impl_->distortion);
 }

@@ -111,6 +111,42 @@ TEST_P(CoderTest, ResolutionOrderWithMaxLevelGivesThatLevelsMesh) {
   }
 }
 
+// DetailLevels: the base alone has none, the whole stream all J; it rises
+// only with a packet of the level it rises to; every finer level's details
+// are zero (the coarse vertices of the finest mesh are the detail level's,
+// bit for bit); a resolution-ordered prefix to a level reaches that level.
+TEST_P(CoderTest, DetailLevelsIsTheFinestLevelWithANonzeroDetail) {
+  const Fixture& f = Encoded(GetParam());
+  const int levels = f.mesh.hierarchy->levels();
+  const PacketLayout layout(f.stream.header);
+  auto d = NewDecoder(f.stream);
+  EXPECT_EQ(d->DetailLevels(), 0);
+  int last = 0;
+  for (uint32_t id : PacketOrder(f.stream.header, Progression::kQuality)) {
+    ASSERT_TRUE(d->AddPacket(id, f.stream.packets[id]).ok());
+    const int now = d->DetailLevels();
+    ASSERT_GE(now, last) << "packet " << id;
+    if (now > last) {
+      EXPECT_EQ(layout.Subband(id), now - 1) << "packet " << id;
+    }
+    if (now < levels) {
+      const std::vector<Vec3> finest = d->Positions();
+      const std::vector<Vec3> coarse = d->Positions(now);
+      ASSERT_EQ(coarse.size(), f.mesh.hierarchy->vertex_count(now));
+      EXPECT_TRUE(std::equal(coarse.begin(), coarse.end(), finest.begin())) << "packet " << id;
+    }
+    last = now;
+  }
+  EXPECT_EQ(last, levels);
+  for (int level = 1; level <= levels; ++level) {
+    auto r = NewDecoder(f.stream);
+    for (uint32_t id : PacketOrder(f.stream.header, Progression::kResolution, level)) {
+      ASSERT_TRUE(r->AddPacket(id, f.stream.packets[id]).ok());
+    }
+    EXPECT_EQ(r->DetailLevels(), level);
+  }
+}
+
 TEST_P(CoderTest, RandomDependencyRespectingOrdersGiveTheSameMesh) {
   const Fixture& f = Encoded(GetParam());
   auto reference = NewDecoder(f.stream);
@@ -212,6 +248,7 @@ TEST(ProgressiveDecoderTest, ResetForgetsEveryPacket) {
   EXPECT_EQ(d->payload_bytes_decoded(), 0u);
   EXPECT_FALSE(d->HasPacket(0));
   EXPECT_EQ(d->CompleteLevels(), 0);
+  EXPECT_EQ(d->DetailLevels(), 0);
   EXPECT_EQ(d->EstimatedPsnr(), fresh->EstimatedPsnr());
   EXPECT_EQ(d->Positions(), fresh->Positions());  // the base mesh only
   for (uint32_t id = 0; id < n; ++id) {
