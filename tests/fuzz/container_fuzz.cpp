@@ -45,6 +45,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   }
   (void)(*dec)->EstimatedPsnr();
   (void)(*dec)->CompleteLevels();
+  (void)(*dec)->DetailLevels();
   (void)(*dec)->Mesh();
   return 0;
 }

@@ -36,6 +36,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   for (uint32_t k = id + 1; k < n; ++k) (void)(*dec)->AddPacket(k, f.payloads[k]);
   (void)(*dec)->EstimatedPsnr();
   (void)(*dec)->CompleteLevels();
+  (void)(*dec)->DetailLevels();
   const TriMesh mesh = (*dec)->Mesh();
   fuzz::Require(mesh.positions.size() == f.full.size(), "the mesh keeps its vertex count");
   return 0;
