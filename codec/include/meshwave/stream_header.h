@@ -72,7 +72,7 @@ struct StreamHeader {
   StreamCoder coder = StreamCoder::k3xC;
   uint32_t octree_leaf_size = 0;
   BaseMesh base;
-  std::vector<Quantizer> quantizers;
+  std::vector<Quantizer> quantizers;  // subband-major: (j, c) at 3 j + c
   PacketIndex packets;
   double base_distortion = 0;
   std::vector<uint32_t> present;
@@ -83,6 +83,12 @@ struct StreamHeader {
   // `present` last, so for bytes protobuf wrote this is exactly protobuf's
   // serialization of the header with `present` cleared.
   std::string bytes_without_present;
+
+  // The quantizer of subband j, component c (ValidateStreamHeader checks
+  // that there are 3 per level).
+  const Quantizer& quantizer(int j, int c) const {
+    return quantizers[3 * static_cast<size_t>(j) + static_cast<size_t>(c)];
+  }
 };
 
 // Reads a serialized StreamHeader. Safe on untrusted bytes, and it accepts

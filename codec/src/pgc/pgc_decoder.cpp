@@ -43,7 +43,7 @@ Result<std::unique_ptr<PgcDecoder>> PgcDecoder::Create(
   const int levels = h.levels();
   for (int c = 0; c < 3; ++c) {
     std::vector<int> top(levels);
-    for (int j = 0; j < levels; ++j) top[j] = header.quantizers[static_cast<size_t>(3 * j + c)].top_bitplane;
+    for (int j = 0; j < levels; ++j) top[j] = header.quantizer(j, c).top_bitplane;
     d->states_[c].Init(h, top);
     d->top_ = std::max(d->top_, d->states_[c].top());
   }
@@ -96,7 +96,7 @@ std::vector<Vec3> PgcDecoder::Positions() const {
     const ZerotreeState& s = states_[c];
     const int n = s.known_from();
     for (const TreeNode& node : s.lsp()) {
-      const StreamHeader::Quantizer& q = header_.quantizers[3 * static_cast<size_t>(node.j) + static_cast<size_t>(c)];
+      const StreamHeader::Quantizer& q = header_.quantizer(node.j, c);
       p.subbands[node.j][node.k][c] =
           Dequantize(s.mag(node.j)[node.k] >> n, n, s.negative(node.j)[node.k], q.step,
                      DeadzoneXi(static_cast<int>(q.deadzone)), options_.gamma);

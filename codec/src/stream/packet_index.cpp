@@ -27,7 +27,7 @@ PacketLayout::PacketLayout(const StreamHeader& h) {
       std::min<uint64_t>(h.transform.levels, h.quantizers.size() / 3));
   for (int j = 0; j < levels; ++j) {
     int top = -1;
-    for (int c = 0; c < 3; ++c) top = std::max(top, h.quantizers[static_cast<size_t>(3 * j + c)].top_bitplane);
+    for (int c = 0; c < 3; ++c) top = std::max(top, h.quantizer(j, c).top_bitplane);
     top = std::max(top, -1);
     first_.push_back(count_);
     top_.push_back(top);

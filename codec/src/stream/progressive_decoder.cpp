@@ -76,7 +76,7 @@ void ProgressiveDecoder::Reset() {
   for (int j = 0; j < levels; ++j) {
     for (int c = 0; c < 3; ++c) {
       m.states[j][c].Init(m.layouts[j].tree,
-                          m.header.quantizers[static_cast<size_t>(3 * j + c)].top_bitplane);
+                          m.header.quantizer(j, c).top_bitplane);
     }
   }
   m.have.assign(m.header.packets.length.size(), 0);
@@ -210,7 +210,7 @@ std::vector<Vec3> ProgressiveDecoder::Positions(int max_level) const {
     band.assign(h.subband_size(j), Vec3::Zero());
     for (int c = 0; c < 3; ++c) {
       const ComponentState& s = m.states[j][c];
-      const StreamHeader::Quantizer& q = m.header.quantizers[static_cast<size_t>(3 * j + c)];
+      const StreamHeader::Quantizer& q = m.header.quantizer(j, c);
       const int n = s.known_from();
       if (n > s.top) continue;
       const double xi0 = DeadzoneXi(static_cast<int>(q.deadzone));
