@@ -25,6 +25,7 @@ test=(
   nginx-light                  # the replica test's load balancer and cache
   docker-compose               # `docker-compose config`: compose file validation, no engine
   clang libclang-rt-14-dev     # the ASan + UBSan stage and the libFuzzer targets (tools/sanitize.sh)
+  clang-tidy                   # tools/tidy.sh on the codec, in the Release stage
   ccache                       # tools/compiler_cache.sh: a clone rebuilds only what changed
   emscripten                   # the WebAssembly decoder (web/build_decoder.sh) and its test
   python3-websockets python3-protobuf  # tests/interop: the Python client written from the docs

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The test command: installs dependencies, builds everything with warnings as
-# errors, runs the whole test suite, then the sanitizer stages (ASan + UBSan,
-# TSan: tools/sanitize.sh). CI runs exactly this (.ci/run).
+# errors, runs the whole test suite and clang-tidy on the codec
+# (tools/tidy.sh), then the sanitizer stages (ASan + UBSan, TSan:
+# tools/sanitize.sh). CI runs exactly this (.ci/run).
 #   SANITIZE=0 bash tools/test.sh    the Release stage only (a quick local run)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -16,7 +17,10 @@ cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DMESHWAVE_WERROR=ON \
 cmake --build build -j2
 built=$SECONDS
 ctest --test-dir build --output-on-failure -j2 --timeout 900
-echo "test: Release stage passed (build $((built - start)) s, tests $((SECONDS - built)) s)"
+tested=$SECONDS
+bash tools/tidy.sh build
+echo "test: Release stage passed (build $((built - start)) s, tests $((tested - built)) s," \
+  "clang-tidy $((SECONDS - tested)) s)"
 if [[ ${SANITIZE:-1} != 0 ]]; then
   bash tools/sanitize.sh all
 fi

@@ -1,11 +1,12 @@
-// Distortion and rate of embedded deadzone scalar quantisers (EDSQ, seed
-// eq. 16) on a source model or on observed data: the closed forms for a
+// Distortion and rate of embedded deadzone scalar quantisers (EDSQ,
+// Satti et al. 2011, eq. 16) on a source model or on observed data: the closed forms for a
 // Laplacian (Satti et al. 2011, appendix), the Laplacian mixture (eq. 20 and
 // the cell-mass sum of 3.3), the modelling error ME(%) of eq. 21 and the
 // SNR gap between quantisers of Fig. 7 (Satti et al. 2011).
 #ifndef MESHWAVE_ANALYSIS_EDSQ_DISTORTION_RATE_H_
 #define MESHWAVE_ANALYSIS_EDSQ_DISTORTION_RATE_H_
 
+#include <algorithm>
 #include <span>
 #include <vector>
 
@@ -53,6 +54,7 @@ DrPoint ObservedDistortionRate(std::span<const double> x, const EdsqLevel& q);
 template <typename F>
 std::vector<DrPoint> DrCurve(double step0, double xi0, int levels, F point) {
   std::vector<DrPoint> out;
+  out.reserve(static_cast<size_t>(std::max(levels, 0)));
   for (int n = 0; n < levels; ++n) out.push_back(point(EdsqAt(step0, xi0, n)));
   return out;
 }

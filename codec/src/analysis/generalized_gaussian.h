@@ -36,7 +36,7 @@ struct GgFit {
   double kl = 0;  // bits
 };
 
-// Brute force (seed 3.2): a grid over alpha in [0.1, 2] and sigma around the
+// Brute force (Satti et al. 2011, section 3.2): a grid over alpha in [0.1, 2] and sigma around the
 // sample deviation, then a finer grid around the best point; the pair with
 // the smallest KL(histogram || model) wins.
 GgFit FitGeneralizedGaussian(std::span<const double> x, const Histogram& histogram);
