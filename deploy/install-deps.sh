@@ -4,7 +4,9 @@
 #
 #   bash deploy/install-deps.sh          everything: build, tests, deployment tests
 #   bash deploy/install-deps.sh build    only what building the programs needs
-#                                        (the Dockerfile's build stage)
+#   bash deploy/install-deps.sh server   that and what the viewer's WebAssembly
+#                                        decoder is built with (the Dockerfile's
+#                                        build stage: the image serves /viewer/)
 set -euo pipefail
 
 build=(
@@ -19,6 +21,9 @@ build=(
   libpq-dev                    # PostgreSQL catalog backend (libpq)
   libssl-dev                   # SHA-256 (content hashes), TLS
 )
+viewer=(
+  emscripten nodejs            # web/build_decoder.sh: the decoder the viewer runs
+)
 test=(
   libgtest-dev libgmock-dev libbenchmark-dev
   postgresql                   # catalog tests and the replica test start their own server
@@ -27,15 +32,16 @@ test=(
   clang libclang-rt-14-dev     # the ASan + UBSan stage and the libFuzzer targets (tools/sanitize.sh)
   clang-tidy                   # tools/tidy.sh on the codec, in the Release stage
   ccache                       # tools/compiler_cache.sh: a clone rebuilds only what changed
-  emscripten                   # the WebAssembly decoder (web/build_decoder.sh) and its test
+  emscripten                   # the WebAssembly decoder's test under Node (tests/web)
   python3-websockets python3-protobuf  # tests/interop: the Python client written from the docs
   chromium                     # the viewer's browser test (tests/browser), headless
 )
 
 case "${1:-all}" in
   build) packages=("${build[@]}") ;;
-  all) packages=("${build[@]}" "${test[@]}") ;;
-  *) echo "usage: install-deps.sh [build|all]" >&2; exit 2 ;;
+  server) packages=("${build[@]}" "${viewer[@]}") ;;
+  all) packages=("${build[@]}" "${viewer[@]}" "${test[@]}") ;;
+  *) echo "usage: install-deps.sh [build|server|all]" >&2; exit 2 ;;
 esac
 
 # Kubernetes manifest validation (tests/deploy/validate_manifests.sh), the

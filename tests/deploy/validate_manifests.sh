@@ -89,4 +89,14 @@ for bin in "${binaries[@]}"; do
   done
 done
 echo "deploy/Dockerfile runtime stage covers the libraries of: ${binaries[*]##*/}"
+# The image serves /viewer/: its build stage must build the WebAssembly
+# decoder (emscripten and node come with install-deps.sh's `server` set).
+build_stage=$(sed -n '1,/^FROM debian:12-slim$/p' "$dockerfile")
+grep -q 'install-deps.sh server' <<< "$build_stage" ||
+  fail "the Dockerfile's build stage does not install the viewer's decoder toolchain (install-deps.sh server)"
+grep -q 'emscripten' <(sed -n '/^viewer=(/,/^)/p' "$root/deploy/install-deps.sh") ||
+  fail "install-deps.sh's viewer set does not install emscripten"
+grep -q 'meshwave_decoder.js' <<< "$build_stage" ||
+  fail "the Dockerfile's build stage does not check that the viewer got its decoder"
+echo "deploy/Dockerfile build stage builds the viewer's decoder"
 echo "deploy checks passed"
