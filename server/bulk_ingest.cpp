@@ -86,14 +86,15 @@ std::vector<std::filesystem::path> FilesOfShard(const std::vector<std::filesyste
 size_t IngestFiles(Catalog& catalog, const std::vector<std::filesystem::path>& files,
                    unsigned jobs, const std::string& name,
                    const std::function<void(const std::filesystem::path&,
-                                            const Result<IngestResult>&)>& report) {
+                                            const Result<IngestResult>&)>& report,
+                   const EncodeChoices& choices) {
   std::atomic<size_t> next{0}, failed{0};
   std::mutex report_mutex;
   // Encoding runs in parallel; each Store takes the catalog's ingest lock
   // only around the write and the insert.
   auto worker = [&] {
     for (size_t i = next++; i < files.size(); i = next++) {
-      auto result = IngestMeshFile(catalog, files[i], name);
+      auto result = IngestMeshFile(catalog, files[i], name, choices);
       if (!result.ok()) ++failed;
       std::lock_guard lock(report_mutex);
       report(files[i], result);

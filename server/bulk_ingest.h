@@ -36,13 +36,14 @@ Result<Shard> ParseShard(const std::string& text);
 std::vector<std::filesystem::path> FilesOfShard(const std::vector<std::filesystem::path>& files,
                                                 Shard shard);
 
-// Ingests `files` with `jobs` threads; `name` names the entry (one file
-// only; empty: the stem). `report` runs after each file, one call at a
-// time. Returns how many files failed.
+// Ingests `files` with `jobs` threads, encoded as `choices` says; `name`
+// names the entry (one file only; empty: the stem). `report` runs after
+// each file, one call at a time. Returns how many files failed.
 size_t IngestFiles(Catalog& catalog, const std::vector<std::filesystem::path>& files,
                    unsigned jobs, const std::string& name,
                    const std::function<void(const std::filesystem::path&,
-                                            const Result<IngestResult>&)>& report);
+                                            const Result<IngestResult>&)>& report,
+                   const EncodeChoices& choices = {});
 
 }  // namespace meshwave::server
 

@@ -13,6 +13,7 @@
 #include "mesh_id.h"
 #include "meshwave/container.h"
 #include "meshwave/encoder.h"
+#include "meshwave/fidelity.h"
 #include "meshwave/progression.h"
 #include "meshwave/semiregular_input.h"
 #include "sha256.h"
@@ -78,23 +79,40 @@ Result<IngestResult> IngestContainer(Catalog& catalog, std::string container,
 
 Result<IngestResult> IngestMeshBytes(Catalog& catalog, std::string_view bytes,
                                      MeshFormat format, const std::string& name,
-                                     const std::string& source) {
+                                     const std::string& source, const EncodeChoices& choices) {
   MW_ASSIGN_OR_RETURN(TriMesh mesh, ParseMesh(bytes, format, source));
-  MW_ASSIGN_OR_RETURN(SemiRegularInput input, ToSemiRegular(std::move(mesh)));
+  const bool fidelity = choices.fidelity_db > 0;
+  const TriMesh original = fidelity ? mesh : TriMesh{};
+  SemiRegularInputOptions input_options;
+  input_options.fidelity_db = choices.fidelity_db;
+  input_options.max_vertex_ratio = choices.max_vertex_ratio;
+  MW_ASSIGN_OR_RETURN(SemiRegularInput input, ToSemiRegular(std::move(mesh), input_options));
   for (const auto& w : input.warnings) spdlog::warn("{}: {}", source, w);
   EncodeOptions options;
   options.name = name;
+  if (fidelity) options.precision = PrecisionForFidelity(choices.fidelity_db);
   MW_ASSIGN_OR_RETURN(EncodedStream stream, EncodeMesh(input.mesh, options));
+  double reached = 0;
+  if (fidelity) {
+    MW_ASSIGN_OR_RETURN(reached, CompleteStreamPsnr(original, stream));
+    const auto level = reached >= choices.fidelity_db ? spdlog::level::info : spdlog::level::warn;
+    spdlog::log(level,
+                "{}: the complete stream is at {:.2f} dB against the upload (asked {:.2f} dB; "
+                "{} finest vertices after {} remesh attempt(s), precision {})",
+                source, reached, choices.fidelity_db, input.finest_vertices,
+                input.remesh_attempts, options.precision);
+  }
   const std::string container = SerializeFullContainer(stream);
   MW_ASSIGN_OR_RETURN(IngestResult result,
                       Store(catalog, container, stream.header, stream.packets.size(), name, source));
   result.remeshed = input.remeshed;
+  result.fidelity_db = reached;
   return result;
 }
 
 Result<IngestResult> IngestMeshFile(Catalog& catalog,
                                     const std::filesystem::path& path,
-                                    const std::string& name) {
+                                    const std::string& name, const EncodeChoices& choices) {
   MW_ASSIGN_OR_RETURN(MeshFormat format, FormatFromPath(path));
   std::ifstream in(path, std::ios::binary);
   if (!in) return IoError("cannot read " + path.string());
@@ -103,7 +121,7 @@ Result<IngestResult> IngestMeshFile(Catalog& catalog,
   if (!in && !in.eof()) return IoError("cannot read " + path.string());
   return IngestMeshBytes(catalog, ss.str(), format,
                          name.empty() ? path.stem().string() : name,
-                         path.filename().string());
+                         path.filename().string(), choices);
 }
 
 Result<CleanupReport> RemoveOrphans(Catalog& catalog) {

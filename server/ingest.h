@@ -20,6 +20,18 @@ struct IngestResult {
   CatalogEntry entry;
   bool already_present = false;  // same container was in the catalog
   bool remeshed = false;
+  // With a fidelity asked for: the complete stream's symmetric surface PSNR
+  // against the mesh as uploaded (meshwave/fidelity.h); 0 otherwise.
+  double fidelity_db = 0;
+};
+
+// How a mesh is encoded at ingest: the defaults, or denser and finer until
+// the complete stream reaches `fidelity_db` against the mesh as uploaded
+// (meshwave/fidelity.h), with at most `max_vertex_ratio` finest vertices
+// per input vertex.
+struct EncodeChoices {
+  double fidelity_db = 0;  // 0: default remesh density and precision
+  double max_vertex_ratio = 4;
 };
 
 // Stores a complete container (checked with ParseContainer and
@@ -34,13 +46,15 @@ Result<IngestResult> IngestContainer(Catalog& catalog, std::string container,
 // kInvalidArgument for a mesh that cannot be read or remeshed.
 Result<IngestResult> IngestMeshBytes(Catalog& catalog, std::string_view bytes,
                                      MeshFormat format, const std::string& name,
-                                     const std::string& source);
+                                     const std::string& source,
+                                     const EncodeChoices& choices = {});
 
 // Reads a mesh file (format from its extension) and ingests it; `name`
 // empty: the file's stem.
 Result<IngestResult> IngestMeshFile(Catalog& catalog,
                                     const std::filesystem::path& path,
-                                    const std::string& name = "");
+                                    const std::string& name = "",
+                                    const EncodeChoices& choices = {});
 
 struct CleanupReport {
   size_t orphan_files = 0;  // containers no row refers to

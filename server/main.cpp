@@ -44,6 +44,7 @@ struct IngestOptions {
   std::string catalog, store, name, list, shard = "0/1";
   std::vector<std::string> inputs;
   unsigned jobs = 1;
+  EncodeChoices choices;
 };
 
 int Ingest(const IngestOptions& o) {
@@ -71,13 +72,18 @@ int Ingest(const IngestOptions& o) {
           return;
         }
         const CatalogEntry& e = result->entry;
-        std::printf("%s %s: %s (%llu vertices, %u levels, %u packets, %llu bytes)%s\n",
+        std::printf("%s %s: %s (%llu vertices, %u levels, %u packets, %llu bytes)%s",
                     e.id.c_str(), file.c_str(),
                     result->already_present ? "already present" : "ingested",
                     static_cast<unsigned long long>(e.vertices), e.levels, e.packets,
                     static_cast<unsigned long long>(e.bytes), result->remeshed ? ", remeshed" : "");
+        if (result->fidelity_db > 0) {
+          std::printf(", complete stream %.2f dB against the file", result->fidelity_db);
+        }
+        std::printf("\n");
         std::fflush(stdout);
-      });
+      },
+      o.choices);
   return failed == 0 ? 0 : 1;
 }
 
@@ -118,6 +124,15 @@ int main(int argc, char** argv) {
   ingest->add_option("inputs", ingest_options.inputs,
                      "Mesh files (.ply, .obj, .off) or folders searched recursively");
   ingest->add_option("--list", ingest_options.list, "File listing mesh files, one per line");
+  ingest->add_option("--fidelity", ingest_options.choices.fidelity_db,
+                     "Symmetric surface PSNR (dB) each complete stream should reach against its "
+                     "file: denser remesh and finer precision until it does (meshwave encode "
+                     "--fidelity); prints what it reached")
+      ->check(CLI::Range(1.0, 200.0));
+  ingest->add_option("--max-vertex-ratio", ingest_options.choices.max_vertex_ratio,
+                     "With --fidelity: the densest remesh, in finest vertices per input vertex")
+      ->check(CLI::Range(1.0, 64.0))
+      ->capture_default_str();
   ingest->add_option("--jobs", ingest_options.jobs, "Meshes encoded in parallel")
       ->check(CLI::Range(1, 256))
       ->capture_default_str();

@@ -5,12 +5,17 @@
 
 #include "ingest.h"
 #include "mesh_handlers.h"
+#include "request_target.h"
 #include "response.h"
 
 namespace meshwave::server {
 namespace {
 
 constexpr size_t kMaxNameLength = 200;
+// POST ?fidelity=: at most this many dB, and a remesh of at most this many
+// finest vertices per uploaded vertex (the default density is about 1).
+constexpr uint64_t kMaxUploadFidelityDb = 150;
+constexpr double kUploadMaxVertexRatio = 4;
 
 // The format of an uploaded mesh: ?format= when given, else from its first
 // bytes ("ply", an OFF header keyword), else OBJ (which has no magic).
@@ -68,8 +73,19 @@ std::optional<Response> CheckAuthorization(const ServerContext& ctx,
 
 void UploadMesh(ServerContext& ctx, Request req, const QueryParams& query,
                 std::function<void(Response)> done) {
-  if (Status s = query.CheckAllowed({"name", "format"}); !s.ok()) {
+  if (Status s = query.CheckAllowed({"name", "format", "fidelity"}); !s.ok()) {
     return done(StatusError(s));
+  }
+  // fidelity=DB: the complete stream's surface PSNR to reach against the
+  // upload; the remesh may grow to kUploadMaxVertexRatio times the
+  // upload's vertices for it, and no further (an upload bounds its cost).
+  EncodeChoices choices;
+  if (auto f = query.Get("fidelity")) {
+    auto db = ParseUnsigned(*f, kMaxUploadFidelityDb, "fidelity");
+    if (!db.ok()) return done(StatusError(db.status()));
+    if (*db == 0) return done(StatusError(InvalidArgument("fidelity must be at least 1 dB")));
+    choices.fidelity_db = static_cast<double>(*db);
+    choices.max_vertex_ratio = kUploadMaxVertexRatio;
   }
   if (req.body().empty()) {
     return done(JsonError(http::status::bad_request, "the request body (a mesh file) is empty"));
@@ -79,11 +95,11 @@ void UploadMesh(ServerContext& ctx, Request req, const QueryParams& query,
   auto format = UploadFormat(query, req.body());
   if (!format.ok()) return done(StatusError(format.status()));
   const char* ext = *format == MeshFormat::kPly ? ".ply" : *format == MeshFormat::kOff ? ".off" : ".obj";
-  net::post(ctx.ingest_pool(), [&ctx, req = std::move(req), name, format = *format, ext,
+  net::post(ctx.ingest_pool(), [&ctx, req = std::move(req), name, format = *format, ext, choices,
                                 done = std::move(done)]() mutable {
     Response r;
     try {
-      auto result = IngestMeshBytes(ctx.catalog(), req.body(), format, name, name + ext);
+      auto result = IngestMeshBytes(ctx.catalog(), req.body(), format, name, name + ext, choices);
       if (!result.ok()) {
         const auto code = result.status().code();
         r = code == StatusCode::kIoError || code == StatusCode::kInternal

@@ -467,6 +467,51 @@ TEST_F(ServerHttpTest, UploadAndDeleteNeedTheToken) {
   EXPECT_EQ(ParseList(HttpGet(port_, "/v1/meshes").body).total(), 4u);
 }
 
+// POST ?fidelity=DB: the upload is remeshed denser until the complete
+// stream reaches DB against it, measured here on the served container
+// against the uploaded file; a fidelity out of range is a 400.
+TEST_F(ServerHttpTest, UploadWithAFidelityReachesItAgainstTheUpload) {
+  const std::pair<std::string, std::string> auth = {"Authorization", std::string("Bearer ") + kToken};
+  const std::string mesh = ReadBytes(SampleMesh("elephant.off"));
+  for (const char* bad : {"0", "151", "abc", "-3"}) {
+    HttpReply r = HttpConnection(port_).Send(
+        http::verb::post, std::string("/v1/meshes?name=e&format=off&fidelity=") + bad, {auth}, mesh);
+    EXPECT_EQ(r.status, 400u) << bad << ": " << r.body;
+    EXPECT_TRUE(IsJsonError(r)) << bad;
+  }
+  // The sample's default remesh reaches 57 dB against it, the densest an
+  // upload may ask for (4 times its vertices) about 70.
+  constexpr double kAsked = 65;
+  HttpReply r = HttpConnection(port_).Send(
+      http::verb::post, "/v1/meshes?name=fine&format=off&fidelity=65", {auth}, mesh);
+  ASSERT_EQ(r.status, 201u) << r.body;
+  proto::MeshSummary fine;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(r.body, &fine).ok());
+  uint64_t plain_vertices = 0;  // the default ingest of the same file
+  const proto::MeshList list = ParseList(HttpGet(port_, "/v1/meshes").body);
+  for (const auto& m : list.meshes()) {
+    if (m.id() == ids_.at("elephant")) plain_vertices = m.vertices();
+  }
+  ASSERT_GT(plain_vertices, 0u);
+  EXPECT_GT(fine.vertices(), plain_vertices);
+
+  const std::string container = HttpGet(port_, "/v1/meshes/" + fine.id() + "/container").body;
+  auto parsed = ParseContainer(container);
+  ASSERT_TRUE(parsed.ok()) << parsed.status().ToString();
+  auto decoder = ProgressiveDecoder::Create(parsed->header);
+  ASSERT_TRUE(decoder.ok());
+  for (size_t i = 0; i < parsed->ids.size(); ++i) {
+    ASSERT_TRUE((*decoder)->AddPacket(parsed->ids[i], parsed->payloads[i]).ok());
+  }
+  auto original = ReadMesh(SampleMesh("elephant.off"));
+  ASSERT_TRUE(original.ok());
+  auto d = SymmetricSurfaceDistance(*original, (*decoder)->Mesh());
+  ASSERT_TRUE(d.ok());
+  EXPECT_GE(d->PsnrDb(d->rms), kAsked);
+  EXPECT_EQ(HttpConnection(port_).Send(http::verb::delete_, "/v1/meshes/" + fine.id(), {auth}).status,
+            204u);
+}
+
 TEST_F(ServerHttpTest, BadRequestsGetJsonErrorsAndServerStaysUp) {
   const std::string id = ids_.at("holes");
   const std::string m = "/v1/meshes/" + id;

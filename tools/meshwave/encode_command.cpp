@@ -11,6 +11,7 @@
 #include "core/durable_file.h"
 #include "meshwave/container.h"
 #include "meshwave/encoder.h"
+#include "meshwave/fidelity.h"
 #include "meshwave/mesh.h"
 #include "meshwave/semiregular.h"
 #include "meshwave/semiregular_input.h"
@@ -24,21 +25,25 @@ struct EncodeArgs {
                         coder = "3xc", quantizer = "saq";
   int levels = -1;
   int precision = 16;
+  bool precision_given = false;
+  double fidelity_db = 0;
+  double max_vertex_ratio = 16;
   bool force_remesh = false;
   uint32_t sawt_alpha = EncodeOptions{}.sawt_alpha;
   double sawt_lambda = EncodeOptions{}.sawt_lambda_scale;
 };
 
-Result<SemiRegularMesh> LoadSemiRegular(const EncodeArgs& args) {
-  MW_ASSIGN_OR_RETURN(TriMesh mesh, ReadMesh(args.in));
+Result<SemiRegularInput> LoadSemiRegular(const EncodeArgs& args, TriMesh mesh) {
   SemiRegularInputOptions options;
   options.force_remesh = args.force_remesh;
   options.levels = args.levels;
+  options.fidelity_db = args.fidelity_db;
+  options.max_vertex_ratio = args.max_vertex_ratio;
   MW_ASSIGN_OR_RETURN(SemiRegularInput input, ToSemiRegular(std::move(mesh), options));
   if (!input.remeshed) {
     std::cerr << args.in << ": semi-regular, " << input.levels
               << " levels over " << input.base_faces << " base faces\n";
-    return std::move(input.mesh);
+    return input;
   }
   if (!args.force_remesh) {
     std::cerr << args.in << ": not semi-regular ("
@@ -48,20 +53,57 @@ Result<SemiRegularMesh> LoadSemiRegular(const EncodeArgs& args) {
   std::cerr << "remeshed: " << input.levels << " levels over "
             << input.base_faces << " base faces, " << input.finest_vertices
             << " vertices\n";
-  return std::move(input.mesh);
+  if (args.fidelity_db > 0) {
+    std::fprintf(stderr, "remesh: %.2f dB surface PSNR against the input after %d attempt%s\n",
+                 input.remesh_psnr_db, input.remesh_attempts,
+                 input.remesh_attempts == 1 ? "" : "s");
+  }
+  return input;
+}
+
+// What --fidelity reached: the complete stream against the file as read.
+Status ReportFidelity(const EncodeArgs& args, const TriMesh& original,
+                      const SemiRegularInput& input, const EncodedStream& stream,
+                      int precision) {
+  MW_ASSIGN_OR_RETURN(const double psnr, CompleteStreamPsnr(original, stream));
+  std::printf("fidelity: the complete stream is at %.2f dB of symmetric surface PSNR "
+              "against %s (asked %.2f dB; precision %d)\n",
+              psnr, args.in.c_str(), args.fidelity_db, precision);
+  if (psnr >= args.fidelity_db) return Status::Ok();
+  const double ratio = static_cast<double>(input.finest_vertices) /
+                       static_cast<double>(std::max<size_t>(original.positions.size(), 1));
+  std::string why;
+  if (!input.remeshed) {
+    why = "the input is used as it is (semi-regular): --remesh lets it be remeshed denser";
+  } else if (ratio >= 0.95 * args.max_vertex_ratio) {
+    char limit[160];
+    std::snprintf(limit, sizeof limit,
+                  "the remesh reached the density limit (%zu vertices, --max-vertex-ratio %g)",
+                  input.finest_vertices, args.max_vertex_ratio);
+    why = limit;
+  } else {
+    why = "a denser remesh did not get closer";
+  }
+  std::fprintf(stderr, "warning: fidelity %.2f dB not reached: %s\n", args.fidelity_db,
+               why.c_str());
+  return Status::Ok();
 }
 
 Status Run(const EncodeArgs& args) {
   EncodeOptions options;
-  MW_RETURN_IF_ERROR(
-      ApplyTransformOptions(args.predictor, args.update, args.precision, options));
+  const int precision = args.fidelity_db > 0 && !args.precision_given
+                            ? PrecisionForFidelity(args.fidelity_db)
+                            : args.precision;
+  MW_RETURN_IF_ERROR(ApplyTransformOptions(args.predictor, args.update, precision, options));
   options.sawt_alpha = args.sawt_alpha;
   options.sawt_lambda_scale = args.sawt_lambda;
   MW_ASSIGN_OR_RETURN(options.coder, ParseCoderKind(args.coder));
   MW_RETURN_IF_ERROR(ApplyQuantizerOption(args.quantizer, options));
   options.name = std::filesystem::path(args.in).stem().string();
-  MW_ASSIGN_OR_RETURN(SemiRegularMesh mesh, LoadSemiRegular(args));
-  MW_ASSIGN_OR_RETURN(EncodedStream stream, EncodeMesh(mesh, options));
+  MW_ASSIGN_OR_RETURN(TriMesh original, ReadMesh(args.in));
+  MW_ASSIGN_OR_RETURN(SemiRegularInput input,
+                      LoadSemiRegular(args, args.fidelity_db > 0 ? original : std::move(original)));
+  MW_ASSIGN_OR_RETURN(EncodedStream stream, EncodeMesh(input.mesh, options));
   const std::string bytes = SerializeFullContainer(stream);
   MW_RETURN_IF_ERROR(WriteFileDurably(args.out, bytes));
   uint64_t payload = 0;
@@ -93,6 +135,7 @@ Status Run(const EncodeArgs& args) {
     }
     std::printf("\n");
   }
+  if (args.fidelity_db > 0) MW_RETURN_IF_ERROR(ReportFidelity(args, original, input, stream, precision));
   return Status::Ok();
 }
 
@@ -114,7 +157,17 @@ void AddEncodeCommand(CLI::App& app, int& exit_code) {
   AddQuantizerOption(cmd, args->quantizer);
   cmd->add_flag("--remesh", args->force_remesh,
                 "Remesh even when the input is already semi-regular");
-  cmd->callback([args, &exit_code] {
+  cmd->add_option("--fidelity", args->fidelity_db,
+                  "Symmetric surface PSNR (dB, peak = the input's bounding-box diagonal) the "
+                  "complete stream should reach against the input: the remesh is made denser "
+                  "and the precision finer until it does; prints what it reached")
+      ->check(CLI::Range(1.0, 200.0));
+  cmd->add_option("--max-vertex-ratio", args->max_vertex_ratio,
+                  "With --fidelity: the densest remesh, in finest vertices per input vertex")
+      ->check(CLI::Range(1.0, 64.0))
+      ->capture_default_str();
+  cmd->callback([args, cmd, &exit_code] {
+    args->precision_given = cmd->count("--precision") > 0;
     const Status s = Run(*args);
     if (!s.ok()) exit_code = Fail("encode", s);
   });

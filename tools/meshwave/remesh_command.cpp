@@ -13,6 +13,7 @@
 #include "commands.h"
 #include "scaled_distance.h"
 #include "meshwave.pb.h"
+#include "meshwave/fidelity.h"
 #include "meshwave/mesh.h"
 #include "meshwave/metrics.h"
 #include "meshwave/remesh.h"
@@ -32,6 +33,8 @@ struct RemeshArgs {
   // Fewer samples than `meshwave compare` (10 per face): the figures come
   // with the remesh for free in seconds; use compare for the record.
   double samples_per_face = 2;
+  double fidelity_db = 0;
+  double max_vertex_ratio = 16;
 };
 
 // Progress on stderr, redrawn in place, only when stderr is a terminal.
@@ -155,6 +158,12 @@ void PrintHuman(const proto::RemeshReport& r) {
                   r.surface().hausdorff().percent_of_diagonal());
     line("hausdorff:", buffer);
   }
+  if (r.fidelity_asked_db() > 0) {
+    std::snprintf(buffer, sizeof buffer, "%.2f dB after %u attempt%s (asked %.2f dB)",
+                  r.fidelity_reached_db(), r.remesh_attempts(),
+                  r.remesh_attempts() == 1 ? "" : "s", r.fidelity_asked_db());
+    line("fidelity:", buffer);
+  }
   std::snprintf(buffer, sizeof buffer, "%.2f s", r.seconds());
   line("time:", buffer);
 }
@@ -171,7 +180,19 @@ Status Run(const RemeshArgs& args) {
   options.progress = [&progress](std::string_view stage, double fraction) {
     progress.Update(stage, fraction);
   };
-  auto result = Remesh(input, options);
+  Result<RemeshResult> result = Status(StatusCode::kInternal, "not remeshed");
+  FidelityRemesh fitted;
+  if (args.fidelity_db > 0) {
+    auto f = RemeshToFidelity(input, options, args.fidelity_db, args.max_vertex_ratio);
+    if (f.ok()) {
+      fitted = std::move(*f);
+      result = std::move(fitted.result);
+    } else {
+      result = f.status();
+    }
+  } else {
+    result = Remesh(input, options);
+  }
   progress.Finish();
   if (!result.ok()) return result.status().WithContext(args.in);
   const TriMesh finest = result->mesh.Finest();
@@ -183,6 +204,18 @@ Status Run(const RemeshArgs& args) {
   report.set_file_vertices(input.positions.size());
   report.set_file_faces(input.faces.size());
   FillReport(*result, report);
+  if (args.fidelity_db > 0) {
+    report.set_fidelity_asked_db(args.fidelity_db);
+    report.set_fidelity_reached_db(fitted.psnr_db);
+    report.set_remesh_attempts(static_cast<uint32_t>(fitted.attempts));
+    if (fitted.psnr_db < args.fidelity_db) {
+      std::fprintf(stderr,
+                   "meshwave remesh: warning: fidelity %.2f dB not reached (%.2f dB with %zu "
+                   "finest vertices; --max-vertex-ratio %g)\n",
+                   args.fidelity_db, fitted.psnr_db, result->finest_vertices,
+                   args.max_vertex_ratio);
+    }
+  }
   if (args.measure) MW_RETURN_IF_ERROR(Measure(args, input, finest, report));
   for (const std::string& w : result->warnings) {
     std::cerr << "meshwave remesh: warning: " << w << "\n";
@@ -206,6 +239,14 @@ void AddRemeshCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("in", args->in, "Input mesh (.ply, .obj, .off)")->required();
   cmd->add_option("out", args->out, "Semi-regular output (.ply, .obj, .glb or .gltf)")
       ->required();
+  cmd->add_option("--fidelity", args->fidelity_db,
+                  "Symmetric surface PSNR (dB, peak = the input's diagonal) to reach against "
+                  "the input: remeshed again with more base faces while short of it")
+      ->check(CLI::Range(1.0, 200.0));
+  cmd->add_option("--max-vertex-ratio", args->max_vertex_ratio,
+                  "With --fidelity: the densest remesh, in finest vertices per input vertex")
+      ->check(CLI::Range(1.0, 64.0))
+      ->capture_default_str();
   cmd->add_option("-l,--levels", args->levels,
                   "Levels of 1-to-4 subdivision (-1: from the input size)")
       ->check(CLI::Range(-1, 8))

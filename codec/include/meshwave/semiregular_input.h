@@ -18,6 +18,14 @@ struct SemiRegularInputOptions {
   bool force_remesh = false;  // remesh even semi-regular input
   int levels = -1;            // remeshing levels (-1: chosen from the size)
   int threads = 2;            // remeshing worker threads
+  // The remesh's symmetric surface PSNR against the input to reach, in dB
+  // (peak: the input's bounding-box diagonal; what `meshwave compare`
+  // reports). 0: remesh once at the default density (about as many finest
+  // vertices as the input has). Otherwise the remesh is measured and,
+  // while short of this, redone denser (more base faces, the same levels),
+  // up to `max_vertex_ratio` times the input's vertices.
+  double fidelity_db = 0;
+  double max_vertex_ratio = 4;
 };
 
 struct SemiRegularInput {
@@ -29,10 +37,14 @@ struct SemiRegularInput {
   size_t base_faces = 0;
   size_t finest_vertices = 0;
   std::vector<std::string> warnings;  // from remeshing, one sentence each
+  // With a fidelity asked for and the input remeshed: the remesh's surface
+  // PSNR against the cleaned input, and how many remeshes it took.
+  double remesh_psnr_db = 0;
+  int remesh_attempts = 0;
 };
 
 // Cleans `mesh` (CleanMesh), detects a subdivision hierarchy and remeshes
-// when there is none (or when asked). Safe on untrusted meshes: errors are
+// when there is none (or when asked), as densely as `fidelity_db` needs. Safe on untrusted meshes: errors are
 // those of Remesh (kInvalidArgument naming what is unusable).
 Result<SemiRegularInput> ToSemiRegular(TriMesh mesh,
                                        const SemiRegularInputOptions& options = {});

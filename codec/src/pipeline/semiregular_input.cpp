@@ -2,6 +2,7 @@
 
 #include <utility>
 
+#include "meshwave/fidelity.h"
 #include "meshwave/remesh.h"
 
 namespace meshwave {
@@ -26,7 +27,18 @@ Result<SemiRegularInput> ToSemiRegular(TriMesh mesh,
   RemeshOptions remesh;
   remesh.levels = options.levels;
   remesh.threads = options.threads;
-  MW_ASSIGN_OR_RETURN(RemeshResult remeshed, Remesh(mesh, remesh));
+  RemeshResult remeshed;
+  if (options.fidelity_db > 0) {
+    MW_ASSIGN_OR_RETURN(FidelityRemesh fitted,
+                        RemeshToFidelity(mesh, remesh, options.fidelity_db,
+                                         options.max_vertex_ratio));
+    remeshed = std::move(fitted.result);
+    out.remesh_psnr_db = fitted.psnr_db;
+    out.remesh_attempts = fitted.attempts;
+  } else {
+    MW_ASSIGN_OR_RETURN(remeshed, Remesh(mesh, remesh));
+    out.remesh_attempts = 1;
+  }
   out.remeshed = true;
   out.mesh = std::move(remeshed.mesh);
   out.levels = remeshed.levels;
