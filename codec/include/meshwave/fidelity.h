@@ -24,7 +24,10 @@ int PrecisionForFidelity(double fidelity_db);
 // against the input (symmetric surface distance, 2 samples per face as
 // `meshwave remesh` measures) and, while short of `fidelity_db`, redone with
 // more base faces at the same levels, up to `max_vertex_ratio` finest
-// vertices per input vertex and 4 attempts. Keeps the best attempt.
+// vertices per input vertex; an attempt that overshoots by more than 2 dB
+// is followed by one between it and the densest still short (6 attempts
+// at most). Keeps the sparsest attempt that reaches the fidelity, else the
+// best one. Never sparser than the default remesh.
 struct FidelityRemesh {
   RemeshResult result;
   double psnr_db = 0;  // the kept attempt's, against the input
