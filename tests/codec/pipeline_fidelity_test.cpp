@@ -48,7 +48,7 @@ TEST(FidelityTest, ARemeshShortOfTheFidelityIsRedoneDenserUntilItReachesIt) {
   EXPECT_GE(fitted->attempts, 2);
   EXPECT_GE(fitted->psnr_db, asked);
   EXPECT_GT(fitted->result.finest_vertices, plain->finest_vertices);
-  EXPECT_EQ(fitted->result.levels, plain->levels);
+  EXPECT_GE(fitted->result.levels, plain->levels);  // density from levels first
   // The figure it reports is the surface distance to the input, measured here again.
   EXPECT_NEAR(fitted->psnr_db, SurfacePsnr(input, fitted->result.mesh.Finest(), 2), 1e-9);
 }

@@ -22,6 +22,7 @@ constexpr double kDbPerDoubling = 4.5;
 constexpr double kAimAboveDb = 0.5;
 constexpr double kSlackDb = 2;
 constexpr int kMaxAttempts = 6;
+constexpr int kMaxRemeshLevels = 8;  // RemeshOptions::levels' range
 
 Result<double> RemeshPsnr(const TriMesh& input, const SemiRegularMesh& remesh) {
   SurfaceDistanceOptions options;
@@ -43,12 +44,23 @@ Result<FidelityRemesh> RemeshToFidelity(const TriMesh& input, RemeshOptions opti
   int attempts = 0;
   double input_vertices = 1;
   size_t base_per_ratio = 1;  // base faces asked per unit of ratio (first attempt's)
+  int first_levels = 0;
   // The densest attempt still short of the fidelity and the sparsest that
   // reaches it: the two the next guess interpolates between.
   std::optional<Attempt> below, above;
   auto run = [&](double log2_ratio) -> Status {
     if (attempts > 0) {
-      const double base = static_cast<double>(base_per_ratio) * std::exp2(log2_ratio);
+      // Density from levels first: each level is four times the vertices
+      // over the same base, and a small base with more levels codes every
+      // prefix in fewer bytes than a large base (the bunny at 3.4 times its
+      // vertices: 4 levels over 930 base faces beat 3 levels over 3,703 at
+      // every budget from 5 to 150 KB, by 2.1 to 3.1 dB from 16 KB on).
+      // The base takes the rest, between half and twice the first one's.
+      const int extra = std::clamp(static_cast<int>(std::lround(log2_ratio / 2)), 0,
+                                   kMaxRemeshLevels - first_levels);
+      options.levels = first_levels + extra;
+      const double base =
+          static_cast<double>(base_per_ratio) * std::exp2(log2_ratio - 2.0 * extra);
       options.base_faces = static_cast<int>(std::lround(std::clamp(base, 1.0, 1e9)));
     }
     Attempt a;
@@ -60,7 +72,7 @@ Result<FidelityRemesh> RemeshToFidelity(const TriMesh& input, RemeshOptions opti
       const double ratio = static_cast<double>(a.result.finest_vertices) / input_vertices;
       base_per_ratio = static_cast<size_t>(
           std::max(1.0, static_cast<double>(a.result.target_base_faces) / ratio));
-      options.levels = a.result.levels;  // later attempts scale the base only
+      first_levels = a.result.levels;
     }
     a.log2_ratio = std::log2(static_cast<double>(a.result.finest_vertices) / input_vertices);
     if (a.psnr_db >= fidelity_db) {
