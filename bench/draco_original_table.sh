@@ -9,9 +9,10 @@
 #      original; its decoded mesh is measured against the original; its
 #      decode time is the one draco_decoder prints.
 #   2. meshwave encodes the original twice: at default settings, and with
-#      `--fidelity F` where F is Draco's best PSNR of the row set plus
+#      `--fidelity F` where F is Draco's PSNR at qp $FIDELITY_QP (12) plus
 #      0.5 dB (or $FIDELITY), remeshing up to --max-vertex-ratio
-#      $MAX_VERTEX_RATIO.
+#      $MAX_VERTEX_RATIO (qp 14's 99-102 dB would need tens of times the
+#      input's vertices: see docs/RD_RESULTS.md, "Fidelity").
 #   3. For each Draco point and each meshwave stream: the smallest prefix of
 #      the rd order whose decoded mesh (as `meshwave decode` writes it: one
 #      level past the finest that received detail) is at least as close to
@@ -28,6 +29,7 @@
 #   MESHES="a.ply b.obj"   other meshes (default: shared ones >= 5 k vertices)
 #   QPS="8 10 12 14"       Draco quantisation bits
 #   FIDELITY=DB            the raised fidelity (default: per mesh, as above)
+#   FIDELITY_QP=12         the Draco point whose PSNR (+0.5 dB) it is
 #   MAX_VERTEX_RATIO=16    encode --fidelity's density limit
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -108,7 +110,8 @@ for mesh in $MESHES; do
     dpsnr[$qp]=$(psnr_of "$mesh" "$tmp/d.ply")
     if (( $(echo "${dpsnr[$qp]} > $best" | bc -l) )); then best=${dpsnr[$qp]}; fi
   done
-  fidelity=${FIDELITY:-$(printf '%.1f' "$(echo "$best + 0.5" | bc -l)")}
+  aim=${dpsnr[${FIDELITY_QP:-12}]:-$best}
+  fidelity=${FIDELITY:-$(printf '%.1f' "$(echo "$aim + 0.5" | bc -l)")}
   echo "$name: encoding (default, then --fidelity $fidelity)" >&2
   "$cli" encode "$mesh" "$tmp/def.mwv" > /dev/null 2>&1
   "$cli" encode "$mesh" "$tmp/fid.mwv" --fidelity "$fidelity" --max-vertex-ratio "$ratio_limit" \

@@ -24,8 +24,8 @@ int PrecisionForFidelity(double fidelity_db);
 // against the input (symmetric surface distance, 2 samples per face as
 // `meshwave remesh` measures) and, while short of `fidelity_db`, redone
 // denser, up to `max_vertex_ratio` finest vertices per input vertex:
-// density from more levels first, the base taking the rest (half to twice
-// the first attempt's); an attempt that overshoots by more than 2 dB
+// density from more levels first, the base taking the rest (0.76 to 3
+// times the first attempt's); an attempt that overshoots by more than 2 dB
 // is followed by one between it and the densest still short (6 attempts
 // at most). Keeps the sparsest attempt that reaches the fidelity, else the
 // best one. Never sparser than the default remesh.
