@@ -149,4 +149,17 @@ int OutputLevel(const ProgressiveDecoder& decoder, int max_level, int extra_leve
   return std::min(cap, decoder.DetailLevels() + std::max(extra_levels, 0));
 }
 
+void AddFidelityOptions(CLI::App* cmd, double& fidelity_db, double& max_vertex_ratio,
+                        const std::string& what) {
+  cmd->add_option("--fidelity", fidelity_db,
+                  "Symmetric surface PSNR (dB, peak = the input's bounding-box diagonal) " + what +
+                      " should reach against the input: remeshed denser until it does; prints "
+                      "what it reached")
+      ->check(CLI::Range(1.0, 200.0));
+  cmd->add_option("--max-vertex-ratio", max_vertex_ratio,
+                  "With --fidelity: the densest remesh, in finest vertices per input vertex")
+      ->check(CLI::Range(1.0, 64.0))
+      ->capture_default_str();
+}
+
 }  // namespace meshwave::cli

@@ -59,6 +59,11 @@ inline constexpr const char* kExtraLevelsHelp =
     "each smooths the surface and quadruples the faces); 12 writes every level up "
     "to --max-level";
 
+// --fidelity DB and --max-vertex-ratio R (meshwave/fidelity.h) on `encode`
+// and `remesh`; `what` says what the fidelity is of.
+void AddFidelityOptions(CLI::App* cmd, double& fidelity_db, double& max_vertex_ratio,
+                        const std::string& what);
+
 // Reads a whole file; IoError naming the path when it cannot.
 Result<std::string> ReadFileBytes(const std::string& path);
 // Files are written with WriteFileDurably (core/durable_file.h).

@@ -157,15 +157,8 @@ void AddEncodeCommand(CLI::App& app, int& exit_code) {
   AddQuantizerOption(cmd, args->quantizer);
   cmd->add_flag("--remesh", args->force_remesh,
                 "Remesh even when the input is already semi-regular");
-  cmd->add_option("--fidelity", args->fidelity_db,
-                  "Symmetric surface PSNR (dB, peak = the input's bounding-box diagonal) the "
-                  "complete stream should reach against the input: the remesh is made denser "
-                  "and the precision finer until it does; prints what it reached")
-      ->check(CLI::Range(1.0, 200.0));
-  cmd->add_option("--max-vertex-ratio", args->max_vertex_ratio,
-                  "With --fidelity: the densest remesh, in finest vertices per input vertex")
-      ->check(CLI::Range(1.0, 64.0))
-      ->capture_default_str();
+  AddFidelityOptions(cmd, args->fidelity_db, args->max_vertex_ratio,
+                     "the complete stream (the precision follows it too)");
   cmd->callback([args, cmd, &exit_code] {
     args->precision_given = cmd->count("--precision") > 0;
     const Status s = Run(*args);

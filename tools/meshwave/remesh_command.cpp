@@ -239,14 +239,7 @@ void AddRemeshCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("in", args->in, "Input mesh (.ply, .obj, .off)")->required();
   cmd->add_option("out", args->out, "Semi-regular output (.ply, .obj, .glb or .gltf)")
       ->required();
-  cmd->add_option("--fidelity", args->fidelity_db,
-                  "Symmetric surface PSNR (dB, peak = the input's diagonal) to reach against "
-                  "the input: remeshed again with more base faces while short of it")
-      ->check(CLI::Range(1.0, 200.0));
-  cmd->add_option("--max-vertex-ratio", args->max_vertex_ratio,
-                  "With --fidelity: the densest remesh, in finest vertices per input vertex")
-      ->check(CLI::Range(1.0, 64.0))
-      ->capture_default_str();
+  AddFidelityOptions(cmd, args->fidelity_db, args->max_vertex_ratio, "the remesh");
   cmd->add_option("-l,--levels", args->levels,
                   "Levels of 1-to-4 subdivision (-1: from the input size)")
       ->check(CLI::Range(-1, 8))
