@@ -20,15 +20,9 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-$root/build}
 cli=$build/tools/meshwave/meshwave
 [[ -x $cli ]] || { echo "no meshwave binary at $cli (build first)" >&2; exit 1; }
+source "$root/bench/lib.sh"
 shared=$root/../shared/data/meshes
-if [[ -z ${MESHES:-} ]]; then
-  [[ -d $shared ]] || { echo "no shared meshes at $shared: set MESHES" >&2; exit 1; }
-  MESHES=
-  for m in "$shared"/*.ply "$shared"/*.obj; do
-    v=$("$cli" info "$m" --json 2> /dev/null | jq -r '.as_read.vertices // .vertices // 0')
-    (( v >= 5000 )) && MESHES="$MESHES $m"
-  done
-fi
+[[ -n ${MESHES:-} ]] || MESHES=$(shared_meshes_of_at_least 5000)
 fidelities=${FIDELITIES:-84 90}
 ratio=${MAX_VERTEX_RATIO:-16}
 tmp=$(mktemp -d)
@@ -39,9 +33,9 @@ echo "|---|---|---|---|---|---|"
 for mesh in $MESHES; do
   name=$(basename "$mesh")
   inputv=$("$cli" info "$mesh" --json 2> /dev/null | jq -r '.as_read.vertices // .vertices')
-  if command -v draco_encoder > /dev/null; then
-    start=$(date +%s.%N)
-    draco_encoder -i "$mesh" -o "$tmp/d.drc" -cl 10 -qp 11 > /dev/null
+  start=$(date +%s.%N)
+  if command -v draco_encoder > /dev/null &&
+    draco_encoder -i "$mesh" -o "$tmp/d.drc" -cl 10 -qp 11 > /dev/null 2>&1; then  # PLY, OBJ only
     secs=$(echo "$(date +%s.%N) - $start" | bc)
     draco_decoder -i "$tmp/d.drc" -o "$tmp/d.ply" > /dev/null
     psnr=$("$cli" compare "$mesh" "$tmp/d.ply" --json | jq '.surface.rms.psnr_db')

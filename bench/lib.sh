@@ -51,3 +51,16 @@ semi_regular() {
   [[ -f $out ]] || "$cli" remesh "$src" "$out" > /dev/null 2> "$cache/${name%.*}.remesh.log"
   echo "$out"
 }
+
+# shared_meshes_of_at_least V: the shared meshes (.ply, .obj in $shared) of
+# at least V vertices as read, space-separated; exits when $shared is
+# missing (a lone clone: name meshes in $MESHES instead). Needs $cli, jq.
+shared_meshes_of_at_least() {
+  [[ -d $shared ]] || { echo "no shared meshes at $shared: set MESHES" >&2; exit 1; }
+  local m v list=
+  for m in "$shared"/*.ply "$shared"/*.obj; do
+    v=$("$cli" info "$m" --json 2> /dev/null | jq -r '.as_read.vertices // 0')
+    (( v >= $1 )) && list="$list $m"
+  done
+  echo "$list"
+}
