@@ -13,26 +13,28 @@
 
 namespace meshwave {
 
+// `q0` and `negative` in the subband's Morton order, as CodeBitplane names
+// coefficients.
 class EncoderIo {
  public:
-  EncoderIo(ArithmeticEncoder& enc, const CoefficientOctree& tree,
-            std::span<const uint32_t> q0, std::span<const uint8_t> negative)
-      : enc_(&enc), tree_(&tree), q0_(q0), negative_(negative) {}
+  EncoderIo(ArithmeticEncoder& enc, std::span<const uint32_t> q0,
+            std::span<const uint8_t> negative)
+      : enc_(&enc), q0_(q0), negative_(negative) {}
 
-  int SigCoef(uint32_t k, int b, BinaryContext& ctx) {
-    return Put((q0_[k] >> b) & 1, ctx);
+  int SigCoef(uint32_t i, int b, BinaryContext& ctx) {
+    return Put((q0_[i] >> b) & 1, ctx);
   }
   int SigNode(const OctreeNode& node, int b, BinaryContext& ctx) {
     const uint32_t threshold = 1u << b;
     int sig = 0;
-    for (uint32_t p = node.begin; p < node.end && !sig; ++p) {
-      sig = q0_[tree_->At(p)] >= threshold;
+    for (uint32_t i = node.begin; i < node.end && !sig; ++i) {
+      sig = q0_[i] >= threshold;
     }
     return Put(sig, ctx);
   }
-  int Sign(uint32_t k, BinaryContext& ctx) { return Put(negative_[k], ctx); }
-  int Refine(uint32_t k, int b, BinaryContext& ctx) {
-    return Put((q0_[k] >> b) & 1, ctx);
+  int Sign(uint32_t i, BinaryContext& ctx) { return Put(negative_[i], ctx); }
+  int Refine(uint32_t i, int b, BinaryContext& ctx) {
+    return Put((q0_[i] >> b) & 1, ctx);
   }
 
  private:
@@ -40,10 +42,9 @@ class EncoderIo {
     enc_->Encode(bit, ctx);
     return bit;
   }
-  // Pointers, not references: CodeBitplane works on a copy and assigns it
+  // A pointer, not a reference: CodeBitplane works on a copy and assigns it
   // back.
   ArithmeticEncoder* enc_;
-  const CoefficientOctree* tree_;
   std::span<const uint32_t> q0_;
   std::span<const uint8_t> negative_;
 };

@@ -1,12 +1,13 @@
 // The three passes of one bitplane of one (subband, component) — SIM's octree
-// set partitioning with 3xC's optional parent contexts (Denis et al. 2010;
-// 6.5). Written once as a template over the symbol I/O so that the encoder
+// set partitioning with 3xC's optional parent contexts (Denis et al. 2010).
+// Written once as a template over the symbol I/O so that the encoder
 // (which knows every coefficient) and the decoder (which learns them from
 // the stream) run the very same steps and keep identical state.
 #ifndef MESHWAVE_BITPLANE_BITPLANE_PASSES_H_
 #define MESHWAVE_BITPLANE_BITPLANE_PASSES_H_
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -16,13 +17,21 @@
 
 namespace meshwave {
 
-// What the coder knows of one (subband, component) between bitplanes.
+// What the coder knows of one (subband, component) between bitplanes. Every
+// coefficient is named by its Morton position in the subband's octree
+// (bitplane/subband_layout.h says why); tree.At(i) is its coefficient.
 struct ComponentState {
   int top = -1;   // highest bitplane with a significant coefficient
   int next = -1;  // next bitplane to code; -1 when all are coded
   std::vector<std::vector<OctreeNode>> lin;  // insignificant cells per depth
-  std::vector<uint32_t> lnc;  // coefficients coded alone, still insignificant
-  std::vector<uint32_t> lsc;  // significant coefficients
+  // The two position lists, each in a buffer of the subband's size (a
+  // position is in at most one of them), so that appending needs no
+  // capacity check: LNC, coded alone and still insignificant, is
+  // lnc[0, lnc_size); LSC, significant, is lsc[0, lsc_size).
+  std::vector<uint32_t> lnc;
+  std::vector<uint32_t> lsc;
+  uint32_t lnc_size = 0;
+  uint32_t lsc_size = 0;
   std::vector<uint32_t> mag;  // known bits of Q0 (lower bits zero)
   std::vector<uint8_t> negative;
 
@@ -30,14 +39,20 @@ struct ComponentState {
     top = top_bitplane;
     next = top_bitplane;
     lin.clear();
-    lnc.clear();
-    lsc.clear();
+    lnc_size = 0;
+    lsc_size = 0;
     mag.assign(tree.size(), 0);
     negative.assign(tree.size(), 0);
-    if (top < 0 || tree.size() == 0) return;
+    if (top < 0 || tree.size() == 0) {
+      lnc.clear();
+      lsc.clear();
+      return;
+    }
+    lnc.resize(tree.size());
+    lsc.resize(tree.size());
     const OctreeNode root = tree.Root();
     if (tree.IsLeaf(root)) {
-      for (uint32_t i = root.begin; i < root.end; ++i) lnc.push_back(tree.At(i));
+      for (uint32_t i = root.begin; i < root.end; ++i) lnc[lnc_size++] = i;
     } else {
       lin.resize(1);
       lin[0].push_back(root);
@@ -45,6 +60,8 @@ struct ComponentState {
   }
   // Lowest bitplane known so far (top + 1 before any).
   int known_from() const { return next + 1; }
+  // Positions of the significant coefficients, in the order they became so.
+  std::span<const uint32_t> significant() const { return {lsc.data(), lsc_size}; }
 };
 
 // The adaptive contexts of one component in one packet; fresh per packet.
@@ -57,101 +74,162 @@ struct ComponentContexts {
 
 // The parent subband's magnitudes and signs as this coder may read them:
 // the true values in the encoder, the decoded ones in the decoder; both give
-// the same (Q0 >> b) for the bitplanes the dependency rules guarantee.
+// the same (Q0 >> b) for the bitplanes the dependency rules guarantee. All
+// three arrays are in Morton order (of this subband, then of the parent's).
 struct ParentView {
-  std::span<const uint32_t> parent_of;  // coefficient -> parent; empty: none
+  std::span<const uint32_t> parent_position;  // empty: no parent contexts
   std::span<const uint32_t> mag;
   std::span<const uint8_t> negative;
 
-  int State(uint32_t k, int b) const {
-    if (parent_of.empty()) return 0;
-    return static_cast<int>(std::min<uint32_t>(mag[parent_of[k]] >> b, 2));
+  // kHas: whether parent_position is non-empty, a template argument so
+  // that the coder's loops are compiled once with and once without the
+  // lookups rather than testing it per symbol.
+  template <bool kHas>
+  int State(uint32_t i, int b) const {
+    if constexpr (!kHas) {
+      return 0;
+    } else {
+      return static_cast<int>(std::min<uint32_t>(mag[parent_position[i]] >> b, 2));
+    }
   }
-  int SignContext(uint32_t k, int state) const {
-    if (state == 0) return 0;
-    return negative[parent_of[k]] ? 2 : 1;
+  template <bool kHas>
+  int SignContext(uint32_t i, int state) const {
+    if (!kHas || state == 0) return 0;
+    return negative[parent_position[i]] ? 2 : 1;
   }
 };
 
-// Io provides: int SigCoef(k, b, ctx), int SigNode(node, b, ctx),
-// int Sign(k, ctx), int Refine(k, b, ctx). Each returns the symbol (the
-// encoder codes the truth, the decoder decodes). `touched`, if not null,
-// collects coefficients whose reconstruction changes.
-template <class Io>
-void CodeBitplane(const CoefficientOctree& tree, ComponentState& s, int b,
-                  const ParentView& parent_view, ComponentContexts& ctx,
-                  Io& io_state, std::vector<uint32_t>* touched) {
-  // Local copies: a store to the coefficient arrays cannot alias them, so
-  // the compiler need not reload the coder's state after each one (8 % fewer
-  // instructions per decoded packet, measured with cachegrind).
-  Io io = io_state;
-  const ParentView parent = parent_view;
-  // Coefficients significant in this bitplane are appended to s.lsc; the
-  // refinement pass reads only the ones before them.
-  const size_t refine_count = s.lsc.size();
-  auto become_significant = [&](uint32_t k) {
-    s.mag[k] |= 1u << b;
-    const int state = parent.State(k, b);
-    s.negative[k] = static_cast<uint8_t>(
-        io.Sign(k, ctx.sign[parent.SignContext(k, state)]));
-    s.lsc.push_back(k);
-  };
-  // 1. Non-significance pass: coefficients already seen one by one.
-  size_t kept = 0;
-  for (size_t i = 0; i < s.lnc.size(); ++i) {
-    const uint32_t k = s.lnc[i];
-    if (io.SigCoef(k, b, ctx.sig[3 + parent.State(k, b)])) {
-      become_significant(k);
+// Io provides: int SigCoef(i, b, ctx), int SigNode(node, b, ctx),
+// int Sign(i, ctx), int Refine(i, b, ctx), i a Morton position. Each returns
+// the symbol (the encoder codes the truth, the decoder decodes). After the
+// call, s.significant() holds every position whose reconstruction changed.
+namespace bitplane_internal {
+
+// The lists and arrays one pass works on, as plain pointers and counts.
+// Each pass takes the coder by value and returns it: working on a local copy
+// keeps the coder's state in registers, where through a reference every
+// byte store to the arrays (signs, context counts) could alias it and forced
+// a reload per symbol.
+struct PassState {
+  uint32_t* mag;
+  uint8_t* negative;
+  uint32_t* lnc;
+  uint32_t* lsc;
+  uint32_t lnc_size;
+  uint32_t lsc_size;
+};
+
+// Position i became significant at bitplane b: its sign, then the LSC.
+template <bool kParents, class Io>
+inline void BecomeSignificant(uint32_t i, int b, int state, const ParentView& parent,
+                              ComponentContexts& ctx, PassState& p, Io& io) {
+  p.mag[i] |= 1u << b;
+  const int sign_context = parent.SignContext<kParents>(i, state);
+  p.negative[i] = static_cast<uint8_t>(io.Sign(i, ctx.sign[sign_context]));
+  p.lsc[p.lsc_size++] = i;
+}
+
+// 1. Non-significance pass: coefficients already seen one by one.
+template <bool kParents, class Io>
+Io NonSignificancePass(int b, const ParentView parent, ComponentContexts& ctx, PassState& p,
+                       Io io) {
+  PassState local = p;
+  uint32_t kept = 0;
+  for (uint32_t n = 0; n < local.lnc_size; ++n) {
+    const uint32_t i = local.lnc[n];
+    const int state = parent.State<kParents>(i, b);
+    if (io.SigCoef(i, b, ctx.sig[3 + state])) {
+      BecomeSignificant<kParents>(i, b, state, parent, ctx, local, io);
     } else {
-      s.lnc[kept++] = k;
+      local.lnc[kept++] = i;
     }
   }
-  s.lnc.resize(kept);
-  // 2. Significance pass: cells by depth; a significant cell splits and its
-  // children are visited in this same pass.
-  // Cells that stay insignificant are compacted in place (children go to
-  // depth d + 1, never to d).
+  local.lnc_size = kept;
+  p = local;
+  return io;
+}
+
+// 2. Significance pass: cells by depth; a significant cell splits and its
+// children are visited in this same pass. Cells that stay insignificant are
+// compacted in place (children go to depth d + 1, never to d).
+template <bool kParents, class Io>
+Io SignificancePass(const CoefficientOctree& tree, int b, int top, const ParentView parent,
+                    ComponentContexts& ctx, std::vector<std::vector<OctreeNode>>& lin,
+                    PassState& p, Io io) {
+  PassState local = p;
   std::array<OctreeNode, 8> children;
-  for (size_t d = 0; d < s.lin.size(); ++d) {
+  for (size_t d = 0; d < lin.size(); ++d) {
     size_t still = 0;
-    for (size_t i = 0; i < s.lin[d].size(); ++i) {
-      const OctreeNode node = s.lin[d][i];
+    for (size_t n = 0; n < lin[d].size(); ++n) {
+      const OctreeNode node = lin[d][n];
       // The root is significant at the top bitplane by definition.
-      const bool known = node.depth == 0 && b == s.top;
+      const bool known = node.depth == 0 && b == top;
       if (!known && !io.SigNode(node, b, ctx.node[std::min<uint32_t>(d, 7)])) {
-        s.lin[d][still++] = node;
+        lin[d][still++] = node;
         continue;
       }
-      const int n = tree.Children(node, children);
-      for (int c = 0; c < n; ++c) {
+      const int count = tree.Children(node, children);
+      for (int c = 0; c < count; ++c) {
         const OctreeNode& child = children[c];
         if (!tree.IsLeaf(child)) {
-          if (s.lin.size() <= d + 1) s.lin.resize(d + 2);
-          s.lin[d + 1].push_back(child);
+          if (lin.size() <= d + 1) lin.resize(d + 2);
+          lin[d + 1].push_back(child);
           continue;
         }
-        for (uint32_t p = child.begin; p < child.end; ++p) {
-          const uint32_t k = tree.At(p);
-          if (io.SigCoef(k, b, ctx.sig[parent.State(k, b)])) {
-            become_significant(k);
+        for (uint32_t i = child.begin; i < child.end; ++i) {
+          const int state = parent.State<kParents>(i, b);
+          if (io.SigCoef(i, b, ctx.sig[state])) {
+            BecomeSignificant<kParents>(i, b, state, parent, ctx, local, io);
           } else {
-            s.lnc.push_back(k);
+            local.lnc[local.lnc_size++] = i;
           }
         }
       }
     }
-    s.lin[d].resize(still);
+    lin[d].resize(still);
   }
-  // 3. Refinement pass: coefficients significant before this bitplane.
-  for (size_t i = 0; i < refine_count; ++i) {
-    const uint32_t k = s.lsc[i];
-    s.mag[k] |= static_cast<uint32_t>(io.Refine(k, b, ctx.refine)) << b;
+  p = local;
+  return io;
+}
+
+// 3. Refinement pass: the first `count` of the LSC, significant before b.
+template <class Io>
+Io RefinementPass(int b, uint32_t count, BinaryContext& ctx, const PassState& p, Io io) {
+  uint32_t* const mag = p.mag;
+  const uint32_t* const lsc = p.lsc;
+  for (uint32_t n = 0; n < count; ++n) {
+    const uint32_t i = lsc[n];
+    mag[i] |= static_cast<uint32_t>(io.Refine(i, b, ctx)) << b;
   }
-  if (touched != nullptr) {
-    touched->insert(touched->end(), s.lsc.begin(), s.lsc.end());
-  }
+  return io;
+}
+
+template <bool kParents, class Io>
+void CodeBitplane(const CoefficientOctree& tree, ComponentState& s, int b,
+                  const ParentView& parent, ComponentContexts& ctx, Io& io) {
+  PassState p{s.mag.data(), s.negative.data(), s.lnc.data(), s.lsc.data(), s.lnc_size,
+              s.lsc_size};
+  // Coefficients significant in this bitplane are appended to the LSC; the
+  // refinement pass reads only the ones before them.
+  const uint32_t refine_count = p.lsc_size;
+  io = NonSignificancePass<kParents>(b, parent, ctx, p, io);
+  io = SignificancePass<kParents>(tree, b, s.top, parent, ctx, s.lin, p, io);
+  io = RefinementPass(b, refine_count, ctx.refine, p, io);
+  s.lnc_size = p.lnc_size;
+  s.lsc_size = p.lsc_size;
   s.next = b - 1;
-  io_state = io;
+}
+
+}  // namespace bitplane_internal
+
+template <class Io>
+void CodeBitplane(const CoefficientOctree& tree, ComponentState& s, int b,
+                  const ParentView& parent, ComponentContexts& ctx, Io& io) {
+  if (parent.parent_position.empty()) {
+    bitplane_internal::CodeBitplane<false>(tree, s, b, parent, ctx, io);
+  } else {
+    bitplane_internal::CodeBitplane<true>(tree, s, b, parent, ctx, io);
+  }
 }
 
 }  // namespace meshwave

@@ -132,14 +132,24 @@ class BinaryContext {
 
   // Moves the estimate towards `bit` (0 or 1).
   void Update(int bit) {
-    const uint32_t rate = entropy_internal::kAdaptRate[count_];
-    const uint32_t p = p_;
-    p_ = static_cast<uint16_t>(bit == 0 ? p + (((65536 - p) * rate) >> 16)
-                                        : p - ((p * rate) >> 16));
-    count_ += count_ < kAdaptCountLimit ? 1 : 0;
+    // Most symbols meet a context past its first 30 (a packet codes
+    // hundreds per context): there the rate is a constant, with no table
+    // load and no count to store (a well-predicted branch).
+    if (count_ == kAdaptCountLimit) {
+      Move(bit, entropy_internal::kAdaptRate[kAdaptCountLimit]);
+    } else {
+      Move(bit, entropy_internal::kAdaptRate[count_]);
+      ++count_;
+    }
   }
 
  private:
+  void Move(int bit, uint32_t rate) {
+    const uint32_t p = p_;
+    p_ = static_cast<uint16_t>(bit == 0 ? p + (((65536 - p) * rate) >> 16)
+                                        : p - ((p * rate) >> 16));
+  }
+
   uint16_t p_ = 32768;  // P(bit == 0) in units of 2^-16
   uint8_t count_ = 0;   // symbols seen, saturating at kAdaptCountLimit
 };

@@ -70,9 +70,19 @@ Result<EncodedStream> EncodeMesh(const SemiRegularMesh& input,
     }
   }
 
+  // The coder names coefficients by Morton position: q0 and signs in each
+  // subband's octree order.
+  std::vector<std::array<std::vector<uint32_t>, 3>> q0_ordered(levels);
+  std::vector<std::array<std::vector<uint8_t>, 3>> negative_ordered(levels);
+  for (int j = 0; j < levels; ++j) {
+    for (int c = 0; c < 3; ++c) {
+      q0_ordered[j][c] = InMortonOrder<uint32_t>(layouts[j].tree, quantized[j][c].q0);
+      negative_ordered[j][c] = InMortonOrder<uint8_t>(layouts[j].tree, quantized[j][c].negative);
+    }
+  }
+
   // Code the packets, subband by subband, bitplanes from the top down.
   proto::PacketIndex& index = *header.mutable_packets();
-  std::vector<uint32_t> touched;
   for (int j = 0; j < levels; ++j) {
     const SubbandLayout& layout = layouts[j];
     std::array<ComponentState, 3> state;
@@ -90,15 +100,15 @@ Result<EncodedStream> EncodeMesh(const SemiRegularMesh& input,
         if (b > q.top) continue;
         ParentView parent;
         if (options.coder == CoderKind::k3xC && j > 0) {
-          parent = {layout.parent_of, quantized[j - 1][c].q0,
-                    quantized[j - 1][c].negative};
+          parent = {layout.parent_position, q0_ordered[j - 1][c], negative_ordered[j - 1][c]};
         }
-        EncoderIo io(enc, layout.tree, q.q0, q.negative);
-        touched.clear();
-        CodeBitplane(layout.tree, state[c], b, parent, contexts, io, &touched);
-        for (uint32_t k : touched) {
-          const uint32_t mag = state[c].mag[k];
+        EncoderIo io(enc, q0_ordered[j][c], negative_ordered[j][c]);
+        CodeBitplane(layout.tree, state[c], b, parent, contexts, io);
+        // Every significant coefficient's reconstruction changed.
+        for (uint32_t i : state[c].significant()) {
+          const uint32_t mag = state[c].mag[i];
           const uint32_t before = mag & ~(1u << b);
+          const uint32_t k = layout.tree.At(i);
           reduction += gains.subband[j] *
                        (q.SquaredError(k, before, b + 1) - q.SquaredError(k, mag, b));
         }

@@ -145,9 +145,9 @@ Status ProgressiveDecoder::AddPacket(uint32_t id, std::string_view payload) {
     if (b > s.top) continue;
     ParentView parent;
     if (m.parent_contexts() && j > 0) {
-      parent = {layout.parent_of, m.states[j - 1][c].mag, m.states[j - 1][c].negative};
+      parent = {layout.parent_position, m.states[j - 1][c].mag, m.states[j - 1][c].negative};
     }
-    CodeBitplane(layout.tree, s, b, parent, contexts, io, nullptr);
+    CodeBitplane(layout.tree, s, b, parent, contexts, io);
   }
   if (io.decoder().overrun()) {
     m.broken = true;
@@ -185,8 +185,8 @@ int ProgressiveDecoder::DetailLevels() const {
       const int n = s.known_from();
       if (n > s.top) continue;
       // Nonzero exactly as Positions dequantises it.
-      for (uint32_t k : s.lsc) {
-        if ((s.mag[k] >> n) != 0) return j + 1;
+      for (uint32_t i : s.significant()) {
+        if ((s.mag[i] >> n) != 0) return j + 1;
       }
     }
   }
@@ -208,23 +208,24 @@ std::vector<Vec3> ProgressiveDecoder::Positions(int max_level) const {
     if (max_level >= 0 && j >= max_level) break;
     auto& band = p.subbands[j];
     band.assign(h.subband_size(j), Vec3::Zero());
+    const CoefficientOctree& tree = m.layouts[j].tree;
     for (int c = 0; c < 3; ++c) {
       const ComponentState& s = m.states[j][c];
       const StreamHeader::Quantizer& q = m.header.quantizer(j, c);
       const int n = s.known_from();
       if (n > s.top) continue;
       const double xi0 = DeadzoneXi(static_cast<int>(q.deadzone));
-      // Dequantize(s.mag[k] >> n, n, s.negative[k], q.step, xi0, gamma)
+      // Dequantize(s.mag[i] >> n, n, s.negative[i], q.step, xi0, gamma)
       // with its two ldexp calls, the same for every k, taken out of the
       // loop (the same operations in the same order: bit-identical).
       const double scale = std::ldexp(q.step, n);
       const double xi_n = std::ldexp(xi0, -n);
       const double gamma = m.options.gamma;
-      for (uint32_t k : s.lsc) {
-        const uint32_t v = s.mag[k] >> n;
+      for (uint32_t i : s.significant()) {
+        const uint32_t v = s.mag[i] >> n;
         if (v == 0) continue;  // band is zero already
         const double r = (static_cast<double>(v) + gamma - xi_n) * scale;
-        band[k][c] = s.negative[k] ? -r : r;
+        band[tree.At(i)][c] = s.negative[i] ? -r : r;
       }
     }
   }
