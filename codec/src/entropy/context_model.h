@@ -135,7 +135,7 @@ class BinaryContext {
     // Most symbols meet a context past its first 30 (a packet codes
     // hundreds per context): there the rate is a constant, with no table
     // load and no count to store (a well-predicted branch).
-    if (count_ == kAdaptCountLimit) {
+    if (count_ == kAdaptCountLimit) [[likely]] {
       Move(bit, entropy_internal::kAdaptRate[kAdaptCountLimit]);
     } else {
       Move(bit, entropy_internal::kAdaptRate[count_]);

@@ -5,6 +5,12 @@
 #include <utility>
 
 namespace meshwave {
+namespace {
+
+// Fans of at most this many faces are searched linearly (see below).
+constexpr size_t kLinearFan = 12;
+
+}  // namespace
 
 Result<VertexRings> VertexRings::Build(uint32_t vertex_count,
                                        std::span<const Face> faces) {
@@ -52,19 +58,31 @@ Result<VertexRings> VertexRings::Build(uint32_t vertex_count,
     local.assign(wedges.begin() + face_offsets[v],
                  wedges.begin() + face_offsets[v + 1]);
     const size_t n = local.size();
-    // Sorted by start vertex so the wedge that starts at x is found by a
-    // binary search: linear in valence·log(valence), even for huge fans.
-    std::sort(local.begin(), local.end());
+    // Small fans (every vertex of a semi-regular mesh but the extraordinary
+    // ones) are searched linearly; large ones are sorted by start vertex and
+    // binary-searched, linear in valence·log(valence) even for huge fans.
+    // Both find the same wedges, so the rings are the same.
+    const bool sorted = n > kLinearFan;
+    if (sorted) std::sort(local.begin(), local.end());
     for (size_t i = 1; i < n; ++i) {
-      if (local[i].first == local[i - 1].first) {
-        return Status(StatusCode::kNotManifold,
-                      "edge (" + std::to_string(v) + ", " +
-                          std::to_string(local[i].first) +
-                          ") is used by more than two faces or by two faces "
-                          "of opposite orientation");
+      const size_t from = sorted ? i - 1 : 0;
+      for (size_t k = from; k < i; ++k) {
+        if (local[i].first == local[k].first) {
+          return Status(StatusCode::kNotManifold,
+                        "edge (" + std::to_string(v) + ", " +
+                            std::to_string(local[i].first) +
+                            ") is used by more than two faces or by two faces "
+                            "of opposite orientation");
+        }
       }
     }
     auto find_wedge = [&](uint32_t first) -> size_t {
+      if (!sorted) {
+        for (size_t i = 0; i < n; ++i) {
+          if (local[i].first == first) return i;
+        }
+        return n;
+      }
       auto it = std::lower_bound(
           local.begin(), local.end(), first,
           [](const auto& w, uint32_t x) { return w.first < x; });
@@ -72,13 +90,24 @@ Result<VertexRings> VertexRings::Build(uint32_t vertex_count,
                  ? static_cast<size_t>(it - local.begin())
                  : n;
     };
+    auto ends_somewhere = [&](uint32_t x) {
+      if (!sorted) {
+        for (const auto& w : local) {
+          if (w.second == x) return true;
+        }
+        return false;
+      }
+      return std::binary_search(ends.begin(), ends.end(), x);
+    };
     // A wedge starts the fan when no wedge ends where it starts.
-    ends.clear();
-    for (const auto& w : local) ends.push_back(w.second);
-    std::sort(ends.begin(), ends.end());
+    if (sorted) {
+      ends.clear();
+      for (const auto& w : local) ends.push_back(w.second);
+      std::sort(ends.begin(), ends.end());
+    }
     size_t start = n;
     for (size_t i = 0; i < n; ++i) {
-      if (!std::binary_search(ends.begin(), ends.end(), local[i].first)) {
+      if (!ends_somewhere(local[i].first)) {
         if (start != n) {
           return Status(StatusCode::kNotManifold,
                         "vertex " + std::to_string(v) +
@@ -88,7 +117,14 @@ Result<VertexRings> VertexRings::Build(uint32_t vertex_count,
       }
     }
     const bool boundary = start != n;
-    if (!boundary) start = 0;
+    if (!boundary) {
+      // A closed fan starts at its wedge of the smallest start vertex (the
+      // first one once sorted).
+      start = 0;
+      for (size_t i = 1; i < n && !sorted; ++i) {
+        if (local[i].first < local[start].first) start = i;
+      }
+    }
     size_t current = start;
     size_t visited = 0;
     rings.neighbours_.push_back(local[current].first);

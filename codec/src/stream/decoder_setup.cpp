@@ -39,9 +39,9 @@ Status ValidateQuantizers(const StreamHeader& h) {
   return Status::Ok();
 }
 
-Status SetUpDecoder(const StreamHeader& header, uint32_t max_base_vertices, DecodedBase& base,
-                    std::shared_ptr<const SemiRegularHierarchy>& hierarchy,
-                    std::unique_ptr<WaveletTransform>& transform) {
+Result<TransformSettings> SetUpHierarchy(const StreamHeader& header, uint32_t max_base_vertices,
+                                         DecodedBase& base,
+                                         std::shared_ptr<const SemiRegularHierarchy>& hierarchy) {
   MW_ASSIGN_OR_RETURN(TransformSettings settings, ReadTransformSettings(header.transform));
   MW_ASSIGN_OR_RETURN(base, DecodeBaseMesh(header.base, max_base_vertices));
   const int levels = static_cast<int>(header.transform.levels);
@@ -59,6 +59,14 @@ Status SetUpDecoder(const StreamHeader& header, uint32_t max_base_vertices, Deco
   if (settings.predictor == Predictor::kSawt) {
     MW_ASSIGN_OR_RETURN(settings.sawt, DecodeSawtChoices(*header.transform.sawt, h, base.grid));
   }
+  return settings;
+}
+
+Status SetUpDecoder(const StreamHeader& header, uint32_t max_base_vertices, DecodedBase& base,
+                    std::shared_ptr<const SemiRegularHierarchy>& hierarchy,
+                    std::unique_ptr<WaveletTransform>& transform) {
+  MW_ASSIGN_OR_RETURN(TransformSettings settings,
+                      SetUpHierarchy(header, max_base_vertices, base, hierarchy));
   MW_ASSIGN_OR_RETURN(WaveletTransform t, WaveletTransform::Create(hierarchy, settings));
   transform = std::make_unique<WaveletTransform>(std::move(t));
   return Status::Ok();

@@ -25,9 +25,13 @@ Status ValidateQuantizers(const StreamHeader& h);
 
 // Decodes the base mesh (at most `max_base_vertices`) into `base`, builds
 // `hierarchy` and checks the header's vertex and face counts and bounding
-// box against it, then builds `transform`, the inverse transform of the
-// header's settings (with the SAWT choices, when it has them). ParseError on
-// anything that does not fit.
+// box against it; returns the header's transform settings (with the SAWT
+// choices, when it has them). ParseError on anything that does not fit.
+Result<TransformSettings> SetUpHierarchy(const StreamHeader& header, uint32_t max_base_vertices,
+                                         DecodedBase& base,
+                                         std::shared_ptr<const SemiRegularHierarchy>& hierarchy);
+
+// SetUpHierarchy, then `transform`, the inverse transform of its settings.
 Status SetUpDecoder(const StreamHeader& header, uint32_t max_base_vertices, DecodedBase& base,
                     std::shared_ptr<const SemiRegularHierarchy>& hierarchy,
                     std::unique_ptr<WaveletTransform>& transform);
