@@ -64,6 +64,25 @@ TEST_P(CoderTest, AllPacketsReproduceTheMeshNearLosslessly) {
   }
 }
 
+TEST_P(CoderTest, SetUpOnOneOrTwoThreadsDecodesTheSame) {
+  const Fixture& f = Encoded(GetParam());
+  std::vector<std::vector<Vec3>> results;
+  for (int threads : {1, 2}) {
+    DecoderOptions options;
+    options.threads = threads;
+    auto d = ProgressiveDecoder::Create(f.stream.header, options);
+    ASSERT_TRUE(d.ok()) << d.status().ToString();
+    // Half the packets: a partial state exercises the octrees as well.
+    for (uint32_t id = 0; id < f.stream.packets.size() / 2; ++id) {
+      ASSERT_TRUE((*d)->AddPacket(id, f.stream.packets[id]).ok()) << id;
+    }
+    results.push_back((*d)->Positions());
+  }
+  ASSERT_EQ(results[0].size(), results[1].size());
+  for (size_t v = 0; v < results[0].size(); ++v) ASSERT_EQ(results[0][v], results[1][v]) << v;
+  EXPECT_NE(results[0], std::vector<Vec3>(results[0].size(), results[0][0]));
+}
+
 TEST_P(CoderTest, FinalMeshIsIdenticalInEveryOrder) {
   const Fixture& f = Encoded(GetParam());
   std::vector<std::vector<Vec3>> results;
