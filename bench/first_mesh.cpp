@@ -89,8 +89,11 @@ int main(int argc, char** argv) {
     }
     const auto p = blocking.session().progress();
     const double rate = static_cast<double>(p.bytes) * 8 / (total * 1e3);
-    const uint64_t payload =
-        p.bytes - blocking.session().decoder()->header().ByteSizeLong();
+    const meshwave::ProgressiveDecoder& decoder = *blocking.session().decoder();
+    uint64_t payload = 0;
+    for (uint32_t id = 0; id < decoder.packet_count(); ++id) {
+      if (decoder.HasPacket(id)) payload += decoder.header().packets.length[id];
+    }
     const double packet_rate =
         static_cast<double>(payload) * 8 / ((total - first) * 1e3);
     const double ns_per_byte = cpu * 1e6 / static_cast<double>(payload);

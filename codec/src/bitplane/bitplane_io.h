@@ -59,8 +59,10 @@ class DecoderIo {
   int SigNode(const OctreeNode&, int, BinaryContext& ctx) {
     return dec_.Decode(ctx);
   }
-  int Sign(uint32_t, BinaryContext& ctx) { return dec_.Decode(ctx); }
-  int Refine(uint32_t, int, BinaryContext& ctx) { return dec_.Decode(ctx); }
+  // Signs and refinement bits are close to fair coins: decoded without a
+  // branch on the symbol.
+  int Sign(uint32_t, BinaryContext& ctx) { return dec_.DecodeUnpredictable(ctx); }
+  int Refine(uint32_t, int, BinaryContext& ctx) { return dec_.DecodeUnpredictable(ctx); }
   const ArithmeticDecoder& decoder() const { return dec_; }
 
  private:

@@ -42,6 +42,22 @@ class ArithmeticDecoder {
     return bit;
   }
 
+  // Decode, without a branch on the symbol: for symbols a branch predictor
+  // cannot guess (signs, refinement bits: about 1 in 2 each), where a
+  // mispredicted branch costs more than computing both outcomes. Same
+  // result, same state as Decode.
+  int DecodeUnpredictable(BinaryContext& ctx) {
+    const uint32_t bound = static_cast<uint32_t>(
+        (uint64_t{range_} * ctx.probability()) >> kProbBits);
+    const uint32_t bit = code_ >= bound ? 1u : 0u;
+    const uint32_t mask = 0u - bit;  // all ones for 1
+    code_ -= bound & mask;
+    range_ = (bound & ~mask) | ((range_ - bound) & mask);
+    ctx.UpdateUnpredictable(bit);
+    Normalize();
+    return static_cast<int>(bit);
+  }
+
   // Decodes one symbol coded at probability 1/2. Returns 0 or 1.
   int DecodeBypass() {
     const uint32_t bound = range_ >> 1;

@@ -143,6 +143,23 @@ class BinaryContext {
     }
   }
 
+  // Update for a symbol that is 0 or 1 about equally often: both moves
+  // computed and one selected by mask, no branch on `bit` (0 or 1).
+  void UpdateUnpredictable(uint32_t bit) {
+    uint32_t rate;
+    if (count_ == kAdaptCountLimit) [[likely]] {
+      rate = entropy_internal::kAdaptRate[kAdaptCountLimit];
+    } else {
+      rate = entropy_internal::kAdaptRate[count_];
+      ++count_;
+    }
+    const uint32_t p = p_;
+    const uint32_t up = ((65536 - p) * rate) >> 16;
+    const uint32_t down = (p * rate) >> 16;
+    const uint32_t mask = 0u - bit;
+    p_ = static_cast<uint16_t>(p + (up & ~mask) - (down & mask));
+  }
+
  private:
   void Move(int bit, uint32_t rate) {
     const uint32_t p = p_;

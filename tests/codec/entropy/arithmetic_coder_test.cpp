@@ -430,6 +430,29 @@ TEST(ArithmeticDecoderTest, DecodesRandomBytesWithoutFailing) {
   }
 }
 
+// The branch-free decode is the same decoder: over random bytes (so every
+// path, context state and padding read is met) it gives the very symbols,
+// contexts and padding that Decode gives.
+TEST(ArithmeticDecoderTest, UnpredictableDecodeMatchesDecode) {
+  std::mt19937_64 rng(23);
+  for (int trial = 0; trial < 500; ++trial) {
+    std::string bytes(rng() % 96, '\0');
+    for (char& c : bytes) c = static_cast<char>(rng());
+    const HeapBytes heap(bytes);
+    ArithmeticDecoder a(heap.span()), b(heap.span());
+    BinaryContext ca[4], cb[4];
+    for (int i = 0; i < 1500; ++i) {
+      const int k = static_cast<int>(rng() % 4);
+      const bool unpredictable = rng() % 2 == 0;
+      const int x = a.Decode(ca[k]);
+      const int y = unpredictable ? b.DecodeUnpredictable(cb[k]) : b.Decode(cb[k]);
+      ASSERT_EQ(x, y) << "trial " << trial << " symbol " << i;
+      ASSERT_EQ(ca[k].probability(), cb[k].probability());
+    }
+    EXPECT_EQ(a.padding_bytes(), b.padding_bytes());
+  }
+}
+
 // The symbols a decoder reads from `target` (zero-padded) with the contexts
 // of `shape`: their intervals all contain the target value.
 std::vector<Symbol> SymbolsAround(std::string_view target,
