@@ -5,8 +5,9 @@
 //
 // Per run, a fresh BlockingSession (new connection) fetches the whole
 // stream; the clock starts before the session is made and stops for the
-// first mesh when the first progress callback (the base mesh, from the
-// header) has materialised decoder.Mesh(). From there to the end of the
+// first mesh when the first progress callback (the header) has materialised
+// the mesh the browser viewer and `meshwave decode` draw: the level one
+// past the finest with detail (level 1 before any packet). From there to the end of the
 // fetch the same thread receives, CRC-checks and decodes every packet: the
 // packets' bytes over that time is the rate the client keeps up with; the
 // thread's CPU time over the same span, per payload byte, is what it costs
@@ -70,7 +71,9 @@ int main(int argc, char** argv) {
         [&](const meshwave::client::Progress&,
             const meshwave::ProgressiveDecoder& decoder) {
           if (first >= 0) return;
-          vertices = decoder.Mesh().positions.size();
+          const int levels = static_cast<int>(decoder.header().transform.levels);
+          vertices = decoder.Mesh(std::min(levels, decoder.DetailLevels() + 1))
+                         .positions.size();
           first = std::chrono::duration<double, std::milli>(Clock::now() - t0)
                       .count();
           first_cpu = ThreadCpuMs();

@@ -25,10 +25,13 @@ struct DecoderOptions {
   // allocated when it claims more: a client bounds its memory with it (a
   // small header can claim 12 levels), the fuzzers their time per input.
   uint64_t max_faces = uint64_t{1} << 27;
-  // Threads Create may use (the subbands' octrees are built beside the
-  // inverse transform); 0: two where the machine has two cores or more. A
-  // WebAssembly build without threads always uses one. Results do not
-  // depend on it.
+  // Create builds what the base mesh and the coarse levels' meshes need and
+  // returns; the rest of the set-up (the subbands' octrees and coding
+  // state, which packets need, and the finer levels' inverse transform,
+  // which their meshes need) is built on two more threads when `threads`
+  // is 2 or more, else on first use. 0: two where the machine has two
+  // cores or more. A WebAssembly build without threads always uses one.
+  // Results do not depend on it.
   int threads = 0;
 };
 
@@ -56,6 +59,11 @@ class ProgressiveDecoder {
   // only), usable again after a corrupt packet broke it, without rebuilding
   // the hierarchy and transform (most of Create's time).
   void Reset();
+
+  // Waits for (or builds) the rest of the set-up (DecoderOptions::threads),
+  // which AddPacket and a fine Mesh() otherwise do when they first need
+  // it: for callers that want that time out of their first packet.
+  void CompleteSetUp() const;
 
   size_t packets_decoded() const;
   uint64_t payload_bytes_decoded() const;

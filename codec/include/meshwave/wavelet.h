@@ -85,17 +85,22 @@ struct Pyramid {
 // tight loops. Thread-safe for concurrent const calls.
 class WaveletTransform {
  public:
+  // built_levels: stencils of levels 0 .. built_levels-1 only (-1 or beyond J: all).
+  // The finest level's stencils are about three quarters of the work, so a
+  // decoder builds the coarse levels first to show a mesh sooner. A partial
+  // transform's Inverse stops at M^levels and it cannot run Forward.
   static Result<WaveletTransform> Create(
       std::shared_ptr<const SemiRegularHierarchy> hierarchy,
-      const TransformSettings& settings);
+      const TransformSettings& settings, int built_levels = -1);
 
   // positions: the V_J positions of the finest level in canonical order.
   Pyramid Forward(std::span<const Vec3> positions) const;
   // The same into an existing pyramid, reusing its memory.
   void Forward(std::span<const Vec3> positions, Pyramid& out) const;
 
-  // Reconstructs M^max_level (max_level in [0, J]; -1 means J): returns its
-  // V_max_level positions. Subbands finer than max_level are not read.
+  // Reconstructs M^max_level (max_level in [0, levels()]; -1 or beyond:
+  // levels()): returns its V_max_level positions. Subbands finer than
+  // max_level are not read.
   std::vector<Vec3> Inverse(const Pyramid& pyramid, int max_level = -1) const;
   // The same into `out`, reusing its memory.
   void Inverse(const Pyramid& pyramid, int max_level,
@@ -107,6 +112,8 @@ class WaveletTransform {
   void PredictLevel(int j, std::span<Vec3> positions) const;
 
   const SemiRegularHierarchy& hierarchy() const { return *hierarchy_; }
+  // The levels whose stencils were built: J unless Create was asked for fewer.
+  int levels() const;
   const TransformSettings& settings() const { return settings_; }
 
   struct Level;  // stencils and update weights of one level (private)

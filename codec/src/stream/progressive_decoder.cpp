@@ -1,14 +1,16 @@
 #include "meshwave/progressive_decoder.h"
 
+#include <algorithm>
 #include <cmath>
-#include <exception>
 #include <limits>
+#include <stdexcept>
 #include <string>
 #include <thread>
 
 #include "bitplane/bitplane_io.h"
 #include "bitplane/bitplane_passes.h"
 #include "bitplane/subband_layout.h"
+#include "core/deferred.h"
 #include "meshwave/progression.h"
 #include "meshwave/semiregular.h"
 #include "meshwave/wavelet.h"
@@ -22,56 +24,42 @@
 namespace meshwave {
 namespace {
 
-int SetUpThreads(int requested) {
-#if defined(__EMSCRIPTEN__) && !defined(__EMSCRIPTEN_PTHREADS__)
-  (void)requested;
-  return 1;
-#else
-  if (requested > 0) return requested;
-  return std::thread::hardware_concurrency() >= 2 ? 2 : 1;
-#endif
+bool SetUpInBackground(int requested) {
+  if (requested > 0) return requested >= 2;
+  return std::thread::hardware_concurrency() >= 2;
 }
 
-// Runs `beside` on a second thread while `main` runs on this one, or both
-// here one after the other; an exception from `beside` is rethrown here.
-template <class Beside, class Main>
-void RunBeside(bool parallel, Beside&& beside, Main&& main) {
-#if defined(__EMSCRIPTEN__) && !defined(__EMSCRIPTEN_PTHREADS__)
-  parallel = false;
-#endif
-  if (!parallel) {
-    beside();
-    main();
-    return;
-  }
-  std::exception_ptr error;
-  std::thread thread([&] {
-    try {
-      beside();
-    } catch (...) {
-      error = std::current_exception();
-    }
-  });
-  try {
-    main();
-  } catch (...) {
-    thread.join();
-    throw;
-  }
-  thread.join();
-  if (error) std::rethrow_exception(error);
-}
+// Levels whose inverse transform Create builds itself, so that the first
+// meshes (the viewer draws one level past the finest with detail) come
+// without waiting for the finest levels' stencils, most of the set-up.
+constexpr int kEagerTransformLevels = 2;
 
 }  // namespace
 
 struct ProgressiveDecoder::Impl {
+  // What packets decode into: the subbands' octrees and the coding state of
+  // every (subband, component).
+  struct PacketState {
+    std::vector<SubbandLayout> layouts;
+    std::vector<std::array<ComponentState, 3>> states;
+  };
+
+  static void InitStates(const StreamHeader& header, PacketState& p) {
+    const int levels = static_cast<int>(p.layouts.size());
+    p.states.resize(levels);  // Init reuses the lists' memory
+    for (int j = 0; j < levels; ++j) {
+      for (int c = 0; c < 3; ++c) {
+        p.states[j][c].Init(p.layouts[j].tree, header.quantizer(j, c).top_bitplane);
+      }
+    }
+  }
+
   StreamHeader header;
   DecoderOptions options;
   std::shared_ptr<const SemiRegularHierarchy> hierarchy;
-  std::unique_ptr<WaveletTransform> transform;
+  TransformSettings settings;
+  std::unique_ptr<WaveletTransform> coarse;  // levels < kEagerTransformLevels
   DecodedBase base;
-  std::vector<SubbandLayout> layouts;
-  std::vector<std::array<ComponentState, 3>> states;
   std::vector<char> have;
   std::unique_ptr<PacketLayout> packets;
   DistortionEstimates estimates;
@@ -81,8 +69,26 @@ struct ProgressiveDecoder::Impl {
   double distortion = 0;
   bool broken = false;
   double diagonal = 0;
+  // Last, so that they are destroyed (their threads joined) before what
+  // their builders read.
+  Deferred<PacketState> coding;
+  Deferred<Result<WaveletTransform>> transform;
 
   bool parent_contexts() const { return header.coder == StreamCoder::k3xC; }
+  // No packet has touched the coding state: every detail is zero, and no
+  // caller needs to wait for that state to be built.
+  bool fresh() const { return decoded == 0 && !broken; }
+
+  // The transform that reconstructs M^level: the coarse one while it
+  // suffices, so a first mesh does not wait for the finest stencils.
+  const WaveletTransform& TransformTo(int level) const {
+    if (level <= coarse->levels()) return *coarse;
+    const Result<WaveletTransform>& full = transform.Get();
+    // Every level is the regular subdivision of level 0, which the coarse
+    // transform already checked, so this cannot fail on any input.
+    if (!full.ok()) throw std::logic_error("inverse transform: " + full.status().ToString());
+    return *full;
+  }
 };
 
 ProgressiveDecoder::ProgressiveDecoder(std::unique_ptr<Impl> impl)
@@ -102,37 +108,47 @@ Result<std::unique_ptr<ProgressiveDecoder>> ProgressiveDecoder::Create(
   impl->header = header;
   impl->header.present.clear();
   impl->options = options;
-  MW_ASSIGN_OR_RETURN(TransformSettings settings,
+  MW_ASSIGN_OR_RETURN(impl->settings,
                       SetUpHierarchy(header, options.max_base_vertices, impl->base,
                                      impl->hierarchy));
-  const auto& h = *impl->hierarchy;
   impl->diagonal = HeaderDiagonal(header);
-  // The octrees and the transform's stencils are the two big parts of the
-  // set-up (about a quarter and two thirds of it on igea) and independent.
-  Result<WaveletTransform> transform = InvalidArgument("not built");
-  RunBeside(
-      SetUpThreads(options.threads) > 1,
-      [&] { impl->layouts = BuildSubbandLayouts(h, impl->base.grid, header.octree_leaf_size); },
-      [&] { transform = WaveletTransform::Create(impl->hierarchy, settings); });
-  if (!transform.ok()) return transform.status();
-  impl->transform = std::make_unique<WaveletTransform>(std::move(*transform));
+  // Level 0's vertex rings are checked here: the finer levels subdivide it.
+  MW_ASSIGN_OR_RETURN(WaveletTransform coarse,
+                      WaveletTransform::Create(impl->hierarchy, impl->settings,
+                                               kEagerTransformLevels));
+  impl->coarse = std::make_unique<WaveletTransform>(std::move(coarse));
   impl->packets = std::make_unique<PacketLayout>(header);
   impl->estimates = ReadDistortionIndex(header, PacketChains(header));
+  // The octrees (about a quarter of the set-up on igea) and the finer
+  // levels' stencils (about two thirds) are independent of each other.
+  const bool background = SetUpInBackground(options.threads);
+  Impl* m = impl.get();
+  m->coding.Start(background, [m] {
+    Impl::PacketState p;
+    p.layouts = BuildSubbandLayouts(*m->hierarchy, m->base.grid, m->header.octree_leaf_size);
+    Impl::InitStates(m->header, p);
+    return p;
+  });
+  m->transform.Start(background, [m] {
+    return m->coarse->levels() >= m->hierarchy->levels()
+               ? Result<WaveletTransform>(*m->coarse)
+               : WaveletTransform::Create(m->hierarchy, m->settings);
+  });
   std::unique_ptr<ProgressiveDecoder> decoder(new ProgressiveDecoder(std::move(impl)));
   decoder->Reset();
   return decoder;
 }
 
+void ProgressiveDecoder::CompleteSetUp() const {
+  impl_->coding.Get();
+  impl_->TransformTo(impl_->hierarchy->levels());
+}
+
 void ProgressiveDecoder::Reset() {
   Impl& m = *impl_;
-  const int levels = static_cast<int>(m.layouts.size());
-  m.states.resize(levels);  // Init reuses the lists' memory
-  for (int j = 0; j < levels; ++j) {
-    for (int c = 0; c < 3; ++c) {
-      m.states[j][c].Init(m.layouts[j].tree,
-                          m.header.quantizer(j, c).top_bitplane);
-    }
-  }
+  // Only decoding changes the coding state (a packet refused before it
+  // decodes changes nothing): fresh states need no new start, nor waiting.
+  if (!m.fresh()) Impl::InitStates(m.header, m.coding.Get());
   m.have.assign(m.header.packets.length.size(), 0);
   m.chain_now = m.estimates.chain_start;
   m.distortion = m.estimates.start();
@@ -191,15 +207,17 @@ Status ProgressiveDecoder::AddPacket(uint32_t id, std::string_view payload) {
   if (!PacketCheckMatches(index, id, payload)) {
     return ParseError(what() + ": CRC-16 check mismatch (corrupt payload)");
   }
+  Impl::PacketState& coding = m.coding.Get();
   DecoderIo io(payload);
-  const SubbandLayout& layout = m.layouts[j];
+  const SubbandLayout& layout = coding.layouts[j];
   ComponentContexts contexts;  // shared by the packet's three components
   for (int c = 0; c < 3; ++c) {
-    ComponentState& s = m.states[j][c];
+    ComponentState& s = coding.states[j][c];
     if (b > s.top) continue;
     ParentView parent;
     if (m.parent_contexts() && j > 0) {
-      parent = {layout.parent_position, m.states[j - 1][c].mag, m.states[j - 1][c].negative};
+      const ComponentState& up = coding.states[j - 1][c];
+      parent = {layout.parent_position, up.mag, up.negative};
     }
     CodeBitplane(layout.tree, s, b, parent, contexts, io);
   }
@@ -222,20 +240,32 @@ Status ProgressiveDecoder::AddPacket(uint32_t id, std::string_view payload) {
 
 int ProgressiveDecoder::CompleteLevels() const {
   const Impl& m = *impl_;
+  const int levels = m.hierarchy->levels();
   int level = 0;
-  for (size_t j = 0; j < m.states.size(); ++j) {
+  for (int j = 0; j < levels; ++j) {
     bool all = true;
-    for (const auto& s : m.states[j]) all = all && (s.top < 0 || s.known_from() <= s.top);
+    for (int c = 0; c < 3; ++c) {
+      // Before any packet a component is complete only with nothing to code.
+      const int top = m.header.quantizer(j, c).top_bitplane;
+      if (m.fresh()) {
+        all = all && top < 0;
+      } else {
+        const ComponentState& s = m.coding.Get().states[j][c];
+        all = all && (s.top < 0 || s.known_from() <= s.top);
+      }
+    }
     if (!all) break;
-    level = static_cast<int>(j) + 1;
+    level = j + 1;
   }
   return level;
 }
 
 int ProgressiveDecoder::DetailLevels() const {
   const Impl& m = *impl_;
-  for (int j = static_cast<int>(m.states.size()) - 1; j >= 0; --j) {
-    for (const ComponentState& s : m.states[j]) {
+  if (m.fresh()) return 0;  // and no waiting for the coding state
+  const auto& states = m.coding.Get().states;
+  for (int j = static_cast<int>(states.size()) - 1; j >= 0; --j) {
+    for (const ComponentState& s : states[j]) {
       const int n = s.known_from();
       if (n > s.top) continue;
       // Nonzero exactly as Positions dequantises it.
@@ -254,17 +284,19 @@ double ProgressiveDecoder::EstimatedPsnr() const {
 std::vector<Vec3> ProgressiveDecoder::Positions(int max_level) const {
   const Impl& m = *impl_;
   const auto& h = *m.hierarchy;
+  const int level = (max_level < 0 || max_level > h.levels()) ? h.levels() : max_level;
   Pyramid p;
   p.hierarchy = m.hierarchy;
   p.base = m.base.positions;
   p.subbands.resize(h.levels());
-  for (int j = 0; j < h.levels(); ++j) {
-    if (max_level >= 0 && j >= max_level) break;
+  for (int j = 0; j < level; ++j) {
     auto& band = p.subbands[j];
     band.assign(h.subband_size(j), Vec3::Zero());
-    const CoefficientOctree& tree = m.layouts[j].tree;
+    if (m.fresh()) continue;  // every detail is zero yet
+    const Impl::PacketState& coding = m.coding.Get();
+    const CoefficientOctree& tree = coding.layouts[j].tree;
     for (int c = 0; c < 3; ++c) {
-      const ComponentState& s = m.states[j][c];
+      const ComponentState& s = coding.states[j][c];
       const StreamHeader::Quantizer& q = m.header.quantizer(j, c);
       const int n = s.known_from();
       if (n > s.top) continue;
@@ -283,7 +315,7 @@ std::vector<Vec3> ProgressiveDecoder::Positions(int max_level) const {
       }
     }
   }
-  return m.transform->Inverse(p, max_level);
+  return m.TransformTo(level).Inverse(p, level);
 }
 
 std::vector<Face> ProgressiveDecoder::Faces(int max_level) const {

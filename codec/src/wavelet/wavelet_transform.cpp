@@ -1,6 +1,8 @@
+#include <stdexcept>
 #include <string>
 
 #include "meshwave/wavelet.h"
+
 #include "semiregular/vertex_rings.h"
 #include "wavelet/local_frames.h"
 #include "wavelet/prediction_stencils.h"
@@ -26,8 +28,11 @@ std::vector<Vec3>& FaceNormalScratch() {
 
 Result<WaveletTransform> WaveletTransform::Create(
     std::shared_ptr<const SemiRegularHierarchy> hierarchy,
-    const TransformSettings& settings) {
+    const TransformSettings& settings, int built_levels) {
   if (!hierarchy) return InvalidArgument("no hierarchy");
+  const int built = (built_levels < 0 || built_levels > hierarchy->levels())
+                        ? hierarchy->levels()
+                        : built_levels;
   const SawtPlan* plan = settings.sawt.get();
   if (settings.predictor == Predictor::kSawt) {
     if (plan == nullptr) return InvalidArgument("SAWT transform without its filter choices");
@@ -44,8 +49,8 @@ Result<WaveletTransform> WaveletTransform::Create(
       if (r >= plan->regions.count) return InvalidArgument("SAWT region out of range");
     }
   }
-  auto levels = std::make_shared<std::vector<Level>>();
-  for (int j = 0; j < hierarchy->levels(); ++j) {
+  auto stencils = std::make_shared<std::vector<Level>>();
+  for (int j = 0; j < built; ++j) {
     auto rings =
         VertexRings::Build(hierarchy->vertex_count(j), hierarchy->faces(j));
     if (!rings.ok()) {
@@ -62,14 +67,16 @@ Result<WaveletTransform> WaveletTransform::Create(
           BuildPredictionStencils(*hierarchy, j, *rings, settings.predictor);
     }
     level.update = BuildUpdateWeights(*hierarchy, j, *rings, settings.update);
-    levels->push_back(std::move(level));
+    stencils->push_back(std::move(level));
   }
   WaveletTransform t;
   t.hierarchy_ = std::move(hierarchy);
   t.settings_ = settings;
-  t.levels_ = std::move(levels);
+  t.levels_ = std::move(stencils);
   return t;
 }
+
+int WaveletTransform::levels() const { return static_cast<int>(levels_->size()); }
 
 Pyramid WaveletTransform::Forward(std::span<const Vec3> positions) const {
   Pyramid pyramid;
@@ -81,6 +88,9 @@ void WaveletTransform::Forward(std::span<const Vec3> positions,
                                Pyramid& pyramid) const {
   const SemiRegularHierarchy& h = *hierarchy_;
   const int num_levels = h.levels();
+  if (levels() != num_levels) {
+    throw std::logic_error("WaveletTransform::Forward needs the stencils of every level");
+  }
   // Work in place in `x`: each level's odd slots first receive the detail
   // in xyz, which is then moved to its subband (in the local frame).
   std::vector<Vec3>& x = pyramid.base;
@@ -127,7 +137,7 @@ std::vector<Vec3> WaveletTransform::Inverse(const Pyramid& pyramid,
 void WaveletTransform::Inverse(const Pyramid& pyramid, int max_level,
                                std::vector<Vec3>& x) const {
   const SemiRegularHierarchy& h = *hierarchy_;
-  if (max_level < 0 || max_level > h.levels()) max_level = h.levels();
+  if (max_level < 0 || max_level > levels()) max_level = levels();
   x.resize(h.vertex_count(max_level));
   std::copy(pyramid.base.begin(), pyramid.base.end(), x.begin());
   for (int j = 0; j < max_level; ++j) {

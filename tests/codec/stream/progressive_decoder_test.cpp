@@ -83,6 +83,53 @@ TEST_P(CoderTest, SetUpOnOneOrTwoThreadsDecodesTheSame) {
   EXPECT_NE(results[0], std::vector<Vec3>(results[0].size(), results[0][0]));
 }
 
+TEST_P(CoderTest, ADeferredSetUpAnswersAsACompletedOne) {
+  const Fixture& f = Encoded(GetParam());
+  const int levels = static_cast<int>(f.stream.header.transform.levels);
+  for (int threads : {1, 2}) {
+    DecoderOptions options;
+    options.threads = threads;
+    // `lazy` answers before its set-up is built (threads 1: nothing is built
+    // until needed), `ready` after CompleteSetUp.
+    auto lazy = ProgressiveDecoder::Create(f.stream.header, options);
+    auto ready = ProgressiveDecoder::Create(f.stream.header, options);
+    ASSERT_TRUE(lazy.ok() && ready.ok());
+    (*ready)->CompleteSetUp();
+    EXPECT_EQ((*lazy)->DetailLevels(), (*ready)->DetailLevels());
+    EXPECT_EQ((*lazy)->CompleteLevels(), (*ready)->CompleteLevels());
+    for (int level = 0; level <= levels; ++level) {
+      EXPECT_EQ((*lazy)->Positions(level), (*ready)->Positions(level)) << level;
+    }
+    // Then packets, a Reset and packets again: the same as a fresh decoder.
+    auto fresh = ProgressiveDecoder::Create(f.stream.header, options);
+    ASSERT_TRUE(fresh.ok());
+    for (uint32_t id = 0; id < f.stream.packets.size(); ++id) {
+      ASSERT_TRUE((*lazy)->AddPacket(id, f.stream.packets[id]).ok()) << id;
+    }
+    (*lazy)->Reset();
+    EXPECT_EQ((*lazy)->DetailLevels(), 0);
+    EXPECT_EQ((*lazy)->Positions(), (*ready)->Positions());
+    for (uint32_t id = 0; id < f.stream.packets.size() / 2; ++id) {
+      ASSERT_TRUE((*lazy)->AddPacket(id, f.stream.packets[id]).ok()) << id;
+      ASSERT_TRUE((*fresh)->AddPacket(id, f.stream.packets[id]).ok()) << id;
+    }
+    EXPECT_EQ((*lazy)->Positions(), (*fresh)->Positions());
+    EXPECT_EQ((*lazy)->DetailLevels(), (*fresh)->DetailLevels());
+    EXPECT_EQ((*lazy)->CompleteLevels(), (*fresh)->CompleteLevels());
+  }
+}
+
+TEST_P(CoderTest, ADecoderDestroyedDuringItsSetUpIsFine) {
+  const Fixture& f = Encoded(GetParam());
+  DecoderOptions options;
+  options.threads = 2;
+  for (int i = 0; i < 3; ++i) {
+    auto d = ProgressiveDecoder::Create(f.stream.header, options);
+    ASSERT_TRUE(d.ok());
+    EXPECT_EQ((*d)->Positions(0).size(), f.stream.header.base.vertex_count);
+  }  // each destroyed with its set-up threads possibly still running
+}
+
 TEST_P(CoderTest, FinalMeshIsIdenticalInEveryOrder) {
   const Fixture& f = Encoded(GetParam());
   std::vector<std::vector<Vec3>> results;

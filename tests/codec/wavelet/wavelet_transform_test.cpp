@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <stdexcept>
 
 #include "codec/test_meshes.h"
 #include "codec/wavelet/jittered_mesh_testonly.h"
@@ -77,6 +78,26 @@ TEST(WaveletTransformTest, SchemeReproducesItsOwnSubdivisionWithZeroDetail) {
       }
     }
   }
+}
+
+TEST(WaveletTransformTest, APartialTransformReconstructsItsLevelsAsTheFullOne) {
+  const SemiRegularMesh sr = Jittered(Torus(3, 5), 3, 7);
+  const TransformSettings settings{Predictor::kButterfly, UpdateWeights::kConstant,
+                                   FrameMode::kLocal};
+  auto full = WaveletTransform::Create(sr.hierarchy, settings);
+  auto partial = WaveletTransform::Create(sr.hierarchy, settings, 2);
+  ASSERT_TRUE(full.ok() && partial.ok());
+  EXPECT_EQ(full->levels(), 3);
+  EXPECT_EQ(partial->levels(), 2);
+  const Pyramid p = full->Forward(sr.positions);
+  for (int level = 0; level <= 2; ++level) {
+    EXPECT_EQ(partial->Inverse(p, level), full->Inverse(p, level)) << level;
+  }
+  // Past its levels it stops at M^2, and it cannot analyse a mesh.
+  EXPECT_EQ(partial->Inverse(p, 3), full->Inverse(p, 2));
+  EXPECT_EQ(partial->Inverse(p).size(), sr.hierarchy->vertex_count(2));
+  EXPECT_THROW(partial->Forward(sr.positions), std::logic_error);
+  EXPECT_EQ(WaveletTransform::Create(sr.hierarchy, settings, 9)->levels(), 3);
 }
 
 TEST(WaveletTransformTest, UnliftedCoarseLevelsAreSubsamples) {
