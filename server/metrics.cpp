@@ -16,7 +16,7 @@ void Metrics::RecordRequest(unsigned status, uint64_t bytes, double seconds) {
 
 std::string Metrics::Render(uint64_t catalog_meshes, uint64_t open_containers) const {
   std::string out;
-  char line[160];
+  char line[256];
   auto add = [&](const char* text) { out += text; };
   add("# HELP meshwave_http_requests_total HTTP requests answered, by status code.\n"
       "# TYPE meshwave_http_requests_total counter\n");
@@ -40,12 +40,16 @@ std::string Metrics::Render(uint64_t catalog_meshes, uint64_t open_containers) c
                   kBuckets[i], static_cast<unsigned long long>(buckets_[i].load()));
     add(line);
   }
+  // One line per snprintf: the three together overflowed `line` and lost
+  // the _count line (and the end of _sum) once the numbers grew.
   const auto count = static_cast<unsigned long long>(count_.load());
-  std::snprintf(line, sizeof line,
-                "meshwave_http_request_duration_seconds_bucket{le=\"+Inf\"} %llu\n"
-                "meshwave_http_request_duration_seconds_sum %.6f\n"
-                "meshwave_http_request_duration_seconds_count %llu\n",
-                count, static_cast<double>(micros_sum_.load()) * 1e-6, count);
+  std::snprintf(line, sizeof line, "meshwave_http_request_duration_seconds_bucket{le=\"+Inf\"} %llu\n",
+                count);
+  add(line);
+  std::snprintf(line, sizeof line, "meshwave_http_request_duration_seconds_sum %.6f\n",
+                static_cast<double>(micros_sum_.load()) * 1e-6);
+  add(line);
+  std::snprintf(line, sizeof line, "meshwave_http_request_duration_seconds_count %llu\n", count);
   add(line);
   std::snprintf(line, sizeof line,
                 "# HELP meshwave_catalog_meshes Meshes in the catalog.\n"
