@@ -210,7 +210,7 @@ measure() {
   after=$(cpu_ticks "$@")
   requests=$(awk '/requests in/ { print $1 }' "$tmp/wrk-$name-$c.txt")
   awk -v n="$name" -v c="$c" -v t=$(( after - before )) -v hz="$clk_tck" -v r="$requests" \
-    'BEGIN { printf "%s\t%s\t%.1f\n", n, c, r > 0 ? t / hz * 1e6 / r : 0 }' >> "$cpu"
+    'BEGIN { us = (r > 0) ? t / hz * 1e6 / r : 0; printf "%s\t%s\t%.1f\n", n, c, us }' >> "$cpu"
 }
 
 load_before=$(cut -d' ' -f1-3 /proc/loadavg)

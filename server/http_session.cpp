@@ -76,6 +76,9 @@ void HttpSession::DoRead() {
   deadline_.ExpiresAfter(std::chrono::seconds(config.idle_timeout_seconds()));
   waiting_for_request_ = true;
   if (buffer_.size() > 0) return ParseHeader();  // a pipelined request is here
+  // (Waiting with async_wait and then reading saves the recv that fails
+  // at first, but Asio's reactor then makes an epoll_ctl call per wait
+  // instead: no gain (perf: recv 8 -> 3 %, epoll_ctl 0 -> 4.7 %).)
   socket_.async_read_some(buffer_.prepare(4096),
                           beast::bind_front_handler(&HttpSession::OnFirstBytes, shared_from_this()));
 }
