@@ -13,16 +13,20 @@
 #   CONNS="64 256"    wrk connection counts
 #   DURATION=10       seconds per wrk run (at most 10)
 #   WRK_THREADS=2     wrk threads
+#   SERVER_THREADS=2  meshwave-server --threads (measure 1, 2 and 4)
+#   SERVER_CONF=TEXT  extra server settings in protobuf text format, e.g.
+#                     'shared_io_context: true' or 'response_cache_bytes: 0'
 #   KEEP=1            keep the temp dir (catalog, docroot, logs, wrk output)
 #
 # What it does: ingests MESH into a temp catalog, starts meshwave-server on
-# 127.0.0.1 (free port, --threads 2), writes the chosen packet and the
+# 127.0.0.1 (free port, --threads SERVER_THREADS), writes the chosen packet and the
 # /stream?order=quality&budget=BUDGET body into a temp docroot, starts nginx
 # (worker_processes 2, access_log off, sendfile, keep-alive) on 127.0.0.1
 # with its own config/pid/log/temp paths, checks with curl that both serve
 # identical bytes, then runs wrk on: server packet, nginx packet, server
 # stream, nginx stream file, at each connection count. Prints a Markdown
-# table. Everything it started is stopped on exit (trap), whatever happens.
+# table, with each server's CPU time per request (user + system, from
+# /proc over the wrk run; nginx's is its workers'). Everything it started is stopped on exit (trap), whatever happens.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 source "$root/bench/lib.sh"
@@ -35,6 +39,8 @@ budget=${BUDGET:-65536}
 conns_list=${CONNS:-64 256}
 duration=${DURATION:-10}
 wrk_threads=${WRK_THREADS:-2}
+server_threads=${SERVER_THREADS:-2}
+server_conf=${SERVER_CONF:-}
 (( duration >= 1 && duration <= 10 )) || { echo "DURATION must be 1..10 s" >&2; exit 2; }
 
 [[ -x $server_bin ]] || { echo "no meshwave-server at $server_bin (build it first)" >&2; exit 1; }
@@ -83,8 +89,13 @@ trap 'exit 143' TERM
 echo "ingesting $(basename "$mesh") ..." >&2
 "$server_bin" ingest --catalog "$tmp/catalog" "$mesh" > "$tmp/ingest.log" 2>&1 ||
   { cat "$tmp/ingest.log" >&2; exit 1; }
+conf_args=()
+if [[ -n $server_conf ]]; then
+  printf '%s\n' "$server_conf" > "$tmp/server.conf"
+  conf_args=(--config "$tmp/server.conf")
+fi
 "$server_bin" --catalog "$tmp/catalog" --listen 127.0.0.1:0 --port-file "$tmp/port" \
-  --threads 2 --log-level warn > "$tmp/server.log" 2>&1 &
+  --threads "$server_threads" "${conf_args[@]}" --log-level warn > "$tmp/server.log" 2>&1 &
 server_pid=$!
 for _ in $(seq 200); do [[ -s $tmp/port ]] && break; kill -0 "$server_pid" || break; sleep 0.05; done
 [[ -s $tmp/port ]] || { echo "meshwave-server did not start:" >&2; cat "$tmp/server.log" >&2; exit 1; }
@@ -176,14 +187,40 @@ stream_bytes=$(check_same "$S$stream_path" "$N/stream.mwv")
 
 # --- wrk ---------------------------------------------------------------------
 
+# cpu_ticks PID...: user + system clock ticks of the processes so far.
+cpu_ticks() {
+  local pid total=0
+  for pid in "$@"; do
+    total=$(( total + $(awk '{ print $14 + $15 }' "/proc/$pid/stat" 2> /dev/null || echo 0) ))
+  done
+  echo "$total"
+}
+clk_tck=$(getconf CLK_TCK)
+nginx_workers=$(pgrep -P "$nginx_pid" | tr '\n' ' ')
+cpu=$tmp/cpu.tsv  # name conns microseconds-per-request
+: > "$cpu"
+# measure NAME URL CONNECTIONS PID...: run_wrk, and the CPU the PIDs used
+# per request meanwhile.
+measure() {
+  local name=$1 url=$2 c=$3
+  shift 3
+  local before after requests
+  before=$(cpu_ticks "$@")
+  run_wrk "$name" "$url" "$c"
+  after=$(cpu_ticks "$@")
+  requests=$(awk '/requests in/ { print $1 }' "$tmp/wrk-$name-$c.txt")
+  awk -v n="$name" -v c="$c" -v t=$(( after - before )) -v hz="$clk_tck" -v r="$requests" \
+    'BEGIN { us = (r > 0) ? t / hz * 1e6 / r : 0; printf "%s\t%s\t%.1f\n", n, c, us }' >> "$cpu"
+}
+
 load_before=$(cut -d' ' -f1-3 /proc/loadavg)
 results=$tmp/results.tsv  # name conns rps p50_ms p99_ms mb_s errors
 : > "$results"
 for c in $conns_list; do
-  run_wrk server-packet "$S$packet_path" "$c"
-  run_wrk nginx-packet "$N/packet.bin" "$c"
-  run_wrk server-stream "$S$stream_path" "$c"
-  run_wrk nginx-stream "$N/stream.mwv" "$c"
+  measure server-packet "$S$packet_path" "$c" "$server_pid"
+  measure nginx-packet "$N/packet.bin" "$c" $nginx_workers
+  measure server-stream "$S$stream_path" "$c" "$server_pid"
+  measure nginx-stream "$N/stream.mwv" "$c" $nginx_workers
 done
 
 # --- report ------------------------------------------------------------------
@@ -192,15 +229,16 @@ echo "mesh $(basename "$mesh") (id $id, $packets packets): packet $pk = $packet_
   "(closest to $target_bytes); stream order=quality budget=$budget = $stream_bytes bytes" \
   "($stream_packets packets)"
 echo "wrk -t$wrk_threads -d${duration}s --latency, connections: $conns_list;" \
-  "meshwave-server --threads 2; nginx $("$nginx_bin" -v 2>&1 | sed 's/.*nginx\///') worker_processes 2;" \
+  "meshwave-server --threads $server_threads${server_conf:+ ($server_conf)}; nginx $("$nginx_bin" -v 2>&1 | sed 's/.*nginx\///') worker_processes 2;" \
   "$(nproc) cores; load before: $load_before; after: $(cut -d' ' -f1-3 /proc/loadavg)"
 echo
-echo "| target | connections | requests/s | p50 ms | p99 ms | transfer MiB/s | errors | req/s server/nginx | p99 server/nginx |"
-echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|"
+echo "| target | connections | requests/s | p50 ms | p99 ms | transfer MiB/s | errors | CPU µs/req | req/s server/nginx | p99 server/nginx |"
+echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
 awk -F'\t' '
-  { key = $1 "|" $2; rps[key] = $3; p99[key] = $5; row[NR] = $0 }
+  FNR == NR { us[$1 "|" $2] = $3; next }
+  { key = $1 "|" $2; rps[key] = $3; p99[key] = $5; row[++rows] = $0 }
   END {
-    for (i = 1; i <= NR; ++i) {
+    for (i = 1; i <= rows; ++i) {
       split(row[i], f, "\t"); name = f[1]; c = f[2]
       label = name; sub(/-/, " ", label)
       r1 = ""; r2 = ""
@@ -209,7 +247,7 @@ awk -F'\t' '
         if (rps[k] > 0) r1 = sprintf("%.2f", f[3] / rps[k])
         if (p99[k] > 0) r2 = sprintf("%.2f", f[5] / p99[k])
       }
-      printf "| %s | %s | %.0f | %.2f | %.2f | %s | %s | %s | %s |\n",
-             label, c, f[3], f[4], f[5], f[6], f[7], r1, r2
+      printf "| %s | %s | %.0f | %.2f | %.2f | %s | %s | %s | %s | %s |\n",
+             label, c, f[3], f[4], f[5], f[6], f[7], us[name "|" c], r1, r2
     }
-  }' "$results"
+  }' "$cpu" "$results"

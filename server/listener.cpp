@@ -6,12 +6,26 @@
 
 namespace meshwave::server {
 
-Listener::Listener(net::io_context& ioc, ServerContext& ctx)
-    : ioc_(ioc), acceptor_(net::make_strand(ioc)), ctx_(ctx) {}
+namespace {
 
-Result<std::shared_ptr<Listener>> Listener::Create(net::io_context& ioc, tcp::endpoint endpoint,
+net::any_io_executor AcceptorExecutor(net::io_context& ioc, bool shared) {
+  if (shared) return net::make_strand(ioc);
+  return ioc.get_executor();
+}
+
+}  // namespace
+
+Listener::Listener(std::vector<net::io_context*> contexts, bool shared, ServerContext& ctx)
+    : contexts_(std::move(contexts)),
+      shared_(shared),
+      acceptor_(AcceptorExecutor(*contexts_.front(), shared)),
+      ctx_(ctx) {}
+
+Result<std::shared_ptr<Listener>> Listener::Create(std::vector<net::io_context*> contexts,
+                                                   bool shared, tcp::endpoint endpoint,
                                                    ServerContext& ctx) {
-  std::shared_ptr<Listener> l(new Listener(ioc, ctx));
+  if (contexts.empty()) return InvalidArgument("the listener needs an io_context");
+  std::shared_ptr<Listener> l(new Listener(std::move(contexts), shared, ctx));
   beast::error_code ec;
   auto fail = [&](const char* what) {
     return IoError(std::string("cannot ") + what + " " + endpoint.address().to_string() + ":" +
@@ -39,8 +53,17 @@ void Listener::Stop() {
   });
 }
 
+net::any_io_executor Listener::NextExecutor() {
+  // Several threads on one io_context: a strand per connection. Else the
+  // connection's thread alone runs its handlers, no strand needed.
+  if (shared_) return net::make_strand(*contexts_.front());
+  net::io_context& ioc = *contexts_[next_];
+  next_ = (next_ + 1) % contexts_.size();
+  return ioc.get_executor();
+}
+
 void Listener::DoAccept() {
-  acceptor_.async_accept(net::make_strand(ioc_),
+  acceptor_.async_accept(NextExecutor(),
                          beast::bind_front_handler(&Listener::OnAccept, shared_from_this()));
 }
 

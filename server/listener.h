@@ -1,9 +1,12 @@
-// Accepts connections and starts an HttpSession on a strand for each, with
-// TCP_NODELAY set; past the connection cap a session only answers 503.
+// Accepts connections and starts an HttpSession for each, with TCP_NODELAY
+// set; past the connection cap a session only answers 503. Connections go
+// round-robin to the io_contexts given (one per io thread), or, with a
+// single shared io_context, each to a strand of it.
 #ifndef MESHWAVE_SERVER_LISTENER_H_
 #define MESHWAVE_SERVER_LISTENER_H_
 
 #include <memory>
+#include <vector>
 
 #include "meshwave/status.h"
 #include "net.h"
@@ -14,7 +17,10 @@ namespace meshwave::server {
 class Listener : public std::enable_shared_from_this<Listener> {
  public:
   // Binds and listens; IoError naming the endpoint when it cannot.
-  static Result<std::shared_ptr<Listener>> Create(net::io_context& ioc, tcp::endpoint endpoint,
+  // `contexts`: one per io thread, each run by that thread alone; or one
+  // run by several threads, when `shared` (sessions then get strands).
+  static Result<std::shared_ptr<Listener>> Create(std::vector<net::io_context*> contexts,
+                                                  bool shared, tcp::endpoint endpoint,
                                                   ServerContext& ctx);
   uint16_t port() const { return port_; }
   void Run();
@@ -22,11 +28,14 @@ class Listener : public std::enable_shared_from_this<Listener> {
   void Stop();
 
  private:
-  Listener(net::io_context& ioc, ServerContext& ctx);
+  Listener(std::vector<net::io_context*> contexts, bool shared, ServerContext& ctx);
+  net::any_io_executor NextExecutor();
   void DoAccept();
   void OnAccept(beast::error_code ec, tcp::socket socket);
 
-  net::io_context& ioc_;
+  const std::vector<net::io_context*> contexts_;
+  const bool shared_;
+  size_t next_ = 0;  // round-robin over contexts_
   tcp::acceptor acceptor_;
   ServerContext& ctx_;
   uint16_t port_ = 0;

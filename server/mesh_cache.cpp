@@ -23,6 +23,7 @@ Result<std::shared_ptr<const ServedMesh>> MeshCache::Get(const std::string& id) 
   lru_.emplace_front(id, mesh);
   index_[id] = lru_.begin();
   while (lru_.size() > capacity_) {
+    lru_.back().second->Retire();
     index_.erase(lru_.back().first);
     lru_.pop_back();
   }
@@ -33,6 +34,7 @@ void MeshCache::Evict(const std::string& id) {
   std::lock_guard lock(mutex_);
   auto it = index_.find(id);
   if (it == index_.end()) return;
+  it->second->second->Retire();
   lru_.erase(it->second);
   index_.erase(it);
 }

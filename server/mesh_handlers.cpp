@@ -45,7 +45,7 @@ bool NotModified(const Request& req, const std::string& etag, Response& out) {
 Response Binary(const std::shared_ptr<const ServedMesh>& mesh, const std::string& etag) {
   Response r{http::status::ok, 11};
   r.set(http::field::content_type, "application/octet-stream");
-  r.body().keep_alive = mesh;
+  r.body().mesh = mesh;
   MarkImmutable(r, etag);
   return r;
 }

@@ -31,6 +31,7 @@ class Metrics {
   static constexpr std::array<double, 12> kBuckets = {
       0.0005, 0.001, 0.0025, 0.005, 0.01, 0.025, 0.05, 0.1, 0.25, 0.5, 1, 5};
   std::array<std::atomic<uint64_t>, 600> by_code_{};
+  // Requests whose duration fell in (kBuckets[i-1], kBuckets[i]].
   std::array<std::atomic<uint64_t>, kBuckets.size()> buckets_{};
   std::atomic<uint64_t> count_{0};
   std::atomic<uint64_t> micros_sum_{0};

@@ -5,6 +5,7 @@
 #ifndef MESHWAVE_SERVER_SERVED_MESH_H_
 #define MESHWAVE_SERVER_SERVED_MESH_H_
 
+#include <atomic>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -46,6 +47,12 @@ class ServedMesh {
   const std::vector<uint32_t>& Order(Progression p, int max_level) const;
   const std::vector<RdTablePoint>& rd_table() const { return rd_table_; }
 
+  // Set once the mesh leaves the MeshCache (deleted, or evicted as least
+  // recently used): responses planned from it are no longer served from
+  // the ResponseCache, even while a write in flight keeps it alive.
+  void Retire() const { retired_.store(true, std::memory_order_release); }
+  bool retired() const { return retired_.load(std::memory_order_acquire); }
+
  private:
   ServedMesh() = default;
   CatalogEntry entry_;
@@ -56,6 +63,7 @@ class ServedMesh {
   // orders_[3 * (max_level + 1) + progression]
   std::vector<std::vector<uint32_t>> orders_;
   std::vector<RdTablePoint> rd_table_;
+  mutable std::atomic<bool> retired_{false};
 };
 
 }  // namespace meshwave::server

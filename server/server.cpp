@@ -31,26 +31,44 @@ Status RunServer(const ServeOptions& options) {
 
   ServerContext ctx(config, std::move(catalog));
   const int threads = static_cast<int>(config.threads());
-  net::io_context ioc(threads);
-  MW_ASSIGN_OR_RETURN(auto listener, Listener::Create(ioc, tcp::endpoint(ip, address.port), ctx));
-  spdlog::info("meshwave-server listening on {}:{} ({} threads, catalog {})", address.host,
-               listener->port(), threads, ctx.catalog().Describe());
+  // One io_context per thread (each run by its thread alone: no strands,
+  // no lock shared between threads on the way of a request), or one
+  // shared by all threads (shared_io_context, the layout before issue 19).
+  const bool shared = config.shared_io_context();
+  std::vector<std::unique_ptr<net::io_context>> contexts;
+  std::vector<net::io_context*> context_ptrs;
+  for (int i = 0; i < (shared ? 1 : threads); ++i) {
+    contexts.push_back(std::make_unique<net::io_context>(shared ? threads : 1));
+    context_ptrs.push_back(contexts.back().get());
+  }
+  net::io_context& main_ioc = *contexts.front();
+  MW_ASSIGN_OR_RETURN(auto listener, Listener::Create(context_ptrs, shared,
+                                                      tcp::endpoint(ip, address.port), ctx));
+  spdlog::info("meshwave-server listening on {}:{} ({} threads, {}, catalog {})", address.host,
+               listener->port(), threads,
+               shared ? "one shared io_context" : "an io_context per thread",
+               ctx.catalog().Describe());
   if (!options.port_file.empty()) {
     MW_RETURN_IF_ERROR(WriteFileDurably(std::filesystem::absolute(options.port_file),
                                         std::to_string(listener->port()) + "\n"));
   }
+  // Each io_context runs until the stop, even while no connection is on it.
+  std::vector<net::executor_work_guard<net::io_context::executor_type>> guards;
+  for (auto& c : contexts) guards.push_back(net::make_work_guard(*c));
   listener->Run();
 
   // Stop on a signal: no new connections, sessions finish what they do.
   std::mutex mutex;
   std::condition_variable cv;
   bool stop_requested = false, finished = false;
-  net::signal_set signals(ioc, SIGINT, SIGTERM);
+  net::signal_set signals(main_ioc, SIGINT, SIGTERM);
   signals.async_wait([&](beast::error_code wait_ec, int signal) {
     if (wait_ec) return;
     spdlog::info("signal {}: stopping", signal);
     listener->Stop();
     ctx.ShutdownSessions();
+    // Each io_context returns once its sessions have ended.
+    for (auto& g : guards) g.reset();
     std::lock_guard lock(mutex);
     stop_requested = true;
     cv.notify_all();
@@ -63,13 +81,16 @@ Status RunServer(const ServeOptions& options) {
     if (!cv.wait_for(lock, std::chrono::seconds(config.shutdown_grace_seconds()),
                      [&] { return finished; })) {
       spdlog::warn("grace period over: closing the remaining connections");
-      ioc.stop();
+      for (auto& c : contexts) c->stop();
     }
   });
 
   std::vector<std::thread> pool;
-  for (int i = 1; i < threads; ++i) pool.emplace_back([&ioc] { ioc.run(); });
-  ioc.run();
+  for (int i = 1; i < threads; ++i) {
+    net::io_context& ioc = shared ? main_ioc : *contexts[static_cast<size_t>(i)];
+    pool.emplace_back([&ioc] { ioc.run(); });
+  }
+  main_ioc.run();
   for (auto& t : pool) t.join();
   ctx.ingest_pool().join();
   {

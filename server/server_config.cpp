@@ -57,6 +57,7 @@ Status FinishServerConfig(proto::ServerConfig& c) {
   if (c.max_websocket_sessions() == 0) c.set_max_websocket_sessions(10000);
   if (c.websocket_message_limit_bytes() == 0) c.set_websocket_message_limit_bytes(64 * 1024);
   if (c.websocket_ping_seconds() == 0) c.set_websocket_ping_seconds(15);
+  if (!c.has_response_cache_bytes()) c.set_response_cache_bytes(uint64_t{32} << 20);
   if (c.viewer_dir().empty()) c.set_viewer_dir(DefaultViewerDir().string());
   if (const char* token = std::getenv("MESHWAVE_UPLOAD_TOKEN"); token && *token) {
     c.set_upload_token(token);

@@ -15,6 +15,7 @@
 #include "metrics.h"
 #include "net.h"
 #include "request_rate_limiter.h"
+#include "response_cache.h"
 #include "server_config.pb.h"
 
 namespace meshwave::server {
@@ -32,13 +33,15 @@ class ServerContext {
       : config_(std::move(config)),
         catalog_(std::move(catalog)),
         cache_(*catalog_, config_.open_containers()),
-        rate_limiter_(config_.rate_limit_requests_per_second(), config_.rate_limit_burst()) {}
+        rate_limiter_(config_.rate_limit_requests_per_second(), config_.rate_limit_burst()),
+        response_cache_(config_.response_cache_bytes()) {}
 
   const proto::ServerConfig& config() const { return config_; }
   Catalog& catalog() { return *catalog_; }
   MeshCache& cache() { return cache_; }
   Metrics& metrics() { return metrics_; }
   RequestRateLimiter& rate_limiter() { return rate_limiter_; }
+  ResponseCache& response_cache() { return response_cache_; }
   // Runs uploads (parse, remesh, encode, write) off the io threads: one at
   // a time, as remeshing already uses both cores.
   net::thread_pool& ingest_pool() { return ingest_pool_; }
@@ -54,6 +57,7 @@ class ServerContext {
   MeshCache cache_;
   Metrics metrics_;
   RequestRateLimiter rate_limiter_;
+  ResponseCache response_cache_;
   net::thread_pool ingest_pool_{1};
   std::atomic<bool> stopping_{false};
   std::mutex sessions_mutex_;

@@ -1,7 +1,8 @@
 // A Beast body made of an owned prefix (a container header, a JSON text)
 // followed by slices of memory owned elsewhere (payloads in a container's
-// memory map), kept alive by a shared_ptr for as long as the response
-// exists. Payload bytes are handed to the socket without being copied.
+// memory map), kept alive by the mesh's shared_ptr for as long as the
+// response exists. Payload bytes are handed to the socket without being
+// copied (HttpSession writes head, prefix and slices in one gathered write).
 #ifndef MESHWAVE_SERVER_SLICES_BODY_H_
 #define MESHWAVE_SERVER_SLICES_BODY_H_
 
@@ -17,11 +18,15 @@
 
 namespace meshwave::server {
 
+class ServedMesh;
+
 struct SlicesBody {
   struct value_type {
     std::string owned;                       // sent first
     std::vector<net::const_buffer> slices;   // then these, in order
-    std::shared_ptr<const void> keep_alive;  // owns the slices' bytes
+    // Owns the slices' bytes; set by the mesh endpoints, whose successful
+    // responses the ResponseCache may keep.
+    std::shared_ptr<const ServedMesh> mesh;
 
     void AddSlice(std::string_view bytes) {
       if (!bytes.empty()) slices.emplace_back(bytes.data(), bytes.size());

@@ -125,7 +125,8 @@ Response DeleteMesh(ServerContext& ctx, const std::string& id) {
   auto removed = RemoveEntry(ctx.catalog(), id);
   if (!removed.ok()) return StatusError(removed.status());
   if (!*removed) return JsonError(http::status::not_found, "no mesh with id " + id);
-  ctx.cache().Evict(id);
+  ctx.cache().Evict(id);  // retires the mesh: the response cache no longer serves it
+  ctx.response_cache().EraseRetired();
   spdlog::info("deleted {}", id);
   return Response{http::status::no_content, 11};
 }

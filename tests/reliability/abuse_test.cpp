@@ -92,6 +92,64 @@ TEST_F(AbuseTest, SlowlorisConnectionsAreClosedAndOthersServed) {
   EXPECT_LE(FdCount(server_->pid()), fds_before + 2);
 }
 
+// Keep-alive connections: one that asks again within idle_timeout_seconds
+// stays open however long it lasts (the deadline moves with each request),
+// one that stays silent is closed once the idle timeout has passed.
+TEST_F(AbuseTest, IdleKeepAliveConnectionsAreClosedAfterTheIdleTimeout) {
+  Start("idle_timeout_seconds: 1\n");
+  RawSocket idle(port_);
+  ASSERT_TRUE(idle.Write("GET /healthz HTTP/1.1\r\nHost: x\r\n\r\n"));
+  HttpConnection busy(port_);
+  const auto start = std::chrono::steady_clock::now();
+  double idle_closed_after = -1;
+  while (std::chrono::steady_clock::now() - start < std::chrono::milliseconds(3000)) {
+    ASSERT_EQ(busy.Send(http::verb::get, "/v1/meshes/" + id_ + "/packets/0").status, 200u);
+    if (idle_closed_after < 0 && idle.ClosedByPeer()) {
+      idle_closed_after =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  }
+  EXPECT_GE(idle_closed_after, 0.8) << "closed before its idle timeout";
+  EXPECT_LE(idle_closed_after, 2.5) << "still open well past its idle timeout";
+  std::cout << "silent keep-alive connection closed after " << idle_closed_after << " s\n";
+  EXPECT_EQ(busy.Send(http::verb::get, "/healthz").status, 200u);  // 3 s, still open
+}
+
+// A client that stops reading a large response: the write gets
+// write_timeout_seconds, then the connection is dropped and others are
+// served throughout.
+TEST_F(AbuseTest, AClientThatStopsReadingIsDroppedAfterTheWriteTimeout) {
+  Start("write_timeout_seconds: 1\n");
+  auto connections = [&] {
+    const std::string body = HttpGet(port_, "/metrics").body;
+    const std::string key = "\nmeshwave_http_connections ";
+    const size_t at = body.find(key);
+    return at == std::string::npos ? -1L : std::stol(body.substr(at + key.size()));
+  };
+  RawSocket stalled(port_);
+  stalled.socket().set_option(net::socket_base::receive_buffer_size(4096));
+  // Pipelined requests for the whole container, never read: the server's
+  // writes fill the socket buffers and wait.
+  std::string requests;
+  for (int i = 0; i < 2000; ++i) {
+    requests += "GET /v1/meshes/" + id_ + "/container HTTP/1.1\r\nHost: x\r\n\r\n";
+  }
+  const auto start = std::chrono::steady_clock::now();
+  stalled.Write(requests);
+  long open = -1;
+  while (std::chrono::steady_clock::now() - start < std::chrono::seconds(10)) {
+    ExpectServed("a stalled reader");
+    open = connections();  // the stalled one and this request's own
+    if (open == 1) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  const double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_EQ(open, 1) << "the stalled connection is still open after " << took << " s";
+  EXPECT_GE(took, 0.8);
+  std::cout << "stalled reader dropped after " << took << " s\n";
+}
+
 // Headers past the limit get 431, bodies past the limit 413 (announced or
 // chunked), without the server reading them in full; it keeps serving.
 TEST_F(AbuseTest, HeaderAndBodyFloodsAreRefused) {

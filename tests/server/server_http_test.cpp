@@ -431,6 +431,54 @@ TEST_F(ServerHttpTest, ImmutableResourcesAnswerIfNoneMatch) {
   EXPECT_NE(a, b);
 }
 
+// Repeated GETs of the mesh endpoints come from the response cache: the
+// same status, headers and bytes as the first answer, also on one
+// keep-alive connection; HEAD and HTTP/1.0 get the same head with their own
+// Connection field; a Range is part of the key; a DELETE ends them.
+TEST_F(ServerHttpTest, CachedResponsesAreTheSameAndEndWithTheMesh) {
+  const std::string id = ids_.at("holes_copy");
+  const std::string base = "/v1/meshes/" + id;
+  for (const std::string suffix : {"/packets/0", "/packets/3", "/stream?order=quality&budget=9000",
+                                   "/stream?order=resolution&from=1&budget=3000", "/header",
+                                   "/container"}) {
+    const std::string target = base + suffix;
+    HttpConnection c(port_);
+    const HttpReply first = c.Send(http::verb::get, target);
+    ASSERT_EQ(first.status, 200u) << target;
+    for (int i = 0; i < 3; ++i) {
+      const HttpReply again = c.Send(http::verb::get, target);
+      EXPECT_EQ(again.status, first.status) << target;
+      EXPECT_EQ(again.headers, first.headers) << target;
+      EXPECT_EQ(again.body, first.body) << target;
+      EXPECT_TRUE(again.keep_alive);
+    }
+    const HttpReply head = c.Send(http::verb::head, target);
+    EXPECT_EQ(head.status, 200u);
+    EXPECT_EQ(head.headers, first.headers) << target;
+    EXPECT_TRUE(head.body.empty());
+    HttpConnection old(port_);
+    const HttpReply http10 = old.SendRaw("GET " + target + " HTTP/1.0\r\n\r\n");
+    EXPECT_EQ(http10.status, 200u);
+    EXPECT_EQ(http10.body, first.body);
+    EXPECT_FALSE(http10.keep_alive);
+    EXPECT_TRUE(old.ClosedByServer());
+  }
+  HttpConnection c(port_);
+  const std::string whole = c.Send(http::verb::get, base + "/container").body;
+  for (int i = 0; i < 2; ++i) {
+    const HttpReply part = c.Send(http::verb::get, base + "/container", {{"Range", "bytes=10-19"}});
+    EXPECT_EQ(part.status, 206u);
+    EXPECT_EQ(part.body, whole.substr(10, 10));
+    EXPECT_EQ(part.Header("content-range"), "bytes 10-19/" + std::to_string(whole.size()));
+    EXPECT_EQ(c.Send(http::verb::get, base + "/container").body, whole);
+  }
+  const std::pair<std::string, std::string> auth = {"Authorization", std::string("Bearer ") + kToken};
+  EXPECT_EQ(HttpConnection(port_).Send(http::verb::delete_, base, {auth}).status, 204u);
+  for (const std::string suffix : {"/packets/0", "/stream?order=quality&budget=9000", "/container"}) {
+    EXPECT_EQ(c.Send(http::verb::get, base + suffix).status, 404u) << suffix;
+  }
+}
+
 TEST_F(ServerHttpTest, UploadAndDeleteNeedTheToken) {
   const std::string mesh = ReadBytes(SampleMesh("holes.off"));
   HttpConnection c1(port_);
