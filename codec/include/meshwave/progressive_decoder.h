@@ -26,9 +26,9 @@ struct DecoderOptions {
   // small header can claim 12 levels), the fuzzers their time per input.
   uint64_t max_faces = uint64_t{1} << 27;
   // Threads Create may use (the subbands' octrees are built beside the
-  // inverse transform); 0: two where the machine has two cores or more. A
-  // WebAssembly build without threads always uses one. Results do not
-  // depend on it.
+  // inverse transform, so more than two change nothing); 0: the machine's
+  // cores. A WebAssembly build without threads always uses one. Results do
+  // not depend on it.
   int threads = 0;
 };
 

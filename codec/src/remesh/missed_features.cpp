@@ -5,7 +5,7 @@
 #include <utility>
 
 #include "metrics/triangle_bvh.h"
-#include "remesh/parallel_for.h"
+#include "core/parallel_for.h"
 
 namespace meshwave::remesh {
 

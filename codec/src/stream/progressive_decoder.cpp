@@ -1,14 +1,13 @@
 #include "meshwave/progressive_decoder.h"
 
 #include <cmath>
-#include <exception>
 #include <limits>
 #include <string>
-#include <thread>
 
 #include "bitplane/bitplane_io.h"
 #include "bitplane/bitplane_passes.h"
 #include "bitplane/subband_layout.h"
+#include "core/parallel_for.h"
 #include "meshwave/progression.h"
 #include "meshwave/semiregular.h"
 #include "meshwave/wavelet.h"
@@ -20,49 +19,6 @@
 #include "stream/stream_format.h"
 
 namespace meshwave {
-namespace {
-
-int SetUpThreads(int requested) {
-#if defined(__EMSCRIPTEN__) && !defined(__EMSCRIPTEN_PTHREADS__)
-  (void)requested;
-  return 1;
-#else
-  if (requested > 0) return requested;
-  return std::thread::hardware_concurrency() >= 2 ? 2 : 1;
-#endif
-}
-
-// Runs `beside` on a second thread while `main` runs on this one, or both
-// here one after the other; an exception from `beside` is rethrown here.
-template <class Beside, class Main>
-void RunBeside(bool parallel, Beside&& beside, Main&& main) {
-#if defined(__EMSCRIPTEN__) && !defined(__EMSCRIPTEN_PTHREADS__)
-  parallel = false;
-#endif
-  if (!parallel) {
-    beside();
-    main();
-    return;
-  }
-  std::exception_ptr error;
-  std::thread thread([&] {
-    try {
-      beside();
-    } catch (...) {
-      error = std::current_exception();
-    }
-  });
-  try {
-    main();
-  } catch (...) {
-    thread.join();
-    throw;
-  }
-  thread.join();
-  if (error) std::rethrow_exception(error);
-}
-
-}  // namespace
 
 struct ProgressiveDecoder::Impl {
   StreamHeader header;
@@ -110,10 +66,10 @@ Result<std::unique_ptr<ProgressiveDecoder>> ProgressiveDecoder::Create(
   // The octrees and the transform's stencils are the two big parts of the
   // set-up (about a quarter and two thirds of it on igea) and independent.
   Result<WaveletTransform> transform = InvalidArgument("not built");
-  RunBeside(
-      SetUpThreads(options.threads) > 1,
-      [&] { impl->layouts = BuildSubbandLayouts(h, impl->base.grid, header.octree_leaf_size); },
-      [&] { transform = WaveletTransform::Create(impl->hierarchy, settings); });
+  ParallelInvoke(
+      options.threads,
+      [&] { transform = WaveletTransform::Create(impl->hierarchy, settings); },
+      [&] { impl->layouts = BuildSubbandLayouts(h, impl->base.grid, header.octree_leaf_size); });
   if (!transform.ok()) return transform.status();
   impl->transform = std::make_unique<WaveletTransform>(std::move(*transform));
   impl->packets = std::make_unique<PacketLayout>(header);
