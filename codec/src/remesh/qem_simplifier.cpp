@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "core/edge_key.h"
+#include "core/parallel_for.h"
 #include "remesh/quadric.h"
 #include "remesh/remesh_quality.h"
 
@@ -98,11 +99,14 @@ class Simplifier {
     std::vector<Entry> storage;
     storage.reserve(edges.size() + 8 * planned);
     if (planned > 0) {
-      for (const auto& [key, count] : edges) {
-        (void)count;
-        storage.push_back(MakeEntry(static_cast<uint32_t>(key >> 32),
-                                    static_cast<uint32_t>(key), false));
-      }
+      storage.resize(edges.size());
+      ParallelFor(edges.size(), options_.threads, [&](size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i) {
+          const uint64_t key = edges[i].first;
+          storage[i] = MakeEntry(static_cast<uint32_t>(key >> 32),
+                                 static_cast<uint32_t>(key), false);
+        }
+      });
     }
     // Heapified at once (linear) rather than pushed one by one.
     queue_ = std::priority_queue<Entry, std::vector<Entry>, std::greater<>>(
@@ -172,27 +176,53 @@ class Simplifier {
   // Face and boundary quadrics, boundary flags; returns the undirected
   // edges with their face counts.
   std::vector<std::pair<uint64_t, uint32_t>> InitQuadrics() {
-    std::vector<std::pair<uint64_t, uint32_t>> keyed;
-    keyed.reserve(faces_.size() * 3);
-    for (uint32_t f = 0; f < faces_.size(); ++f) {
-      const Face& t = faces_[f];
-      const Vec3 n = (positions_[t[1]] - positions_[t[0]])
-                         .cross(positions_[t[2]] - positions_[t[0]]);
-      const double twice_area = n.norm();
-      if (twice_area > 0) {
-        const Vec3 unit = n / twice_area;
-        const Quadric q =
-            Quadric::Plane(unit, -unit.dot(positions_[t[0]]), twice_area / 2);
-        for (uint32_t v : t) {
-          quadrics_[v] += q;
-          normal_sums_[v] += n / 2;
+    const int threads = options_.threads;
+    // Each vertex sums its faces' planes in face order (vertex_faces_ lists
+    // them so), as one pass over the faces would: the same sums for any
+    // thread count.
+    std::vector<Quadric> face_quadric(faces_.size());
+    std::vector<Vec3> face_normal(faces_.size());  // twice the area, or 0
+    ParallelFor(faces_.size(), threads, [&](size_t begin, size_t end) {
+      for (size_t f = begin; f < end; ++f) {
+        const Face& t = faces_[f];
+        const Vec3 n = (positions_[t[1]] - positions_[t[0]])
+                           .cross(positions_[t[2]] - positions_[t[0]]);
+        const double twice_area = n.norm();
+        if (twice_area > 0) {
+          const Vec3 unit = n / twice_area;
+          face_quadric[f] =
+              Quadric::Plane(unit, -unit.dot(positions_[t[0]]), twice_area / 2);
+          face_normal[f] = n;
+        } else {
+          face_normal[f] = Vec3::Zero();
         }
       }
-      for (int i = 0; i < 3; ++i) {
-        keyed.push_back({EdgeKey(t[i], t[(i + 1) % 3]), f});
+    });
+    ParallelFor(positions_.size(), threads, [&](size_t begin, size_t end) {
+      for (size_t v = begin; v < end; ++v) {
+        for (uint32_t f : vertex_faces_[v]) {
+          if (face_normal[f] == Vec3::Zero()) continue;
+          quadrics_[v] += face_quadric[f];
+          normal_sums_[v] += face_normal[f] / 2;
+        }
       }
-    }
-    std::sort(keyed.begin(), keyed.end());
+    });
+    // (edge, face) pairs are unique, so their sorted order is too: sorted
+    // in halves beside each other and merged.
+    std::vector<std::pair<uint64_t, uint32_t>> keyed(faces_.size() * 3);
+    ParallelFor(faces_.size(), threads, [&](size_t begin, size_t end) {
+      for (size_t f = begin; f < end; ++f) {
+        const Face& t = faces_[f];
+        for (size_t i = 0; i < 3; ++i) {
+          keyed[3 * f + i] = {EdgeKey(t[i], t[(i + 1) % 3]), static_cast<uint32_t>(f)};
+        }
+      }
+    });
+    const auto middle = keyed.begin() + static_cast<std::ptrdiff_t>(keyed.size() / 2);
+    ParallelInvoke(
+        threads, [&] { std::sort(keyed.begin(), middle); },
+        [&] { std::sort(middle, keyed.end()); });
+    std::inplace_merge(keyed.begin(), middle, keyed.end());
     std::vector<std::pair<uint64_t, uint32_t>> edges;
     for (size_t i = 0; i < keyed.size();) {
       size_t j = i + 1;

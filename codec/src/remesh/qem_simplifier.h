@@ -40,6 +40,9 @@ struct SimplifyOptions {
   std::vector<uint8_t> locked;
   // Called now and then with the fraction of the planned collapses done.
   std::function<void(double fraction)> progress;
+  // Threads for the set-up (quadrics, the first queue); the collapses run
+  // on the calling thread. The result does not depend on it.
+  int threads = 1;
 };
 
 struct SimplifiedMesh {
