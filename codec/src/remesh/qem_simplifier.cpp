@@ -113,6 +113,18 @@ class Simplifier {
         std::greater<>(), std::move(storage));
     size_t done = 0;
     const size_t report_every = std::max<size_t>(planned / 100, 1000);
+    // The collapses on this thread, `beside` (if any) on another.
+    const auto collapse = [&] { CollapseAll(faces, planned, report_every, done); };
+    if (options_.beside) {
+      ParallelInvoke(options_.threads, collapse, options_.beside);
+    } else {
+      collapse();
+    }
+    return Compact(done);
+  }
+
+ private:
+  void CollapseAll(size_t& faces, size_t planned, size_t report_every, size_t& done) {
     while (!queue_.empty() && faces > options_.target_faces) {
       const Entry e = queue_.top();
       queue_.pop();
@@ -141,10 +153,8 @@ class Simplifier {
             1.0, static_cast<double>(done) / static_cast<double>(planned)));
       }
     }
-    return Compact(done);
   }
 
- private:
   struct Candidate {
     double cost;
     Vec3 position;
@@ -312,17 +322,27 @@ class Simplifier {
     const bool both_boundary = boundary_[removed] && boundary_[kept];
     if (both_boundary && shared == 2) return Verdict::kRefused;  // would pinch
     if (shared == 1 && !both_boundary) return Verdict::kRefused;
-    // Link condition.
-    Neighbours(removed, kept, ring_a_);
-    Neighbours(kept, removed, ring_b_);
+    // Link condition: the neighbours both ends share, counted once each
+    // (marks instead of two sorted rings: this test runs for every popped
+    // edge).
+    if (mark_.empty() || mark_stamp_ >= 0xfffffffdu) {
+      mark_.assign(positions_.size(), 0);
+      mark_stamp_ = 0;
+    }
+    mark_stamp_ += 2;
+    const uint32_t in_a = mark_stamp_, counted = mark_stamp_ + 1;
+    for (uint32_t f : vertex_faces_[removed]) {
+      for (uint32_t x : faces_[f]) {
+        if (x != removed && x != kept) mark_[x] = in_a;
+      }
+    }
     size_t common = 0;
-    for (size_t i = 0, j = 0; i < ring_a_.size() && j < ring_b_.size();) {
-      if (ring_a_[i] < ring_b_[j]) {
-        ++i;
-      } else if (ring_b_[j] < ring_a_[i]) {
-        ++j;
-      } else {
-        ++common, ++i, ++j;
+    for (uint32_t f : vertex_faces_[kept]) {
+      for (uint32_t x : faces_[f]) {
+        if (x != removed && x != kept && mark_[x] == in_a) {
+          mark_[x] = counted;
+          ++common;
+        }
       }
     }
     if (common != static_cast<size_t>(shared)) return Verdict::kRefused;
@@ -520,7 +540,9 @@ class Simplifier {
   std::vector<uint32_t> component_faces_;
   double max_edge_squared_;
   std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue_;
-  std::vector<uint32_t> ring_a_, ring_b_;
+  std::vector<uint32_t> ring_a_;
+  std::vector<uint32_t> mark_;  // per vertex: CanCollapse's link-condition marks
+  uint32_t mark_stamp_ = 0;
 };
 
 }  // namespace

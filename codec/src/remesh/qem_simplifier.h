@@ -43,6 +43,10 @@ struct SimplifyOptions {
   // Threads for the set-up (quadrics, the first queue); the collapses run
   // on the calling thread. The result does not depend on it.
   int threads = 1;
+  // Other work (may be empty) run on a second thread while the collapses
+  // run, once the set-up is done with every thread; with threads == 1 it
+  // runs after them. Its exception is rethrown after both have ended.
+  std::function<void()> beside;
 };
 
 struct SimplifiedMesh {

@@ -11,7 +11,6 @@
 #include <tuple>
 #include <utility>
 
-#include "core/parallel_for.h"
 #include "remesh/base_flips.h"
 #include "remesh/coincident_vertices.h"
 #include "remesh/components.h"
@@ -136,16 +135,15 @@ class Pipeline {
         PlanSimplification(mesh, components, plan);
     simplify.threads = options_.threads;
     // The first simplification needs only the mesh; the surface the fit
-    // queries (normals, BVH, boundary loops) is built beside it.
+    // queries (normals, BVH, boundary loops) is built beside its collapses
+    // (its set-up takes every thread).
     std::unique_ptr<remesh::InputSurface> surface;
-    remesh::SimplifiedMesh first_base;
-    ParallelInvoke(
-        options_.threads,
-        [&] { first_base = Simplify(mesh, components, simplify, 0, "simplify"); },
-        [&] {
-          surface = std::make_unique<remesh::InputSurface>(TriMesh(mesh),
-                                                           remesh::Components(components));
-        });
+    remesh::SimplifyOptions first = simplify;
+    first.beside = [&] {
+      surface = std::make_unique<remesh::InputSurface>(TriMesh(mesh),
+                                                       remesh::Components(components));
+    };
+    remesh::SimplifiedMesh first_base = Simplify(mesh, components, first, 0, "simplify");
     mesh = TriMesh{};
     components = remesh::Components{};
     EndStage("simplify");
