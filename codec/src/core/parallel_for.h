@@ -162,6 +162,23 @@ void ParallelInvoke(int threads, Jobs&&... jobs) {
   ParallelTasks(sizeof...(Jobs), threads, [&](size_t i) { list[i](); });
 }
 
+// std::sort(first, last) with its two halves sorted beside each other and
+// then merged: the same sequence as std::sort wherever elements that
+// compare equal are identical (pairs, integers; not records sorted by one
+// field of several). Short ranges and one thread: std::sort here.
+template <class RandomIt>
+void ParallelSort(RandomIt first, RandomIt last, int threads) {
+  const auto n = last - first;
+  if (ResolveThreads(threads) < 2 || n < 2 * 65536) {
+    std::sort(first, last);
+    return;
+  }
+  const RandomIt middle = first + n / 2;
+  ParallelInvoke(
+      2, [&] { std::sort(first, middle); }, [&] { std::sort(middle, last); });
+  std::inplace_merge(first, middle, last);
+}
+
 }  // namespace meshwave
 
 #undef MW_PARALLEL_SERIAL_ONLY

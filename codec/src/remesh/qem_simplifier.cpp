@@ -217,8 +217,6 @@ class Simplifier {
         }
       }
     });
-    // (edge, face) pairs are unique, so their sorted order is too: sorted
-    // in halves beside each other and merged.
     std::vector<std::pair<uint64_t, uint32_t>> keyed(faces_.size() * 3);
     ParallelFor(faces_.size(), threads, [&](size_t begin, size_t end) {
       for (size_t f = begin; f < end; ++f) {
@@ -228,11 +226,7 @@ class Simplifier {
         }
       }
     });
-    const auto middle = keyed.begin() + static_cast<std::ptrdiff_t>(keyed.size() / 2);
-    ParallelInvoke(
-        threads, [&] { std::sort(keyed.begin(), middle); },
-        [&] { std::sort(middle, keyed.end()); });
-    std::inplace_merge(keyed.begin(), middle, keyed.end());
+    ParallelSort(keyed.begin(), keyed.end(), threads);
     std::vector<std::pair<uint64_t, uint32_t>> edges;
     for (size_t i = 0; i < keyed.size();) {
       size_t j = i + 1;

@@ -188,7 +188,7 @@ class Pipeline {
           " faces repeat a corner or duplicate another face");
     }
     Report("repair", 0);
-    const remesh::RepairReport repair = remesh::RepairManifold(mesh);
+    const remesh::RepairReport repair = remesh::RepairManifold(mesh, options_.threads);
     result_.non_manifold_edges = repair.non_manifold_edges;
     result_.non_manifold_vertices = repair.non_manifold_vertices;
     result_.split_vertex_copies = repair.added_vertices;

@@ -2,12 +2,14 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdint>
 #include <numeric>
 #include <stdexcept>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 namespace meshwave {
@@ -132,6 +134,22 @@ TEST(ParallelForTest, TasksRunOnceEachAndTheLowestExceptionWins) {
       // Task 3 may or may not run; 2 always does, and wins.
       EXPECT_STREQ(e.what(), "two");
     }
+  }
+}
+
+TEST(ParallelForTest, ParallelSortGivesStdSortsSequence) {
+  std::vector<std::pair<uint64_t, uint32_t>> pairs(300001);
+  uint64_t x = 12345;
+  for (size_t i = 0; i < pairs.size(); ++i) {
+    x = x * 6364136223846793005ULL + 1442695040888963407ULL;
+    pairs[i] = {x >> 50, static_cast<uint32_t>(x >> 20) % 7};  // many equal pairs
+  }
+  auto expected = pairs;
+  std::sort(expected.begin(), expected.end());
+  for (int threads : {1, 2, 3}) {
+    auto sorted = pairs;
+    ParallelSort(sorted.begin(), sorted.end(), threads);
+    EXPECT_EQ(sorted, expected) << threads << " threads";
   }
 }
 
