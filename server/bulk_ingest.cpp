@@ -8,6 +8,7 @@
 #include <set>
 #include <thread>
 
+#include "core/parallel_for.h"
 #include "request_target.h"
 
 namespace meshwave::server {
@@ -88,19 +89,25 @@ size_t IngestFiles(Catalog& catalog, const std::vector<std::filesystem::path>& f
                    const std::function<void(const std::filesystem::path&,
                                             const Result<IngestResult>&)>& report,
                    const EncodeChoices& choices) {
+  const unsigned n = std::max(1u, std::min<unsigned>(jobs, static_cast<unsigned>(files.size())));
+  // Each of the n meshes in flight gets its share of the cores unless told
+  // otherwise, so --jobs does not multiply the threads.
+  EncodeChoices per_file = choices;
+  if (per_file.threads <= 0) {
+    per_file.threads = std::max(1, ResolveThreads(0) / static_cast<int>(n));
+  }
   std::atomic<size_t> next{0}, failed{0};
   std::mutex report_mutex;
   // Encoding runs in parallel; each Store takes the catalog's ingest lock
   // only around the write and the insert.
   auto worker = [&] {
     for (size_t i = next++; i < files.size(); i = next++) {
-      auto result = IngestMeshFile(catalog, files[i], name, choices);
+      auto result = IngestMeshFile(catalog, files[i], name, per_file);
       if (!result.ok()) ++failed;
       std::lock_guard lock(report_mutex);
       report(files[i], result);
     }
   };
-  const unsigned n = std::max(1u, std::min<unsigned>(jobs, static_cast<unsigned>(files.size())));
   std::vector<std::thread> threads;
   for (unsigned t = 1; t < n; ++t) threads.emplace_back(worker);
   worker();

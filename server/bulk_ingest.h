@@ -37,7 +37,9 @@ std::vector<std::filesystem::path> FilesOfShard(const std::vector<std::filesyste
                                                 Shard shard);
 
 // Ingests `files` with `jobs` threads, encoded as `choices` says; `name`
-// names the entry (one file only; empty: the stem). `report` runs after
+// names the entry (one file only; empty: the stem). With choices.threads
+// 0, each file in flight gets the machine's cores divided by the files
+// encoded at once (at least one), so jobs x threads stays near the cores. `report` runs after
 // each file, one call at a time. Returns how many files failed.
 size_t IngestFiles(Catalog& catalog, const std::vector<std::filesystem::path>& files,
                    unsigned jobs, const std::string& name,

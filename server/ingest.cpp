@@ -86,10 +86,13 @@ Result<IngestResult> IngestMeshBytes(Catalog& catalog, std::string_view bytes,
   SemiRegularInputOptions input_options;
   input_options.fidelity_db = choices.fidelity_db;
   input_options.max_vertex_ratio = choices.max_vertex_ratio;
+  input_options.threads = choices.threads;
+  input_options.force_remesh = choices.force_remesh;
   MW_ASSIGN_OR_RETURN(SemiRegularInput input, ToSemiRegular(std::move(mesh), input_options));
   for (const auto& w : input.warnings) spdlog::warn("{}: {}", source, w);
   EncodeOptions options;
   options.name = name;
+  options.threads = choices.threads;
   if (fidelity) options.precision = PrecisionForFidelity(choices.fidelity_db);
   MW_ASSIGN_OR_RETURN(EncodedStream stream, EncodeMesh(input.mesh, options));
   double reached = 0;

@@ -32,6 +32,12 @@ struct IngestResult {
 struct EncodeChoices {
   double fidelity_db = 0;  // 0: default remesh density and precision
   double max_vertex_ratio = 4;
+  // Threads for remeshing and encoding the one mesh (0: the machine's
+  // cores); the container does not depend on it.
+  int threads = 0;
+  // Remesh even a mesh that is already semi-regular (`meshwave encode
+  // --remesh`).
+  bool force_remesh = false;
 };
 
 // Stores a complete container (checked with ParseContainer and

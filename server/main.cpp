@@ -136,6 +136,13 @@ int main(int argc, char** argv) {
   ingest->add_option("--jobs", ingest_options.jobs, "Meshes encoded in parallel")
       ->check(CLI::Range(1, 256))
       ->capture_default_str();
+  ingest->add_option("--threads", ingest_options.choices.threads,
+                     "Threads remeshing and encoding each mesh (0: the machine's cores divided "
+                     "by --jobs, at least 1); the containers are the same for any number")
+      ->check(CLI::Range(0, 64))
+      ->capture_default_str();
+  ingest->add_flag("--remesh", ingest_options.choices.force_remesh,
+                   "Remesh even meshes that are already semi-regular (meshwave encode --remesh)");
   ingest->add_option("--shard", ingest_options.shard,
                      "I/N: only the files of shard I of N (one per worker of a Job)")
       ->capture_default_str();

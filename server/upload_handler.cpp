@@ -80,6 +80,9 @@ void UploadMesh(ServerContext& ctx, Request req, const QueryParams& query,
   // upload; the remesh may grow to kUploadMaxVertexRatio times the
   // upload's vertices for it, and no further (an upload bounds its cost).
   EncodeChoices choices;
+  // One upload is ingested at a time; it uses the server's configured
+  // threads, not every core of the machine.
+  choices.threads = static_cast<int>(ctx.config().threads());
   if (auto f = query.Get("fidelity")) {
     auto db = ParseUnsigned(*f, kMaxUploadFidelityDb, "fidelity");
     if (!db.ok()) return done(StatusError(db.status()));

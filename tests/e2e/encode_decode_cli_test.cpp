@@ -41,6 +41,34 @@ TEST(EncodeDecodeCliTest, FullStreamIsNearLossless) {
   EXPECT_GE(PsnrAgainst(in, dir / "full.ply"), 90.0);
 }
 
+// --threads: the same stream from one thread or several, for a remeshed
+// mesh (elephant.off) and a semi-regular one; --help says so.
+TEST(EncodeDecodeCliTest, ThreadCountDoesNotChangeTheStream) {
+  TempDir dir;
+  for (const char* name : {"elephant.off", "holes.off"}) {
+    const auto in = testing::SampleMesh(name);
+    std::string first;
+    for (const char* threads : {"1", "2", "3", "0"}) {
+      const auto out = dir / (std::string(name) + "." + threads + ".mwv");
+      auto r = RunCli({"encode", in.string(), out.string(), "--threads", threads});
+      ASSERT_EQ(r.exit_code, 0) << r.err;
+      const std::string bytes = testing::ReadBytes(out);
+      ASSERT_FALSE(bytes.empty());
+      if (first.empty()) first = bytes;
+      EXPECT_TRUE(bytes == first) << name << " with --threads " << threads;
+    }
+  }
+  for (const char* command : {"encode", "remesh"}) {
+    auto help = RunCli({command, "--help"});
+    EXPECT_EQ(help.exit_code, 0);
+    EXPECT_NE(help.out.find("--threads"), std::string::npos) << command;
+  }
+  EXPECT_NE(RunCli({"encode", testing::SampleMesh("holes.off").string(),
+                    (dir / "x.mwv").string(), "--threads", "-1"})
+                .exit_code,
+            0);
+}
+
 // --transform sawt end to end: the filter choices travel in the header and
 // the complete stream is as near-lossless as the default transform's.
 TEST(EncodeDecodeCliTest, SawtStreamIsNearLosslessLikeTheDefault) {

@@ -50,6 +50,23 @@ TEST_P(IngestTest, StoresAContentAddressedContainer) {
   EXPECT_TRUE(catalog->Find(e.id)->has_value());
 }
 
+// A remeshed mesh ingested on one thread and on three: the same container,
+// so the second finds the first's entry.
+TEST_P(IngestTest, ThreadCountDoesNotChangeTheContainer) {
+  auto catalog = OpenCatalog();
+  ASSERT_TRUE(catalog);
+  EncodeChoices one, three;
+  one.threads = 1;
+  three.threads = 3;
+  auto a = IngestMeshFile(*catalog, SampleMesh("elephant.off"), "", one);
+  auto b = IngestMeshFile(*catalog, SampleMesh("elephant.off"), "", three);
+  ASSERT_TRUE(a.ok() && b.ok());
+  EXPECT_TRUE(a->remeshed);
+  EXPECT_FALSE(a->already_present);
+  EXPECT_TRUE(b->already_present);
+  EXPECT_EQ(a->entry.sha256, b->entry.sha256);
+}
+
 TEST_P(IngestTest, SameFileTwiceGivesTheSameEntry) {
   auto catalog = OpenCatalog();
   ASSERT_TRUE(catalog);

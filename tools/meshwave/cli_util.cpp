@@ -8,6 +8,8 @@
 #include <iostream>
 #include <sstream>
 
+#include "core/parallel_for.h"
+
 namespace meshwave::cli {
 
 int Fail(const std::string& command, const Status& status) {
@@ -159,6 +161,12 @@ void AddFidelityOptions(CLI::App* cmd, double& fidelity_db, double& max_vertex_r
   cmd->add_option("--max-vertex-ratio", max_vertex_ratio,
                   "With --fidelity: the densest remesh, in finest vertices per input vertex")
       ->check(CLI::Range(1.0, 64.0))
+      ->capture_default_str();
+}
+
+void AddThreadsOption(CLI::App* cmd, int& threads) {
+  cmd->add_option("--threads", threads, kThreadsHelp)
+      ->check(CLI::Range(0, kMaxParallelThreads))
       ->capture_default_str();
 }
 

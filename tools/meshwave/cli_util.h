@@ -64,6 +64,13 @@ inline constexpr const char* kExtraLevelsHelp =
 void AddFidelityOptions(CLI::App* cmd, double& fidelity_db, double& max_vertex_ratio,
                         const std::string& what);
 
+// --threads N on the commands that remesh or encode: worker threads, 0 (the
+// default) for the machine's cores. Their output does not depend on it.
+void AddThreadsOption(CLI::App* cmd, int& threads);
+inline constexpr const char* kThreadsHelp =
+    "Worker threads for remeshing and encoding (0: the machine's cores); the output "
+    "is the same for any number";
+
 // Reads a whole file; IoError naming the path when it cannot.
 Result<std::string> ReadFileBytes(const std::string& path);
 // Files are written with WriteFileDurably (core/durable_file.h).

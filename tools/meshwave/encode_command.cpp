@@ -31,6 +31,7 @@ struct EncodeArgs {
   bool force_remesh = false;
   uint32_t sawt_alpha = EncodeOptions{}.sawt_alpha;
   double sawt_lambda = EncodeOptions{}.sawt_lambda_scale;
+  int threads = 0;
 };
 
 Result<SemiRegularInput> LoadSemiRegular(const EncodeArgs& args, TriMesh mesh) {
@@ -39,6 +40,7 @@ Result<SemiRegularInput> LoadSemiRegular(const EncodeArgs& args, TriMesh mesh) {
   options.levels = args.levels;
   options.fidelity_db = args.fidelity_db;
   options.max_vertex_ratio = args.max_vertex_ratio;
+  options.threads = args.threads;
   MW_ASSIGN_OR_RETURN(SemiRegularInput input, ToSemiRegular(std::move(mesh), options));
   if (!input.remeshed) {
     std::cerr << args.in << ": semi-regular, " << input.levels
@@ -100,6 +102,7 @@ Status Run(const EncodeArgs& args) {
   MW_ASSIGN_OR_RETURN(options.coder, ParseCoderKind(args.coder));
   MW_RETURN_IF_ERROR(ApplyQuantizerOption(args.quantizer, options));
   options.name = std::filesystem::path(args.in).stem().string();
+  options.threads = args.threads;
   MW_ASSIGN_OR_RETURN(TriMesh original, ReadMesh(args.in));
   MW_ASSIGN_OR_RETURN(SemiRegularInput input,
                       LoadSemiRegular(args, args.fidelity_db > 0 ? original : std::move(original)));
@@ -159,6 +162,7 @@ void AddEncodeCommand(CLI::App& app, int& exit_code) {
                 "Remesh even when the input is already semi-regular");
   AddFidelityOptions(cmd, args->fidelity_db, args->max_vertex_ratio,
                      "the complete stream (the precision follows it too)");
+  AddThreadsOption(cmd, args->threads);
   cmd->callback([args, cmd, &exit_code] {
     args->precision_given = cmd->count("--precision") > 0;
     const Status s = Run(*args);

@@ -253,9 +253,7 @@ void AddRemeshCommand(CLI::App& app, int& exit_code) {
                   "Tangential relaxation rounds per level")
       ->check(CLI::Range(0, 50))
       ->capture_default_str();
-  cmd->add_option("--threads", args->threads, "Worker threads")
-      ->check(CLI::Range(1, 64))
-      ->capture_default_str();
+  AddThreadsOption(cmd, args->threads);
   cmd->add_flag("--drop-tiny", args->drop_tiny,
                 "Drop components of fewer than 8 faces instead of keeping "
                 "each as its own small base");

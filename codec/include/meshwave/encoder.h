@@ -41,6 +41,9 @@ struct EncodeOptions {
   uint32_t sawt_alpha = 400;
   double sawt_lambda_scale = 64.0;
   std::string name;
+  // Threads for quantising and coding (subbands on workers, the largest
+  // first); 0: the machine's cores. The stream does not depend on it.
+  int threads = 0;
 };
 
 // The complete stream: a header whose packet index lists every packet, and

@@ -40,8 +40,11 @@ struct RemeshOptions {
   int base_faces = -1;
   // Tangential relaxation rounds after each level (0 turns it off).
   int relax_rounds = 3;
-  // Worker threads for the fitting (1 = calling thread only).
-  int threads = 2;
+  // Worker threads (1 = the calling thread only; 0 = the machine's cores):
+  // the surface's set-up runs beside the simplification, the quadrics and
+  // the fitting's per-vertex steps on all of them. The result is the same
+  // for any number.
+  int threads = 0;
   // Components with no area at all (every face degenerate) are always
   // dropped; with this set, components of fewer than `tiny_component_faces`
   // faces are dropped too. Either way a warning says how many.

@@ -17,7 +17,9 @@ namespace meshwave {
 struct SemiRegularInputOptions {
   bool force_remesh = false;  // remesh even semi-regular input
   int levels = -1;            // remeshing levels (-1: chosen from the size)
-  int threads = 2;            // remeshing worker threads
+  // Remeshing worker threads (0: the machine's cores); the result does not
+  // depend on it.
+  int threads = 0;
   // The remesh's symmetric surface PSNR against the input to reach, in dB
   // (peak: the input's bounding-box diagonal; what `meshwave compare`
   // reports). 0: remesh once at the default density (about as many finest

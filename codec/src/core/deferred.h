@@ -15,6 +15,8 @@
 #include <thread>
 #include <utility>
 
+#include "core/parallel_for.h"  // MW_PARALLEL_SERIAL_ONLY
+
 namespace meshwave {
 
 template <class T>
@@ -33,7 +35,7 @@ class Deferred {
   // `in_background` (and threads exist). At most once per object.
   void Start(bool in_background, std::function<T()> make) {
     make_ = std::move(make);
-#if defined(__EMSCRIPTEN__) && !defined(__EMSCRIPTEN_PTHREADS__)
+#ifdef MW_PARALLEL_SERIAL_ONLY
     in_background = false;
 #endif
     if (in_background) thread_ = std::thread([this] { Build(); });

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <utility>
 
+#include "core/parallel_for.h"
 #include "metrics/closest_point_triangle.h"
 
 namespace meshwave::metrics {
@@ -22,6 +23,9 @@ constexpr int kSahBins = 16;
 constexpr int kMaxSahDepth = 32;
 static_assert(kLeafSize >= 4 && kMaxSahDepth + 30 <= TriangleBvh::kMaxDepth);
 constexpr double kHuge = std::numeric_limits<double>::max();
+// Subtrees of at least this many faces are built beside each other when
+// threads are given (a thread start costs about as much as 2,000 faces).
+constexpr uint32_t kMinParallelBuild = 1u << 15;
 // Below this sin² of the angle at a corner a triangle gets no normal:
 // rounding makes the direction of a sliver's cross product unreliable.
 constexpr double kSliverSin2 = 1e-8;
@@ -56,48 +60,54 @@ struct TriangleBvh::BuildItem {
 };
 
 TriangleBvh::TriangleBvh(const std::vector<Vec3>& positions,
-                         const std::vector<Face>& faces) {
+                         const std::vector<Face>& faces, int threads) {
   assert(faces.size() < kNoFace);
   const auto n = static_cast<uint32_t>(faces.size());
   if (n == 0) return;
+  threads = ResolveThreads(threads);
   std::vector<BuildItem> items(n);
-  for (uint32_t f = 0; f < n; ++f) {
-    const Face& face = faces[f];
-    assert(face[0] < positions.size() && face[1] < positions.size() &&
-           face[2] < positions.size());
-    const Vec3& a = positions[face[0]];
-    const Vec3& b = positions[face[1]];
-    const Vec3& c = positions[face[2]];
-    items[f] = {a.cwiseMin(b).cwiseMin(c), a.cwiseMax(b).cwiseMax(c),
-                (a + b + c) / 3.0, f};
-  }
+  ParallelFor(n, threads, [&](size_t begin, size_t end) {
+    for (size_t f = begin; f < end; ++f) {
+      const Face& face = faces[f];
+      assert(face[0] < positions.size() && face[1] < positions.size() &&
+             face[2] < positions.size());
+      const Vec3& a = positions[face[0]];
+      const Vec3& b = positions[face[1]];
+      const Vec3& c = positions[face[2]];
+      items[f] = {a.cwiseMin(b).cwiseMin(c), a.cwiseMax(b).cwiseMax(c),
+                  (a + b + c) / 3.0, static_cast<uint32_t>(f)};
+    }
+  });
   nodes_.reserve(2 * (n / kLeafSize + 1));
-  Build(items, 0, n, 0);
+  Build(items, 0, n, 0, threads, nodes_, depth_);
   // Build only permutes `items`, and a leaf owns the slots [begin, end) it
   // had when it was made, so the final item order is the leaf order.
   triangles_.resize(n);
   slot_of_face_.resize(n);
-  for (uint32_t slot = 0; slot < n; ++slot) {
-    const uint32_t f = items[slot].face;
-    const Face& face = faces[f];
-    const Vec3& a = positions[face[0]];
-    const Vec3& b = positions[face[1]];
-    const Vec3& c = positions[face[2]];
-    Vec3 normal = (b - a).cross(c - a);
-    const double length2 = normal.squaredNorm();
-    const bool reliable =
-        std::isfinite(length2) &&
-        length2 > kSliverSin2 * (b - a).squaredNorm() * (c - a).squaredNorm();
-    normal = reliable ? Vec3(normal / std::sqrt(length2)) : Vec3(Vec3::Zero());
-    triangles_[slot] = {a, b, c, normal, f};
-    slot_of_face_[f] = slot;
-  }
+  ParallelFor(n, threads, [&](size_t begin, size_t end) {
+    for (size_t slot = begin; slot < end; ++slot) {
+      const uint32_t f = items[slot].face;
+      const Face& face = faces[f];
+      const Vec3& a = positions[face[0]];
+      const Vec3& b = positions[face[1]];
+      const Vec3& c = positions[face[2]];
+      Vec3 normal = (b - a).cross(c - a);
+      const double length2 = normal.squaredNorm();
+      const bool reliable =
+          std::isfinite(length2) &&
+          length2 > kSliverSin2 * (b - a).squaredNorm() * (c - a).squaredNorm();
+      normal = reliable ? Vec3(normal / std::sqrt(length2)) : Vec3(Vec3::Zero());
+      triangles_[slot] = {a, b, c, normal, f};
+      slot_of_face_[f] = static_cast<uint32_t>(slot);
+    }
+  });
 }
 
 uint32_t TriangleBvh::Build(std::vector<BuildItem>& items, uint32_t begin,
-                            uint32_t end, int depth) {
-  const auto index = static_cast<uint32_t>(nodes_.size());
-  nodes_.push_back({});
+                            uint32_t end, int depth, int threads,
+                            std::vector<Node>& nodes, int& max_depth) {
+  const auto index = static_cast<uint32_t>(nodes.size());
+  nodes.push_back({});
   Vec3 lo = items[begin].lo, hi = items[begin].hi;
   for (uint32_t i = begin + 1; i < end; ++i) {
     lo = lo.cwiseMin(items[i].lo);
@@ -109,21 +119,47 @@ uint32_t TriangleBvh::Build(std::vector<BuildItem>& items, uint32_t begin,
     node.hi[k] = RoundUp(hi[k]);
   }
   if (end - begin <= kLeafSize) {
-    depth_ = std::max(depth_, depth);
+    max_depth = std::max(max_depth, depth);
     // Face order inside a leaf fixes which of equally near faces wins.
     std::sort(
         items.begin() + begin, items.begin() + end,
         [](const BuildItem& x, const BuildItem& y) { return x.face < y.face; });
     node.start = begin;
     node.count = end - begin;
-    nodes_[index] = node;
+    nodes[index] = node;
     return index;
   }
   const uint32_t mid = Split(items, begin, end, depth < kMaxSahDepth);
   node.count = 0;
-  nodes_[index] = node;
-  Build(items, begin, mid, depth + 1);  // lands at index + 1
-  nodes_[index].start = Build(items, mid, end, depth + 1);
+  nodes[index] = node;
+  if (threads > 1 && end - begin >= kMinParallelBuild) {
+    // The right subtree into a vector of its own beside the left one, then
+    // appended after it with its internal nodes' child indices moved.
+    std::vector<Node> right;
+    int right_depth = 0;
+    const int left_threads = threads / 2;
+    ParallelInvoke(
+        2,
+        [&] {
+          Build(items, begin, mid, depth + 1, left_threads, nodes, max_depth);
+        },
+        [&] {
+          right.reserve(2 * ((end - mid) / kLeafSize + 1));
+          Build(items, mid, end, depth + 1, threads - left_threads, right,
+                right_depth);
+        });
+    const auto base = static_cast<uint32_t>(nodes.size());
+    for (Node child : right) {
+      if (child.count == 0) child.start += base;
+      nodes.push_back(child);
+    }
+    max_depth = std::max(max_depth, right_depth);
+    nodes[index].start = base;
+    return index;
+  }
+  Build(items, begin, mid, depth + 1, 1, nodes, max_depth);  // at index + 1
+  const uint32_t right = Build(items, mid, end, depth + 1, 1, nodes, max_depth);
+  nodes[index].start = right;
   return index;
 }
 

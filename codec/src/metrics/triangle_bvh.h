@@ -38,8 +38,10 @@ class TriangleBvh {
   // Contract (asserted, not checked): every index of `faces` is below
   // positions.size(), and there are fewer than 2^32 - 1 faces. Callers that
   // hold untrusted meshes validate them first. Zero-area faces are fine.
+  // `threads` (as ResolveThreads takes it) build the subtrees below the
+  // first splits side by side; the tree is the same for any number.
   TriangleBvh(const std::vector<Vec3>& positions,
-              const std::vector<Face>& faces);
+              const std::vector<Face>& faces, int threads = 1);
 
   // The closest point of all triangles to `p`. With no triangles the hit
   // has an infinite distance and face kNoFace. Among equally near faces any
@@ -101,9 +103,14 @@ class TriangleBvh {
   };
   struct BuildItem;
 
-  // Makes the node for items[begin, end) and its subtree; returns its index.
-  uint32_t Build(std::vector<BuildItem>& items, uint32_t begin, uint32_t end,
-                 int depth);
+  // Appends the node for items[begin, end) and its subtree to `nodes`
+  // (child indices relative to nodes[0]); returns its index and raises
+  // `max_depth` to its deepest leaf. With threads > 1 large subtrees are
+  // built beside each other into separate vectors and appended in the
+  // order a single thread makes them.
+  static uint32_t Build(std::vector<BuildItem>& items, uint32_t begin,
+                        uint32_t end, int depth, int threads,
+                        std::vector<Node>& nodes, int& max_depth);
   // Reorders items[begin, end) into two non-empty halves; returns where the
   // second starts.
   static uint32_t Split(std::vector<BuildItem>& items, uint32_t begin,

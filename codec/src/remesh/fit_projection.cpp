@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <atomic>
 
-#include "remesh/parallel_for.h"
+#include "core/parallel_for.h"
 
 namespace meshwave::remesh {
 namespace {

@@ -1,7 +1,7 @@
 // Relaxation stage of surface fitting: tangential smoothing on the surface.
 #include "remesh/fit_relaxation.h"
 
-#include "remesh/parallel_for.h"
+#include "core/parallel_for.h"
 
 namespace meshwave::remesh {
 

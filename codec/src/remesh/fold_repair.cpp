@@ -8,7 +8,7 @@
 #include <atomic>
 #include <cmath>
 
-#include "remesh/parallel_for.h"
+#include "core/parallel_for.h"
 #include "remesh/remesh_quality.h"
 #include "remesh/ring_kernel.h"
 

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/edge_key.h"
+#include "core/parallel_for.h"
 #include "remesh/union_find.h"
 
 namespace meshwave::remesh {
@@ -37,7 +38,7 @@ Vec3 UnitNormal(const TriMesh& mesh, uint32_t f) {
 // most smoothly (largest dot product of normals) are glued and the others
 // cut off: a fin hanging off a surface leaves the surface whole.
 std::vector<uint32_t> PairHalfEdges(const TriMesh& mesh,
-                                    size_t* non_manifold_edges) {
+                                    size_t* non_manifold_edges, int threads) {
   const std::vector<Face>& faces = mesh.faces;
   const size_t n = faces.size() * 3;
   std::vector<std::pair<uint64_t, uint32_t>> keyed(n);
@@ -47,7 +48,7 @@ std::vector<uint32_t> PairHalfEdges(const TriMesh& mesh,
                           static_cast<uint32_t>(3 * f + i)};
     }
   }
-  std::sort(keyed.begin(), keyed.end());
+  ParallelSort(keyed.begin(), keyed.end(), threads);
   std::vector<uint32_t> glue(n, kUnglued);
   for (size_t i = 0; i < n;) {
     size_t j = i + 1;
@@ -132,7 +133,7 @@ std::vector<uint8_t> Orient(const std::vector<Face>& faces,
 
 // Faces that still share a directed edge, or an edge with more than two
 // faces, after the split (possible only when fans reconnect elsewhere).
-std::vector<uint32_t> FacesOnBadEdges(const std::vector<Face>& faces) {
+std::vector<uint32_t> FacesOnBadEdges(const std::vector<Face>& faces, int threads) {
   std::vector<std::pair<uint64_t, uint32_t>> keyed(faces.size() * 3);
   for (size_t f = 0; f < faces.size(); ++f) {
     for (int i = 0; i < 3; ++i) {
@@ -140,7 +141,7 @@ std::vector<uint32_t> FacesOnBadEdges(const std::vector<Face>& faces) {
                           static_cast<uint32_t>(3 * f + i)};
     }
   }
-  std::sort(keyed.begin(), keyed.end());
+  ParallelSort(keyed.begin(), keyed.end(), threads);
   std::vector<uint32_t> bad;
   for (size_t i = 0; i < keyed.size();) {
     size_t j = i + 1;
@@ -160,7 +161,7 @@ std::vector<uint32_t> FacesOnBadEdges(const std::vector<Face>& faces) {
 
 }  // namespace
 
-RepairReport RepairManifold(TriMesh& mesh) {
+RepairReport RepairManifold(TriMesh& mesh, int threads) {
   RepairReport report;
   const size_t vertex_count = mesh.positions.size();
   for (const Face& f : mesh.faces) {
@@ -168,7 +169,7 @@ RepairReport RepairManifold(TriMesh& mesh) {
     assert(f[0] != f[1] && f[1] != f[2] && f[2] != f[0]);
     (void)f;
   }
-  std::vector<uint32_t> glue = PairHalfEdges(mesh, &report.non_manifold_edges);
+  std::vector<uint32_t> glue = PairHalfEdges(mesh, &report.non_manifold_edges, threads);
   const std::vector<uint8_t> flip = Orient(mesh.faces, glue, report);
   // Glue refers to corners of the unflipped faces; keep those for lookups.
   const std::vector<Face> original = mesh.faces;
@@ -213,7 +214,7 @@ RepairReport RepairManifold(TriMesh& mesh) {
       }
       out[c / 3][c % 3] = id_of_root[root];
     }
-    const std::vector<uint32_t> bad = FacesOnBadEdges(out);
+    const std::vector<uint32_t> bad = FacesOnBadEdges(out, threads);
     if (bad.empty()) {
       report.added_vertices = mesh.positions.size() - vertex_count;
       report.non_manifold_vertices = static_cast<size_t>(

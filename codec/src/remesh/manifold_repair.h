@@ -31,8 +31,9 @@ struct RepairReport {
 // - a vertex whose faces form several fans around it becomes one vertex per
 //   fan (copies at the same position, appended after the existing ones).
 // Precondition (asserted): every face has three distinct corners in range,
-// as after CleanMesh. Linear apart from one sort of the 3F half-edges.
-RepairReport RepairManifold(TriMesh& mesh);
+// as after CleanMesh. Linear apart from one sort of the 3F half-edges,
+// made on `threads` (ParallelSort; the result does not depend on it).
+RepairReport RepairManifold(TriMesh& mesh, int threads = 1);
 
 }  // namespace meshwave::remesh
 

@@ -5,14 +5,14 @@
 #include <utility>
 
 #include "metrics/triangle_bvh.h"
-#include "remesh/parallel_for.h"
+#include "core/parallel_for.h"
 
 namespace meshwave::remesh {
 
 MissedVertices FindMissedVertices(const TriMesh& input, const TriMesh& remesh,
                                   double threshold, double spacing,
                                   size_t max_count, int threads) {
-  const metrics::TriangleBvh bvh(remesh.positions, remesh.faces);
+  const metrics::TriangleBvh bvh(remesh.positions, remesh.faces, threads);
   std::vector<uint8_t> used(input.positions.size(), 0);
   for (const Face& f : input.faces) {
     for (uint32_t v : f) used[v] = 1;

@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "core/edge_key.h"
+#include "core/parallel_for.h"
 #include "remesh/quadric.h"
 #include "remesh/remesh_quality.h"
 
@@ -98,17 +99,32 @@ class Simplifier {
     std::vector<Entry> storage;
     storage.reserve(edges.size() + 8 * planned);
     if (planned > 0) {
-      for (const auto& [key, count] : edges) {
-        (void)count;
-        storage.push_back(MakeEntry(static_cast<uint32_t>(key >> 32),
-                                    static_cast<uint32_t>(key), false));
-      }
+      storage.resize(edges.size());
+      ParallelFor(edges.size(), options_.threads, [&](size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i) {
+          const uint64_t key = edges[i].first;
+          storage[i] = MakeEntry(static_cast<uint32_t>(key >> 32),
+                                 static_cast<uint32_t>(key), false);
+        }
+      });
     }
     // Heapified at once (linear) rather than pushed one by one.
     queue_ = std::priority_queue<Entry, std::vector<Entry>, std::greater<>>(
         std::greater<>(), std::move(storage));
     size_t done = 0;
     const size_t report_every = std::max<size_t>(planned / 100, 1000);
+    // The collapses on this thread, `beside` (if any) on another.
+    const auto collapse = [&] { CollapseAll(faces, planned, report_every, done); };
+    if (options_.beside) {
+      ParallelInvoke(options_.threads, collapse, options_.beside);
+    } else {
+      collapse();
+    }
+    return Compact(done);
+  }
+
+ private:
+  void CollapseAll(size_t& faces, size_t planned, size_t report_every, size_t& done) {
     while (!queue_.empty() && faces > options_.target_faces) {
       const Entry e = queue_.top();
       queue_.pop();
@@ -137,10 +153,8 @@ class Simplifier {
             1.0, static_cast<double>(done) / static_cast<double>(planned)));
       }
     }
-    return Compact(done);
   }
 
- private:
   struct Candidate {
     double cost;
     Vec3 position;
@@ -172,27 +186,47 @@ class Simplifier {
   // Face and boundary quadrics, boundary flags; returns the undirected
   // edges with their face counts.
   std::vector<std::pair<uint64_t, uint32_t>> InitQuadrics() {
-    std::vector<std::pair<uint64_t, uint32_t>> keyed;
-    keyed.reserve(faces_.size() * 3);
-    for (uint32_t f = 0; f < faces_.size(); ++f) {
-      const Face& t = faces_[f];
-      const Vec3 n = (positions_[t[1]] - positions_[t[0]])
-                         .cross(positions_[t[2]] - positions_[t[0]]);
-      const double twice_area = n.norm();
-      if (twice_area > 0) {
-        const Vec3 unit = n / twice_area;
-        const Quadric q =
-            Quadric::Plane(unit, -unit.dot(positions_[t[0]]), twice_area / 2);
-        for (uint32_t v : t) {
-          quadrics_[v] += q;
-          normal_sums_[v] += n / 2;
+    const int threads = options_.threads;
+    // Each vertex sums its faces' planes in face order (vertex_faces_ lists
+    // them so), as one pass over the faces would: the same sums for any
+    // thread count.
+    std::vector<Quadric> face_quadric(faces_.size());
+    std::vector<Vec3> face_normal(faces_.size());  // twice the area, or 0
+    ParallelFor(faces_.size(), threads, [&](size_t begin, size_t end) {
+      for (size_t f = begin; f < end; ++f) {
+        const Face& t = faces_[f];
+        const Vec3 n = (positions_[t[1]] - positions_[t[0]])
+                           .cross(positions_[t[2]] - positions_[t[0]]);
+        const double twice_area = n.norm();
+        if (twice_area > 0) {
+          const Vec3 unit = n / twice_area;
+          face_quadric[f] =
+              Quadric::Plane(unit, -unit.dot(positions_[t[0]]), twice_area / 2);
+          face_normal[f] = n;
+        } else {
+          face_normal[f] = Vec3::Zero();
         }
       }
-      for (int i = 0; i < 3; ++i) {
-        keyed.push_back({EdgeKey(t[i], t[(i + 1) % 3]), f});
+    });
+    ParallelFor(positions_.size(), threads, [&](size_t begin, size_t end) {
+      for (size_t v = begin; v < end; ++v) {
+        for (uint32_t f : vertex_faces_[v]) {
+          if (face_normal[f] == Vec3::Zero()) continue;
+          quadrics_[v] += face_quadric[f];
+          normal_sums_[v] += face_normal[f] / 2;
+        }
       }
-    }
-    std::sort(keyed.begin(), keyed.end());
+    });
+    std::vector<std::pair<uint64_t, uint32_t>> keyed(faces_.size() * 3);
+    ParallelFor(faces_.size(), threads, [&](size_t begin, size_t end) {
+      for (size_t f = begin; f < end; ++f) {
+        const Face& t = faces_[f];
+        for (size_t i = 0; i < 3; ++i) {
+          keyed[3 * f + i] = {EdgeKey(t[i], t[(i + 1) % 3]), static_cast<uint32_t>(f)};
+        }
+      }
+    });
+    ParallelSort(keyed.begin(), keyed.end(), threads);
     std::vector<std::pair<uint64_t, uint32_t>> edges;
     for (size_t i = 0; i < keyed.size();) {
       size_t j = i + 1;
@@ -282,17 +316,27 @@ class Simplifier {
     const bool both_boundary = boundary_[removed] && boundary_[kept];
     if (both_boundary && shared == 2) return Verdict::kRefused;  // would pinch
     if (shared == 1 && !both_boundary) return Verdict::kRefused;
-    // Link condition.
-    Neighbours(removed, kept, ring_a_);
-    Neighbours(kept, removed, ring_b_);
+    // Link condition: the neighbours both ends share, counted once each
+    // (marks instead of two sorted rings: this test runs for every popped
+    // edge).
+    if (mark_.empty() || mark_stamp_ >= 0xfffffffdu) {
+      mark_.assign(positions_.size(), 0);
+      mark_stamp_ = 0;
+    }
+    mark_stamp_ += 2;
+    const uint32_t in_a = mark_stamp_, counted = mark_stamp_ + 1;
+    for (uint32_t f : vertex_faces_[removed]) {
+      for (uint32_t x : faces_[f]) {
+        if (x != removed && x != kept) mark_[x] = in_a;
+      }
+    }
     size_t common = 0;
-    for (size_t i = 0, j = 0; i < ring_a_.size() && j < ring_b_.size();) {
-      if (ring_a_[i] < ring_b_[j]) {
-        ++i;
-      } else if (ring_b_[j] < ring_a_[i]) {
-        ++j;
-      } else {
-        ++common, ++i, ++j;
+    for (uint32_t f : vertex_faces_[kept]) {
+      for (uint32_t x : faces_[f]) {
+        if (x != removed && x != kept && mark_[x] == in_a) {
+          mark_[x] = counted;
+          ++common;
+        }
       }
     }
     if (common != static_cast<size_t>(shared)) return Verdict::kRefused;
@@ -490,7 +534,9 @@ class Simplifier {
   std::vector<uint32_t> component_faces_;
   double max_edge_squared_;
   std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue_;
-  std::vector<uint32_t> ring_a_, ring_b_;
+  std::vector<uint32_t> ring_a_;
+  std::vector<uint32_t> mark_;  // per vertex: CanCollapse's link-condition marks
+  uint32_t mark_stamp_ = 0;
 };
 
 }  // namespace

@@ -40,6 +40,13 @@ struct SimplifyOptions {
   std::vector<uint8_t> locked;
   // Called now and then with the fraction of the planned collapses done.
   std::function<void(double fraction)> progress;
+  // Threads for the set-up (quadrics, the first queue); the collapses run
+  // on the calling thread. The result does not depend on it.
+  int threads = 1;
+  // Other work (may be empty) run on a second thread while the collapses
+  // run, once the set-up is done with every thread; with threads == 1 it
+  // runs after them. Its exception is rethrown after both have ended.
+  std::function<void()> beside;
 };
 
 struct SimplifiedMesh {

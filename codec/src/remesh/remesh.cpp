@@ -133,10 +133,23 @@ class Pipeline {
     remesh::Components components = remesh::LabelComponents(mesh);
     remesh::SimplifyOptions simplify =
         PlanSimplification(mesh, components, plan);
-    const auto surface = std::make_unique<remesh::InputSurface>(
-        std::move(mesh), std::move(components));
-    MW_ASSIGN_OR_RETURN(Attempt attempt,
-                        FitBestAttempt(*surface, plan, std::move(simplify)));
+    simplify.threads = options_.threads;
+    // The first simplification needs only the mesh; the surface the fit
+    // queries (normals, BVH, boundary loops) is built beside its collapses
+    // (its set-up takes every thread).
+    std::unique_ptr<remesh::InputSurface> surface;
+    remesh::SimplifyOptions first = simplify;
+    first.beside = [&] {
+      surface = std::make_unique<remesh::InputSurface>(TriMesh(mesh),
+                                                       remesh::Components(components));
+    };
+    remesh::SimplifiedMesh first_base = Simplify(mesh, components, first, 0, "simplify");
+    mesh = TriMesh{};
+    components = remesh::Components{};
+    EndStage("simplify");
+    MW_ASSIGN_OR_RETURN(
+        Attempt attempt,
+        FitBestAttempt(*surface, plan, std::move(simplify), std::move(first_base)));
     Measure(*surface, std::move(attempt));
     AddResultWarnings();
     Report("done", 1);
@@ -175,7 +188,7 @@ class Pipeline {
           " faces repeat a corner or duplicate another face");
     }
     Report("repair", 0);
-    const remesh::RepairReport repair = remesh::RepairManifold(mesh);
+    const remesh::RepairReport repair = remesh::RepairManifold(mesh, options_.threads);
     result_.non_manifold_edges = repair.non_manifold_edges;
     result_.non_manifold_vertices = repair.non_manifold_vertices;
     result_.split_vertex_copies = repair.added_vertices;
@@ -255,7 +268,8 @@ class Pipeline {
   // can trade one miss for another; the locks accumulate.
   Result<Attempt> FitBestAttempt(const remesh::InputSurface& surface,
                                  const remesh::LevelPlan& plan,
-                                 remesh::SimplifyOptions simplify) {
+                                 remesh::SimplifyOptions simplify,
+                                 remesh::SimplifiedMesh first_base) {
     const double diagonal = surface.diagonal();
     const size_t max_locks =
         static_cast<size_t>(kMaxLockShare *
@@ -274,7 +288,7 @@ class Pipeline {
                              unacceptable ? folds : m.max_distance);
     };
     MW_ASSIGN_OR_RETURN(Attempt attempt,
-                        Build(surface, simplify, plan, 0, "simplify", "fit"));
+                        Fit(surface, std::move(first_base), simplify.locked, plan, 0, "fit"));
     remesh::MissedVertices missed = measure(attempt);
     EndStage("check features");
     auto best_score = score(missed, attempt);
@@ -288,8 +302,10 @@ class Pipeline {
         if (!simplify.locked[v]) ++locks;
         simplify.locked[v] = 1;
       }
-      MW_ASSIGN_OR_RETURN(Attempt next, Build(surface, simplify, plan, index,
-                                              "refine", "refine"));
+      remesh::SimplifiedMesh base = Simplify(surface.mesh(), surface.components(),
+                                             simplify, index, "refine");
+      MW_ASSIGN_OR_RETURN(Attempt next, Fit(surface, std::move(base), simplify.locked,
+                                            plan, index, "refine"));
       missed = measure(next);
       const auto next_score = score(missed, next);
       if (next_score < best_score) {
@@ -330,22 +346,32 @@ class Pipeline {
     EndStage("check");
   }
 
-  // Progress: attempt i runs over [kAttemptStart[i], kAttemptStart[i + 1]).
-  Result<Attempt> Build(const remesh::InputSurface& surface,
-                        const remesh::SimplifyOptions& options_in,
-                        const remesh::LevelPlan& plan, int index,
-                        const char* simplify_stage, const char* fit_stage) {
+  // Progress: attempt i runs over [kAttemptStart[i], kAttemptStart[i + 1]),
+  // its simplification the first kSimplifyPart of that.
+  remesh::SimplifiedMesh Simplify(const TriMesh& mesh,
+                                  const remesh::Components& components,
+                                  const remesh::SimplifyOptions& options_in,
+                                  int index, const char* stage) {
     const double begin = kAttemptStart[index];
     const double span = kAttemptStart[index + 1] - begin;
     remesh::SimplifyOptions options = options_in;
-    options.progress = [this, begin, span, simplify_stage](double f) {
-      Report(simplify_stage, begin + span * kSimplifyPart * f);
+    options.progress = [this, begin, span, stage](double f) {
+      Report(stage, begin + span * kSimplifyPart * f);
     };
-    Report(simplify_stage, begin);
-    remesh::SimplifiedMesh base = remesh::SimplifyByEdgeCollapse(
-        surface.mesh(), surface.components(), options);
+    Report(stage, begin);
+    remesh::SimplifiedMesh base =
+        remesh::SimplifyByEdgeCollapse(mesh, components, options);
     remesh::FlipToImproveAngles(base.mesh);
-    if (index == 0) EndStage("simplify");
+    return base;
+  }
+
+  Result<Attempt> Fit(const remesh::InputSurface& surface,
+                      remesh::SimplifiedMesh base,
+                      const std::vector<uint8_t>& locked,
+                      const remesh::LevelPlan& plan, int index,
+                      const char* fit_stage) {
+    const double begin = kAttemptStart[index];
+    const double span = kAttemptStart[index + 1] - begin;
     auto hierarchy = SemiRegularHierarchy::Build(
         static_cast<uint32_t>(base.mesh.positions.size()), base.mesh.faces,
         plan.levels);
@@ -356,8 +382,7 @@ class Pipeline {
     out.base_vertices = base.mesh.positions.size();
     out.base_faces = base.mesh.faces.size();
     std::vector<Vec3> positions;
-    remesh::PlaceBaseVertices(base, surface, options.locked, positions,
-                              out.anchors);
+    remesh::PlaceBaseVertices(base, surface, locked, positions, out.anchors);
     remesh::FitOptions fit;
     fit.relax_rounds = options_.relax_rounds;
     fit.threads = options_.threads;

@@ -8,7 +8,7 @@
 #include <mutex>
 #include <numbers>
 
-#include "remesh/parallel_for.h"
+#include "core/parallel_for.h"
 
 namespace meshwave::remesh {
 namespace {

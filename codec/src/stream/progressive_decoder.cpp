@@ -5,12 +5,12 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
-#include <thread>
 
 #include "bitplane/bitplane_io.h"
 #include "bitplane/bitplane_passes.h"
 #include "bitplane/subband_layout.h"
 #include "core/deferred.h"
+#include "core/parallel_for.h"
 #include "meshwave/progression.h"
 #include "meshwave/semiregular.h"
 #include "meshwave/wavelet.h"
@@ -24,10 +24,7 @@
 namespace meshwave {
 namespace {
 
-bool SetUpInBackground(int requested) {
-  if (requested > 0) return requested >= 2;
-  return std::thread::hardware_concurrency() >= 2;
-}
+bool SetUpInBackground(int requested) { return ResolveThreads(requested) >= 2; }
 
 // Levels whose inverse transform Create builds itself, so that the first
 // meshes (the viewer draws one level past the finest with detail) come

@@ -152,8 +152,8 @@ std::vector<double> SubbandComponent(const PreparedStream& prepared, int j, int 
   return values;
 }
 
-QuantizedComponent QuantizeComponent(PreparedStream& prepared, int j, std::vector<double> values,
-                                     int deadzone, double& energy) {
+QuantizedComponent QuantizeValues(const PreparedStream& prepared, int j,
+                                  std::vector<double> values, int deadzone, double& energy) {
   const double gain = prepared.gains.subband[static_cast<size_t>(j)];
   QuantizedComponent q;
   q.value = std::move(values);
@@ -169,10 +169,20 @@ QuantizedComponent QuantizeComponent(PreparedStream& prepared, int j, std::vecto
     energy += gain * x * x;
   }
   q.top = TopBitplane(max_q);
-  proto::Quantizer* pq = prepared.header.add_quantizers();
+  return q;
+}
+
+void AppendQuantizer(const QuantizedComponent& q, int deadzone, proto::StreamHeader& header) {
+  proto::Quantizer* pq = header.add_quantizers();
   pq->set_step(q.step);
   pq->set_deadzone(static_cast<uint32_t>(deadzone));
   pq->set_top_bitplane(q.top);
+}
+
+QuantizedComponent QuantizeComponent(PreparedStream& prepared, int j, std::vector<double> values,
+                                     int deadzone, double& energy) {
+  QuantizedComponent q = QuantizeValues(prepared, j, std::move(values), deadzone, energy);
+  AppendQuantizer(q, deadzone, prepared.header);
   return q;
 }
 

@@ -51,6 +51,14 @@ std::vector<double> SubbandComponent(const PreparedStream& prepared, int j, int 
 QuantizedComponent QuantizeComponent(PreparedStream& prepared, int j, std::vector<double> values,
                                      int deadzone, double& energy);
 
+// QuantizeComponent in two halves, for coders that quantise subbands on
+// several threads: the quantisation (reads `prepared` only; adds to
+// `energy`), and the quantizer's entry in the header (in (subband,
+// component) order, as the decoder reads them).
+QuantizedComponent QuantizeValues(const PreparedStream& prepared, int j,
+                                  std::vector<double> values, int deadzone, double& energy);
+void AppendQuantizer(const QuantizedComponent& q, int deadzone, proto::StreamHeader& header);
+
 }  // namespace meshwave
 
 #endif  // MESHWAVE_STREAM_STREAM_PREPARATION_H_
