@@ -34,9 +34,13 @@ TEST(LazyDeadlineTest, MovingTheDeadlineLaterArmsNothing) {
   Fixture f;
   const auto start = Clock::now();
   for (int i = 0; i < 1000; ++i) f.deadline.ExpiresAfter(milliseconds(60));
+  EXPECT_EQ(f.deadline.arms(), 1u);  // the later deadlines were only recorded
   f.ioc.run();
   EXPECT_EQ(f.fired, 1);
-  EXPECT_EQ(f.deadline.arms(), 1u);
+  // The wait armed by the first call may end before the last call's
+  // deadline (by as long as the loop took, which a busy machine stretches):
+  // then it waits once more for the rest, and only once.
+  EXPECT_LE(f.deadline.arms(), 2u);
   EXPECT_GE(f.fired_at - start, milliseconds(60));
 }
 
