@@ -265,18 +265,25 @@ void HttpSession::DoWrite(Response response, bool close) {
   head_bytes_.clear();
   AppendStatusLine(head_bytes_, version_, status);
   AppendFields(head_bytes_, response, body_bytes, head_);
-  head_bytes_ += ConnectionField(version_, keep_alive);
-  head_bytes_ += "\r\n";
   response_.emplace(std::move(response));
   status_ = status;
   buffers_.clear();
-  buffers_.emplace_back(head_bytes_.data(), head_bytes_.size());
-  if (!head_) {  // HEAD: the same head as GET, no body
-    const auto& body = response_->body();
-    if (!body.owned.empty()) buffers_.emplace_back(body.owned.data(), body.owned.size());
-    buffers_.insert(buffers_.end(), body.slices.begin(), body.slices.end());
-  }
+  QueueHead(keep_alive);
+  QueueBody(response_->body().owned, response_->body().slices);
   StartWrite(keep_alive);
+}
+
+void HttpSession::QueueHead(bool keep_alive) {
+  head_bytes_ += ConnectionField(version_, keep_alive);
+  head_bytes_ += "\r\n";
+  buffers_.emplace_back(head_bytes_.data(), head_bytes_.size());
+}
+
+void HttpSession::QueueBody(const std::string& owned,
+                            const std::vector<net::const_buffer>& slices) {
+  if (head_) return;  // HEAD: the same head as GET, no body
+  if (!owned.empty()) buffers_.emplace_back(owned.data(), owned.size());
+  buffers_.insert(buffers_.end(), slices.begin(), slices.end());
 }
 
 void HttpSession::WriteCached(std::shared_ptr<const CachedResponse> cached,
@@ -284,19 +291,15 @@ void HttpSession::WriteCached(std::shared_ptr<const CachedResponse> cached,
   const bool keep_alive = KeepAlive(close);
   buffers_.clear();
   if (version_ >= 11 && keep_alive) {
+    // The cached head is the HTTP/1.1 keep-alive one, ready to send.
     buffers_.emplace_back(cached->head.data(), cached->head.size());
   } else {
     head_bytes_.clear();
     AppendStatusLine(head_bytes_, version_, cached->status);
     head_bytes_ += cached->fields();
-    head_bytes_ += ConnectionField(version_, keep_alive);
-    head_bytes_ += "\r\n";
-    buffers_.emplace_back(head_bytes_.data(), head_bytes_.size());
+    QueueHead(keep_alive);
   }
-  if (!head_) {
-    if (!cached->owned.empty()) buffers_.emplace_back(cached->owned.data(), cached->owned.size());
-    buffers_.insert(buffers_.end(), cached->slices.begin(), cached->slices.end());
-  }
+  QueueBody(cached->owned, cached->slices);
   status_ = cached->status;
   cached_ = std::move(cached);
   mesh_ = std::move(mesh);

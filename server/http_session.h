@@ -49,6 +49,10 @@ class HttpSession : public Closable, public std::enable_shared_from_this<HttpSes
   void WriteCached(std::shared_ptr<const CachedResponse> cached,
                    std::shared_ptr<const ServedMesh> mesh, bool close);
   bool KeepAlive(bool close) const;
+  // buffers_ += head_bytes_ ended by the Connection field; += the body
+  // unless the request is a HEAD.
+  void QueueHead(bool keep_alive);
+  void QueueBody(const std::string& owned, const std::vector<net::const_buffer>& slices);
   void StartWrite(bool keep_alive);
   void OnWrite(bool close, beast::error_code ec, size_t bytes);
   void DoClose();

@@ -77,7 +77,8 @@ struct ProgressiveDecoder::Impl {
   bool fresh() const { return decoded == 0 && !broken; }
 
   // The transform that reconstructs M^level: the coarse one while it
-  // suffices, so a first mesh does not wait for the finest stencils.
+  // suffices (always, when it has every level: `transform` is then never
+  // started), so a first mesh does not wait for the finest stencils.
   const WaveletTransform& TransformTo(int level) const {
     if (level <= coarse->levels()) return *coarse;
     const Result<WaveletTransform>& full = transform.Get();
@@ -126,11 +127,11 @@ Result<std::unique_ptr<ProgressiveDecoder>> ProgressiveDecoder::Create(
     Impl::InitStates(m->header, p);
     return p;
   });
-  m->transform.Start(background, [m] {
-    return m->coarse->levels() >= m->hierarchy->levels()
-               ? Result<WaveletTransform>(*m->coarse)
-               : WaveletTransform::Create(m->hierarchy, m->settings);
-  });
+  // (The full transform builds the coarse levels again: a few percent.)
+  if (m->coarse->levels() < m->hierarchy->levels()) {
+    m->transform.Start(background,
+                       [m] { return WaveletTransform::Create(m->hierarchy, m->settings); });
+  }
   std::unique_ptr<ProgressiveDecoder> decoder(new ProgressiveDecoder(std::move(impl)));
   decoder->Reset();
   return decoder;
