@@ -38,6 +38,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   DecoderOptions options;
   options.max_base_vertices = 1u << 12;
   options.max_faces = 1u << 14;
+  options.threads = 1;  // the set-up on first use: no threads started per input
   auto dec = ProgressiveDecoder::Create(h, options);
   if (!dec.ok()) return 0;
   for (size_t i = 0; i < parsed->ids.size(); ++i) {

@@ -26,7 +26,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const uint16_t check = PacketCheck(payload);
   h.packets.check[2 * id] = static_cast<char>(check >> 8);
   h.packets.check[2 * id + 1] = static_cast<char>(check & 0xff);
-  auto dec = ProgressiveDecoder::Create(h);
+  DecoderOptions options;
+  options.threads = 1;  // the set-up on first use: no threads started per input
+  auto dec = ProgressiveDecoder::Create(h, options);
   fuzz::Require(dec.ok(), "the fixture header is valid");
   for (uint32_t k = 0; k < id; ++k) {
     fuzz::Require((*dec)->AddPacket(k, f.payloads[k]).ok(), "a real prefix decodes");
