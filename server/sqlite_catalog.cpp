@@ -1,5 +1,6 @@
 #include "sqlite_catalog.h"
 
+#include <fstream>
 #include <utility>
 
 #include "ingest_lock.h"
@@ -104,6 +105,7 @@ Result<std::unique_ptr<SqliteCatalog>> SqliteCatalog::Open(const std::filesystem
   MW_RETURN_IF_ERROR(catalog->Exec("PRAGMA wal_autocheckpoint=16;"));
   MW_RETURN_IF_ERROR(catalog->Exec("PRAGMA journal_size_limit=65536;"));
   MW_RETURN_IF_ERROR(catalog->Exec(kSchema));
+  catalog->KeepReserve();
   return catalog;
 }
 
@@ -210,11 +212,41 @@ Result<uint64_t> SqliteCatalog::Count() {
 Result<bool> SqliteCatalog::Remove(const std::string& id) {
   if (!IsValidMeshId(id)) return InvalidArgument("catalog: invalid id");
   std::lock_guard lock(mutex_);
-  Statement st(db_, "DELETE FROM meshes WHERE id = ?;");
-  if (!st.ok()) return SqlError(db_, "prepare delete");
-  st.Bind(1, id);
-  if (st.Step() != SQLITE_DONE) return SqlError(db_, "delete");
-  return sqlite3_changes(db_) > 0;
+  for (int attempt = 0;; ++attempt) {
+    Statement st(db_, "DELETE FROM meshes WHERE id = ?;");
+    if (!st.ok()) return SqlError(db_, "prepare delete");
+    st.Bind(1, id);
+    if (st.Step() == SQLITE_DONE) break;
+    // A full disk: the delete's WAL frames need a few pages. Give up the
+    // reserve (deleting is how a user frees space) and try once more.
+    if (attempt > 0 || sqlite3_errcode(db_) != SQLITE_FULL || !ReleaseReserve()) {
+      return SqlError(db_, "delete");
+    }
+  }
+  const bool removed = sqlite3_changes(db_) > 0;
+  KeepReserve();
+  return removed;
+}
+
+std::filesystem::path SqliteCatalog::reserve_path() const {
+  return store_dir() / "catalog.reserve";
+}
+
+void SqliteCatalog::KeepReserve() {
+  std::error_code ec;
+  if (std::filesystem::file_size(reserve_path(), ec) == kReserveBytes) return;
+  // Written, not allocated sparsely: the space must really be held.
+  const std::string zeros(kReserveBytes, '\0');
+  {
+    std::ofstream out(reserve_path(), std::ios::binary | std::ios::trunc);
+    if (out.write(zeros.data(), static_cast<std::streamsize>(zeros.size())).flush()) return;
+  }
+  std::filesystem::remove(reserve_path(), ec);  // no room yet: try again later
+}
+
+bool SqliteCatalog::ReleaseReserve() {
+  std::error_code ec;
+  return std::filesystem::remove(reserve_path(), ec);
 }
 
 Result<std::vector<std::string>> SqliteCatalog::ContainerPaths() {

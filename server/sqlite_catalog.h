@@ -33,6 +33,14 @@ class SqliteCatalog final : public Catalog {
  private:
   SqliteCatalog(std::filesystem::path dir, sqlite3* db) : Catalog(std::move(dir)), db_(db) {}
   Status Exec(const char* sql);
+  // DIR/catalog.reserve, kReserveBytes of written zeros: room that a
+  // DELETE on a full disk takes for its WAL frames (SQLite otherwise
+  // answers "database or disk is full" to the request that would free
+  // space). Recreated, when there is room, after each delete.
+  static constexpr size_t kReserveBytes = 128 * 1024;
+  std::filesystem::path reserve_path() const;
+  void KeepReserve();
+  bool ReleaseReserve();  // true when there was one to release
 
   sqlite3* db_;
   std::mutex mutex_;

@@ -222,8 +222,9 @@ void DiskFullScenario(bool upload_after_delete) {
   const proto::MeshList list = List(server->port());
   for (int i = 0; i < list.meshes_size() && i < 3; ++i) {
     HttpConnection c(server->port());
-    EXPECT_EQ(c.Send(http::verb::delete_, "/v1/meshes/" + list.meshes(i).id(),
-                     {{"Authorization", std::string("Bearer ") + kToken}}).status, 204u);
+    const auto reply = c.Send(http::verb::delete_, "/v1/meshes/" + list.meshes(i).id(),
+                              {{"Authorization", std::string("Bearer ") + kToken}});
+    EXPECT_EQ(reply.status, 204u) << reply.body;
   }
   if (!upload_after_delete) {
     ExpectCatalogConsistent(server->port(), catalog);

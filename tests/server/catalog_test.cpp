@@ -166,6 +166,21 @@ TEST(SqliteCatalogTest, CreatesMissingDirectoryInWalMode) {
   EXPECT_EQ(*(*again)->JournalMode(), "wal");
 }
 
+// The reserve a DELETE on a full disk takes (the disk-full fault test
+// fills a tmpfs for real): held as written bytes, and back after a delete.
+TEST(SqliteCatalogTest, HoldsAReserveAndKeepsItAfterDeletes) {
+  TempDir tmp;
+  auto catalog = SqliteCatalog::Open(tmp / "c");
+  ASSERT_TRUE(catalog.ok()) << catalog.status().ToString();
+  const auto reserve = tmp / "c/catalog.reserve";
+  ASSERT_TRUE(std::filesystem::exists(reserve));
+  EXPECT_EQ(std::filesystem::file_size(reserve), 128u * 1024);
+  ASSERT_TRUE((*catalog)->Insert(Entry("00000000000a", 1)).ok());
+  std::filesystem::remove(reserve);  // as a delete on a full disk leaves it
+  EXPECT_TRUE(*(*catalog)->Remove("00000000000a"));
+  EXPECT_EQ(std::filesystem::file_size(reserve), 128u * 1024);
+}
+
 // --- choosing the backend ---------------------------------------------
 
 TEST(CatalogOpenTest, ChoosesTheBackendByLocation) {
