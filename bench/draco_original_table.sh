@@ -52,8 +52,8 @@ qps=${QPS:-8 10 12 14}
 ratio_limit=${MAX_VERTEX_RATIO:-16}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
+source "$root/bench/lib.sh"
 
-psnr_of() { "$cli" compare "$1" "$2" --json | jq '.surface.rms.psnr_db'; }
 best_ms() {  # best_ms BUDGET STREAM: meshwave's decode time, best of 3
   local best=
   for _ in 1 2 3; do
@@ -61,38 +61,6 @@ best_ms() {  # best_ms BUDGET STREAM: meshwave's decode time, best of 3
     if [[ -z $best ]] || (( $(echo "$t < $best" | bc -l) )); then best=$t; fi
   done
   printf '%.1f' "$best"
-}
-
-# prefix MESH STREAM TARGET_DB: "bytes vertices" of the smallest rd-order
-# prefix whose decoded mesh reaches TARGET_DB against MESH, or "- -".
-# Caches per stream the PSNR of each prefix (keyed by its packet count).
-declare -A cache
-prefix() {
-  local mesh=$1 stream=$2 target=$3
-  local size; size=$(stat -c %s "$stream")
-  local lo=0 hi=$size found=
-  # Invariant: budget hi reaches the target (checked first), lo does not.
-  measure() {  # measure BUDGET -> sets m_psnr m_bytes m_vertices m_key
-    local j; j=$("$cli" decode --json --order rd --budget "$1" "$stream" "$tmp/p.ply" 2> /dev/null) ||
-      { m_psnr=-1; m_bytes=0; m_vertices=0; m_key=none; return; }
-    m_bytes=$(jq -r .bytes <<< "$j"); m_vertices=$(jq -r .vertices <<< "$j")
-    m_key="$stream:$(jq -r .packets <<< "$j")"
-    if [[ -z ${cache[$m_key]:-} ]]; then cache[$m_key]=$(psnr_of "$mesh" "$tmp/p.ply"); fi
-    m_psnr=${cache[$m_key]}
-  }
-  measure "$hi"
-  if (( $(echo "$m_psnr < $target" | bc -l) )); then echo "- -"; return; fi
-  found="$m_bytes $m_vertices"
-  while (( hi - lo > 1 )); do
-    local mid=$(( (lo + hi) / 2 ))
-    measure "$mid"
-    if (( $(echo "$m_psnr >= $target" | bc -l) )); then
-      hi=$m_bytes; found="$m_bytes $m_vertices"   # jump to the prefix's real size
-    else
-      lo=$mid
-    fi
-  done
-  echo "$found"
 }
 
 echo "| mesh (V) | Draco qp | Draco bytes | Draco dB | Draco decode ms | default: prefix bytes | ratio | vertices | decode ms | --fidelity F: prefix bytes | ratio | vertices | decode ms |"
@@ -107,7 +75,7 @@ for mesh in $MESHES; do
     draco_encoder -i "$mesh" -o "$tmp/d.drc" -cl 10 -qp "$qp" > /dev/null
     dms[$qp]=$(draco_decoder -i "$tmp/d.drc" -o "$tmp/d.ply" | sed -n 's/.*(\([0-9.]*\) ms to decode).*/\1/p')
     dbytes[$qp]=$(stat -c %s "$tmp/d.drc")
-    dpsnr[$qp]=$(psnr_of "$mesh" "$tmp/d.ply")
+    dpsnr[$qp]=$(surface_psnr "$mesh" "$tmp/d.ply")
     if (( $(echo "${dpsnr[$qp]} > $best" | bc -l) )); then best=${dpsnr[$qp]}; fi
   done
   aim=${dpsnr[${FIDELITY_QP:-12}]:-$best}
@@ -118,14 +86,14 @@ for mesh in $MESHES; do
     > "$tmp/fid.out" 2>&1
   for s in def fid; do
     "$cli" decode "$tmp/$s.mwv" "$tmp/full.ply" > /dev/null
-    ceiling=$(psnr_of "$mesh" "$tmp/full.ply")
+    ceiling=$(surface_psnr "$mesh" "$tmp/full.ply")
     ceilings+=("$name $s $(printf '%.2f' "$ceiling") $(stat -c %s "$tmp/$s.mwv")")
   done
   for qp in $qps; do
     row="| $name ($v) | $qp | ${dbytes[$qp]} | $(printf '%.2f' "${dpsnr[$qp]}") | ${dms[$qp]} |"
     for s in def fid; do
       echo "  qp $qp, $s stream: searching the prefix" >&2
-      read -r pb pv <<< "$(prefix "$mesh" "$tmp/$s.mwv" "${dpsnr[$qp]}")"
+      read -r pb pv <<< "$(rd_prefix "$mesh" "$tmp/$s.mwv" "${dpsnr[$qp]}")"
       if [[ $pb == - ]]; then
         row="$row - | - | - | - |"
       else

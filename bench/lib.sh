@@ -64,3 +64,46 @@ shared_meshes_of_at_least() {
   done
   echo "$list"
 }
+
+# surface_psnr ORIGINAL DECODED: the symmetric surface PSNR of DECODED
+# against ORIGINAL as `meshwave compare` gives it (peak = the original's
+# bounding-box diagonal). Needs $cli, jq.
+surface_psnr() { "$cli" compare "$1" "$2" --json | jq '.surface.rms.psnr_db'; }
+
+# rd_prefix MESH STREAM TARGET_DB: "bytes vertices" of the smallest rd-order
+# prefix of STREAM whose decoded mesh (as `meshwave decode` writes it)
+# reaches TARGET_DB against MESH, or "- -": a bisection over the budget
+# (prefixes are whole packets, so it is exact at packet granularity; it
+# relies on the rd order's PSNR never decreasing). Caches the PSNR of each
+# prefix, keyed by mesh, stream path and size, and packet count (a path
+# may be reused for another stream). Needs $cli, $tmp, jq, bc.
+declare -A rd_prefix_cache
+rd_prefix() {
+  local mesh=$1 stream=$2 target=$3
+  local size; size=$(stat -c %s "$stream")
+  local lo=0 hi=$size found=
+  # Invariant: budget hi reaches the target (checked first), lo does not.
+  measure() {  # measure BUDGET -> sets m_psnr m_bytes m_vertices m_key
+    local j; j=$("$cli" decode --json --order rd --budget "$1" "$stream" "$tmp/p.ply" 2> /dev/null) ||
+      { m_psnr=-1; m_bytes=0; m_vertices=0; m_key=none; return; }
+    m_bytes=$(jq -r .bytes <<< "$j"); m_vertices=$(jq -r .vertices <<< "$j")
+    m_key="$mesh:$stream:$size:$(jq -r .packets <<< "$j")"
+    if [[ -z ${rd_prefix_cache[$m_key]:-} ]]; then
+      rd_prefix_cache[$m_key]=$(surface_psnr "$mesh" "$tmp/p.ply")
+    fi
+    m_psnr=${rd_prefix_cache[$m_key]}
+  }
+  measure "$hi"
+  if (( $(echo "$m_psnr < $target" | bc -l) )); then echo "- -"; return; fi
+  found="$m_bytes $m_vertices"
+  while (( hi - lo > 1 )); do
+    local mid=$(( (lo + hi) / 2 ))
+    measure "$mid"
+    if (( $(echo "$m_psnr >= $target" | bc -l) )); then
+      hi=$m_bytes; found="$m_bytes $m_vertices"   # jump to the prefix's real size
+    else
+      lo=$mid
+    fi
+  done
+  echo "$found"
+}

@@ -17,17 +17,19 @@ namespace {
 using testing::RunCli;
 using testing::TempDir;
 
-// PSNR of `decoded` against `reference` (vertices matched by nearest
-// neighbour: the decoder returns canonical order).
+// Symmetric surface PSNR of `decoded` against `reference`, as `meshwave
+// compare` gives it (peak = the reference's bounding-box diagonal): what a
+// user judges a stream by. (The default quantises tangential detail 8 times
+// coarser than normal detail: vertices slide along the surface, which a
+// vertex-to-vertex PSNR would count and the surface distance does not.)
 double PsnrAgainst(const std::filesystem::path& reference,
                    const std::filesystem::path& decoded) {
   auto a = ReadMesh(reference);
   auto b = ReadMesh(decoded);
   EXPECT_TRUE(a.ok() && b.ok());
-  auto e = VertexErrorByNearest(a->positions, b->positions,
-                                BoundingBox(a->positions).Diagonal());
-  EXPECT_TRUE(e.ok()) << e.status().ToString();
-  return e->psnr_db;
+  auto d = SymmetricSurfaceDistance(*a, *b);
+  EXPECT_TRUE(d.ok()) << d.status().ToString();
+  return d->PsnrDb(d->rms);
 }
 
 TEST(EncodeDecodeCliTest, FullStreamIsNearLossless) {
@@ -218,9 +220,13 @@ TEST(EncodeDecodeCliTest, JsonReportDescribesTheDecode) {
   EXPECT_GT(report.packets(), 0u);
   EXPECT_LT(report.packets(), report.packets_total());
   EXPECT_GT(report.decode_ms(), 0);
-  // The index's estimate against the truth (nearest matching: canonical
-  // vertex order) stays within a few dB.
-  EXPECT_NEAR(report.estimated_psnr_db(), PsnrAgainst(in, dir / "half.ply"), 3.0);
+  // The index's estimate (error off the surface at the vertices) against
+  // the surface PSNR (holes.off is encoded as it is): never optimistic by
+  // more than a hair, and pessimistic by at most a few dB, as the surface
+  // between vertices interpolates their errors (measured: 4.9 dB here).
+  const double surface_db = PsnrAgainst(in, dir / "half.ply");
+  EXPECT_LE(report.estimated_psnr_db(), surface_db + 1.0);
+  EXPECT_GE(report.estimated_psnr_db(), surface_db - 6.0);
 }
 
 TEST(EncodeDecodeCliTest, DamagedStreamsAreRefusedOrDecodedPartly) {

@@ -117,15 +117,23 @@ Status ApplyTransformOptions(const std::string& predictor,
   return Status::Ok();
 }
 
-void AddQuantizerOption(CLI::App* cmd, std::string& quantizer) {
-  cmd->add_option("--quantizer", quantizer,
+void AddQuantizerOption(CLI::App* cmd, QuantizerArgs& args) {
+  cmd->add_option("--quantizer", args.quantizer,
                   "Deadzone: saq (z = 2), ueq (z = 1), z1.5, z2.5, or auto (per subband "
                   "and component from the fitted Laplacian mixture, Satti et al. 2011)")
       ->check(CLI::IsMember({"saq", "ueq", "z1.5", "z2.5", "auto"}))
       ->capture_default_str();
+  cmd->add_option("--tangent-step", args.tangent_step,
+                  "Step of the two tangential detail components over the normal one's "
+                  "(local frames): sliding along the surface barely changes it; 1 "
+                  "quantises all three alike")
+      ->check(CLI::Range(1.0, 1024.0))
+      ->capture_default_str();
 }
 
-Status ApplyQuantizerOption(const std::string& quantizer, EncodeOptions& options) {
+Status ApplyQuantizerOption(const QuantizerArgs& args, EncodeOptions& options) {
+  options.tangent_step_scale = args.tangent_step;
+  const std::string& quantizer = args.quantizer;
   // Codes of quant/deadzone_quantizer.h.
   if (quantizer == "saq") options.deadzone = 0;
   else if (quantizer == "ueq") options.deadzone = 1;

@@ -42,8 +42,13 @@ Status ApplyTransformOptions(const std::string& predictor,
 // --quantizer saq|ueq|z1.5|z2.5|auto: the deadzone of every (subband,
 // component), or `auto`, chosen per (subband, component) from the fitted
 // Laplacian mixture (Satti et al. 2011).
-void AddQuantizerOption(CLI::App* cmd, std::string& quantizer);
-Status ApplyQuantizerOption(const std::string& quantizer, EncodeOptions& options);
+// --quantizer (the deadzone) and --tangent-step (EncodeOptions::tangent_step_scale).
+struct QuantizerArgs {
+  std::string quantizer = "saq";
+  double tangent_step = EncodeOptions{}.tangent_step_scale;
+};
+void AddQuantizerOption(CLI::App* cmd, QuantizerArgs& args);
+Status ApplyQuantizerOption(const QuantizerArgs& args, EncodeOptions& options);
 
 // The level of the mesh a command writes: `extra_levels` past the finest
 // level that received detail (ProgressiveDecoder::DetailLevels), at most

@@ -89,7 +89,8 @@ Status Run(const DecodeArgs& args) {
   }
   std::printf("wrote %s: %zu vertices, %zu faces (level %d of %d)\n", args.out.c_str(),
               mesh.positions.size(), mesh.faces.size(), level, levels);
-  std::printf("%zu of %zu packets in %s order, %llu bytes, estimated PSNR %.2f dB\n",
+  std::printf("%zu of %zu packets in %s order, %llu bytes, estimated PSNR %.2f dB "
+              "(against the encoded mesh)\n",
               selection.ids.size(), order.size(), ProgressionName(progression),
               static_cast<unsigned long long>(selection.bytes),
               (*decoder)->EstimatedPsnr());

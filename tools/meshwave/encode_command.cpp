@@ -22,7 +22,8 @@ namespace {
 
 struct EncodeArgs {
   std::string in, out, predictor = "butterfly", update = "",
-                        coder = "3xc", quantizer = "saq";
+                        coder = "3xc";
+  QuantizerArgs quantizer;
   int levels = -1;
   int precision = 16;
   bool precision_given = false;

@@ -25,7 +25,8 @@ namespace {
 
 struct RdArgs {
   std::string in, csv, coders = "3xc,sim,pgc", predictor = "butterfly",
-                       update = "", quantizer = "saq";
+                       update = "";
+  QuantizerArgs quantizer;
   int levels = -1;
   int precision = 16;
   uint32_t leaf_size = EncodeOptions{}.octree_leaf_size;

@@ -27,6 +27,13 @@ struct EncodeOptions {
   // Cells of at most this many coefficients are coded one by one. 32 beat
   // 2 and 8 at every rate on the four meshes of docs/RD_RESULTS.md.
   uint32_t octree_leaf_size = 32;
+  // With local frames, the tangential components' step is this many times
+  // the normal one's, and their error counts 1 / scale^2 in the packet
+  // order: a vertex that slides along the surface barely moves the surface,
+  // which is what a user's distance to the original measures. 8 beat 1, 2,
+  // 4 and 16 at mid and high rates on the shared meshes (docs/RD_RESULTS.md,
+  // "Tangential step"). 1 quantises every component alike.
+  double tangent_step_scale = 8;
   int deadzone = 0;  // xi0 code (quant/deadzone_quantizer.h): 0 = SAQ
   // `--quantizer auto` (Satti et al. 2011): each (subband, component) gets the
   // deadzone its fitted Laplacian mixture calls for (sigma2/sigma1: UEQ

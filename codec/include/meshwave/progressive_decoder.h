@@ -76,8 +76,12 @@ class ProgressiveDecoder {
   // and none of the received detail, so Mesh(DetailLevels()) is the
   // smallest mesh that carries everything received.
   int DetailLevels() const;
-  // Estimated PSNR (peak = bounding-box diagonal) from the index's
-  // distortion figures for the packets held.
+  // Estimated PSNR (peak = bounding-box diagonal) against the encoded mesh,
+  // from the index's distortion figures for the packets held: a vertex
+  // error whose part along the surface counts 1 / s^2 (s the tangential
+  // step scale, docs/CODEC.md), so close to the error off the surface. The
+  // symmetric surface PSNR (`meshwave compare`) is usually 0 to 5 dB higher:
+  // between vertices the surface interpolates their errors.
   double EstimatedPsnr() const;
 
   // The mesh at level max_level (-1: the finest level, J). AddPacket only

@@ -50,7 +50,7 @@ Result<PgcStream> EncodePgc(const SemiRegularMesh& input,
   for (int j = 0; j < levels; ++j) {
     for (int c = 0; c < 3; ++c) {
       QuantizedComponent& q = quantized[j][c];
-      q = QuantizeComponent(prepared, j, SubbandComponent(prepared, j, c), options.deadzone,
+      q = QuantizeComponent(prepared, j, c, SubbandComponent(prepared, j, c), options.deadzone,
                             model.chain_start[0]);
       trees[c].q0.push_back(q.q0);
       trees[c].negative.push_back(q.negative);
@@ -80,7 +80,7 @@ Result<PgcStream> EncodePgc(const SemiRegularMesh& input,
       for (const TreeNode& n : s.lsp()) {
         const uint32_t mag = s.mag(n.j)[n.k];
         const QuantizedComponent& q = quantized[n.j][c];
-        reduction += gains.subband[n.j] *
+        reduction += q.weight * gains.subband[n.j] *
                      (q.SquaredError(n.k, mag & ~(1u << b), b + 1) - q.SquaredError(n.k, mag, b));
       }
     }

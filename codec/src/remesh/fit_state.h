@@ -12,6 +12,7 @@
 #include <span>
 #include <vector>
 
+#include "mesh/vertex_normals.h"
 #include "meshwave/mesh.h"
 #include "meshwave/semiregular.h"
 #include "remesh/boundary_loops.h"
@@ -69,11 +70,6 @@ struct FitState {
 // surface only if the surface (facing its way) is within this many d:
 // otherwise the nearest such face is on another part and the vertex stays.
 inline constexpr double kMaxProjectionRatio = 2.0;
-
-// Area-weighted unit normals of the first `count` vertices (zero for a
-// vertex whose faces have no area).
-std::vector<Vec3> VertexNormals(const std::vector<Face>& faces,
-                                std::span<const Vec3> positions, size_t count);
 
 }  // namespace meshwave::remesh
 

@@ -70,7 +70,7 @@ Result<EncodedStream> EncodeMesh(const SemiRegularMesh& input,
       std::vector<double> values = SubbandComponent(prepared, j, c);
       deadzones[j][c] = options.auto_deadzone ? ChooseDeadzoneCode(values, options.deadzone)
                                               : options.deadzone;
-      quantized[j][c] = QuantizeValues(prepared, j, std::move(values), deadzones[j][c],
+      quantized[j][c] = QuantizeValues(prepared, j, c, std::move(values), deadzones[j][c],
                                        model.chain_start[j]);
     }
   });
@@ -126,7 +126,7 @@ Result<EncodedStream> EncodeMesh(const SemiRegularMesh& input,
           const uint32_t mag = state[c].mag[s];
           const uint32_t before = mag & ~(1u << b);
           const uint32_t k = layout.tree.At(s);
-          reduction += gains.subband[j] *
+          reduction += q.weight * gains.subband[j] *
                        (q.SquaredError(k, before, b + 1) - q.SquaredError(k, mag, b));
         }
       }

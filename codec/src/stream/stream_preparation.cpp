@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mesh/vertex_normals.h"
 #include "quant/deadzone_quantizer.h"
 #include "stream/sawt_field.h"
 #include "stream/stream_format.h"
@@ -98,6 +99,8 @@ Result<PreparedStream> PrepareStream(const SemiRegularMesh& input,
     return InvalidArgument("mesh has no extent (bounding-box diagonal is 0)");
   }
   out.step0 = std::ldexp(diag, -options.precision);
+  out.tangent_step_scale =
+      options.transform.frames == FrameMode::kLocal ? options.tangent_step_scale : 1.0;
   out.gains = ComputeSubbandGains(options.transform, levels);
   out.transform = options.transform;
   if (out.transform.predictor == Predictor::kSawt) {
@@ -134,8 +137,17 @@ Result<PreparedStream> PrepareStream(const SemiRegularMesh& input,
   coarse.base = out.base.positions;
   for (auto& band : coarse.subbands) std::fill(band.begin(), band.end(), Vec3::Zero());
   const std::vector<Vec3> start = transform.Inverse(coarse);
+  // Weighed as the packets' reductions are: the error along the encoded
+  // surface's normal in full, the rest (a slide along the surface) by
+  // 1 / tangent_step_scale^2.
+  const double tangent_weight = 1 / (out.tangent_step_scale * out.tangent_step_scale);
+  const std::vector<Vec3> normals =
+      VertexNormals(h.faces(levels), out.mesh.positions, start.size());
   for (size_t v = 0; v < start.size(); ++v) {
-    out.zero_packet_distortion += (start[v] - out.mesh.positions[v]).squaredNorm();
+    const Vec3 e = start[v] - out.mesh.positions[v];
+    const double along = e.dot(normals[v]);
+    out.zero_packet_distortion +=
+        along * along + tangent_weight * (e.squaredNorm() - along * along);
   }
   return out;
 }
@@ -152,12 +164,14 @@ std::vector<double> SubbandComponent(const PreparedStream& prepared, int j, int 
   return values;
 }
 
-QuantizedComponent QuantizeValues(const PreparedStream& prepared, int j,
+QuantizedComponent QuantizeValues(const PreparedStream& prepared, int j, int c,
                                   std::vector<double> values, int deadzone, double& energy) {
   const double gain = prepared.gains.subband[static_cast<size_t>(j)];
+  const double scale = c == 0 ? 1.0 : prepared.tangent_step_scale;
   QuantizedComponent q;
   q.value = std::move(values);
-  q.step = prepared.step0 / std::sqrt(gain);
+  q.step = prepared.step0 / std::sqrt(gain) * scale;
+  q.weight = 1 / (scale * scale);
   q.xi0 = DeadzoneXi(deadzone);
   q.q0.reserve(q.value.size());
   q.negative.reserve(q.value.size());
@@ -166,7 +180,7 @@ QuantizedComponent QuantizeValues(const PreparedStream& prepared, int j,
     q.q0.push_back(QuantizeMagnitude(x, q.step, q.xi0));
     q.negative.push_back(x < 0);
     max_q = std::max(max_q, q.q0.back());
-    energy += gain * x * x;
+    energy += q.weight * gain * x * x;
   }
   q.top = TopBitplane(max_q);
   return q;
@@ -179,9 +193,9 @@ void AppendQuantizer(const QuantizedComponent& q, int deadzone, proto::StreamHea
   pq->set_top_bitplane(q.top);
 }
 
-QuantizedComponent QuantizeComponent(PreparedStream& prepared, int j, std::vector<double> values,
-                                     int deadzone, double& energy) {
-  QuantizedComponent q = QuantizeValues(prepared, j, std::move(values), deadzone, energy);
+QuantizedComponent QuantizeComponent(PreparedStream& prepared, int j, int c,
+                                     std::vector<double> values, int deadzone, double& energy) {
+  QuantizedComponent q = QuantizeValues(prepared, j, c, std::move(values), deadzone, energy);
   AppendQuantizer(q, deadzone, prepared.header);
   return q;
 }

@@ -20,8 +20,13 @@ struct PreparedStream {
   SubbandGains gains;
   DecodedBase base;            // the base mesh as a decoder will hold it
   double step0 = 0;            // diagonal * 2^-precision
+  // Step of the tangential components over the normal one's (1 with global
+  // frames, whose components are x, y, z).
+  double tangent_step_scale = 1;
   double base_distortion = 0;  // gain-weighted error of the decoded base
-  // The true squared error of the mesh a decoder shows before any packet.
+  // The true squared error of the mesh a decoder shows before any packet,
+  // its tangential part (off the encoded surface's vertex normals) weighed
+  // by 1 / tangent_step_scale^2 as the packets' reductions are.
   double zero_packet_distortion = 0;
 };
 
@@ -35,27 +40,35 @@ struct QuantizedComponent {
   std::vector<uint8_t> negative;  // signs
   double step = 0;
   double xi0 = 0;  // the deadzone's reconstruction offset
+  // What a unit of this component's squared error is worth in the
+  // distortion the packet order minimises: 1 / tangent_step_scale^2 for
+  // the tangential components, 1 otherwise (a coarser step is the right
+  // one for an error that counts less, at equal slope).
+  double weight = 1;
   int top = -1;    // highest bitplane of any magnitude, -1 when all are 0
   // Squared error of value[k] once its magnitude `mag` is known from
   // bitplane n up (0 when nothing is known yet).
   double SquaredError(size_t k, uint32_t mag, int n) const;
 };
 
-// Component c (0 = x, 1 = y, 2 = z) of subband j of the pyramid.
+// Component c (0 = x, 1 = y, 2 = z with global frames; 0 = normal, 1 and 2
+// = tangents with local frames) of subband j of the pyramid.
 std::vector<double> SubbandComponent(const PreparedStream& prepared, int j, int c);
 
-// Quantises `values`, component of subband j, with the step step0 / sqrt(G_j)
+// Quantises `values`, component c of subband j, with the step
+// step0 / sqrt(G_j) (times tangent_step_scale for a tangential component)
 // and deadzone code `deadzone` (docs/FORMAT.md), appends that quantizer to
-// the header and adds the values' gain-weighted energy G_j x^2 to `energy`
-// (the start of their distortion chain). Every coder quantises through this.
-QuantizedComponent QuantizeComponent(PreparedStream& prepared, int j, std::vector<double> values,
-                                     int deadzone, double& energy);
+// the header and adds the values' weighted energy weight G_j x^2 to
+// `energy` (the start of their distortion chain). Every coder quantises
+// through this.
+QuantizedComponent QuantizeComponent(PreparedStream& prepared, int j, int c,
+                                     std::vector<double> values, int deadzone, double& energy);
 
 // QuantizeComponent in two halves, for coders that quantise subbands on
 // several threads: the quantisation (reads `prepared` only; adds to
 // `energy`), and the quantizer's entry in the header (in (subband,
 // component) order, as the decoder reads them).
-QuantizedComponent QuantizeValues(const PreparedStream& prepared, int j,
+QuantizedComponent QuantizeValues(const PreparedStream& prepared, int j, int c,
                                   std::vector<double> values, int deadzone, double& energy);
 void AppendQuantizer(const QuantizedComponent& q, int deadzone, proto::StreamHeader& header);
 

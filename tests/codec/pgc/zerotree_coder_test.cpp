@@ -33,7 +33,7 @@ struct Fixture {
 const Fixture& Encoded() {
   static const Fixture* fixture = [] {
     auto* f = new Fixture;
-    auto s = EncodePgc(BumpySphere(4), EncodeOptions{});
+    auto s = EncodePgc(BumpySphere(4), testing::EqualStepOptions());
     EXPECT_TRUE(s.ok()) << s.status().ToString();
     f->stream = *std::move(s);
     // In the order the decoder returns the vertices.
@@ -64,7 +64,7 @@ std::vector<Vec3> DecodePrefix(const PgcStream& s, size_t count) {
 
 TEST(ZerotreeCoderTest, UsesTheQuantizersAndVertexOrderOfEncodeMesh) {
   const Fixture& f = Encoded();
-  auto sim = EncodeMesh(BumpySphere(4), EncodeOptions{});
+  auto sim = EncodeMesh(BumpySphere(4), testing::EqualStepOptions());
   ASSERT_TRUE(sim.ok());
   EXPECT_EQ(f.stream.mesh.positions, sim->mesh.positions);
   const auto& a = f.stream.header;
@@ -169,7 +169,7 @@ TEST(ZerotreeCoderTest, RoundTripsOpenMeshAndSingleLevel) {
     std::mt19937 rng(7);
     std::normal_distribution<double> noise(0, 1e-2);
     for (Vec3& p : sr->positions) p += Vec3(noise(rng), noise(rng), noise(rng));
-    auto s = EncodePgc(*sr, EncodeOptions{});
+    auto s = EncodePgc(*sr, testing::EqualStepOptions());
     ASSERT_TRUE(s.ok()) << s.status().ToString();
     const auto& reference = s->mesh.positions;
     const double diag = BoundingBox(reference).Diagonal();

@@ -30,7 +30,7 @@ const Fixture& Encoded(CoderKind coder) {
   if (it != cache.end()) return it->second;
   Fixture f;
   f.mesh = BumpySphere(4);
-  EncodeOptions options;
+  EncodeOptions options = testing::EqualStepOptions();
   options.coder = coder;
   auto s = EncodeMesh(f.mesh, options);
   EXPECT_TRUE(s.ok()) << s.status().ToString();

@@ -23,7 +23,7 @@ const RdCurve& Curve(RdCoder coder) {
   static std::map<RdCoder, RdCurve> cache;
   auto it = cache.find(coder);
   if (it != cache.end()) return it->second;
-  auto curve = MeasureRdCurve(Sphere(), coder, EncodeOptions{});
+  auto curve = MeasureRdCurve(Sphere(), coder, testing::EqualStepOptions());
   EXPECT_TRUE(curve.ok()) << curve.status().ToString();
   return cache.emplace(coder, *std::move(curve)).first->second;
 }
@@ -65,7 +65,7 @@ INSTANTIATE_TEST_SUITE_P(Coders, RateDistortionCurveTest,
                          CoderName);
 
 TEST(RateDistortionTest, FullPrefixCountsTheWholeContainer) {
-  EncodeOptions options;
+  EncodeOptions options = testing::EqualStepOptions();
   options.coder = CoderKind::kSim;
   auto stream = EncodeMesh(Sphere(), options);
   ASSERT_TRUE(stream.ok());

@@ -32,7 +32,7 @@ SemiRegularMesh HolesPatch() {
 }
 
 EncodeOptions SawtOptions(UpdateWeights update, uint32_t alpha) {
-  EncodeOptions o;
+  EncodeOptions o = testing::EqualStepOptions();
   o.transform.predictor = Predictor::kSawt;
   o.transform.update = update;
   o.sawt_alpha = alpha;
@@ -120,7 +120,7 @@ TEST(SawtStreamTest, FieldSurvivesTheContainerAndDecodesNearLossless) {
   const double diag = BoundingBox(s.mesh.positions).Diagonal();
   const double sawt_psnr = testing::Psnr(decoded, s.mesh.positions, diag);
   // The default transform's complete stream, for the same mesh.
-  auto reference = EncodeMesh(HolesPatch(), EncodeOptions{});
+  auto reference = EncodeMesh(HolesPatch(), testing::EqualStepOptions());
   ASSERT_TRUE(reference.ok());
   std::vector<uint32_t> all(reference->packets.size());
   for (uint32_t i = 0; i < all.size(); ++i) all[i] = i;
