@@ -26,6 +26,7 @@ struct RemeshArgs {
   int levels = -1;
   int base_faces = -1;
   int relax_rounds = RemeshOptions{}.relax_rounds;
+  int least_squares_rounds = RemeshOptions{}.least_squares_rounds;
   int threads = RemeshOptions{}.threads;
   bool drop_tiny = false;
   bool json = false;
@@ -174,6 +175,7 @@ Status Run(const RemeshArgs& args) {
   options.levels = args.levels;
   options.base_faces = args.base_faces;
   options.relax_rounds = args.relax_rounds;
+  options.least_squares_rounds = args.least_squares_rounds;
   options.threads = args.threads;
   options.drop_tiny_components = args.drop_tiny;
   ProgressLine progress;
@@ -252,6 +254,11 @@ void AddRemeshCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--relax-rounds", args->relax_rounds,
                   "Tangential relaxation rounds per level")
       ->check(CLI::Range(0, 50))
+      ->capture_default_str();
+  cmd->add_option("--least-squares-rounds", args->least_squares_rounds,
+                  "Least-squares rounds after the fit: finest vertices move along their "
+                  "normals to lie closer to the input (0: off, an interpolating remesh)")
+      ->check(CLI::Range(0, 10))
       ->capture_default_str();
   AddThreadsOption(cmd, args->threads);
   cmd->add_flag("--drop-tiny", args->drop_tiny,

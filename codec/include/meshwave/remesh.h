@@ -40,6 +40,11 @@ struct RemeshOptions {
   int base_faces = -1;
   // Tangential relaxation rounds after each level (0 turns it off).
   int relax_rounds = 3;
+  // Least-squares rounds after the finest level's fit (0 turns them off):
+  // every finest vertex moves along its normal so that the remesh lies
+  // closer to the input than an interpolating one can (Hoppe et al.,
+  // "Mesh Optimization", 1993; codec/src/remesh/fit_least_squares.h).
+  int least_squares_rounds = 1;
   // Worker threads (1 = the calling thread only; 0 = the machine's cores):
   // the surface's set-up runs beside the simplification, the quadrics and
   // the fitting's per-vertex steps on all of them. The result is the same

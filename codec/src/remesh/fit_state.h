@@ -41,6 +41,13 @@ struct FitOptions {
   // How far along the interpolated normal a new vertex may move, as a
   // multiple of the length of the edge it splits.
   double normal_reach = 1.0;
+  // The least-squares stage on the finest level (fit_least_squares.h):
+  // Gauss-Newton rounds (0 turns it off), the weight of the smoothness of
+  // the normal offsets, and the largest offset as a fraction of a vertex's
+  // shortest edge.
+  int least_squares_rounds = 1;
+  double least_squares_smoothness = 0.01;
+  double least_squares_max_offset = 0.25;
   int threads = 2;
   // Called after each level with (level reached, fraction of all work).
   std::function<void(int level, double fraction)> progress;

@@ -14,6 +14,7 @@
 #include "remesh/base_flips.h"
 #include "remesh/coincident_vertices.h"
 #include "remesh/components.h"
+#include "remesh/fit_least_squares.h"
 #include "remesh/fit_projection.h"
 #include "remesh/input_surface.h"
 #include "remesh/level_plan.h"
@@ -22,6 +23,7 @@
 #include "remesh/qem_simplifier.h"
 #include "remesh/remesh_quality.h"
 #include "remesh/surface_fitting.h"
+#include "semiregular/vertex_rings.h"
 
 namespace meshwave {
 namespace {
@@ -385,6 +387,7 @@ class Pipeline {
     remesh::PlaceBaseVertices(base, surface, locked, positions, out.anchors);
     remesh::FitOptions fit;
     fit.relax_rounds = options_.relax_rounds;
+    fit.least_squares_rounds = options_.least_squares_rounds;
     fit.threads = options_.threads;
     fit.progress = [this, begin, span, fit_stage](int, double f) {
       Report(fit_stage,
@@ -393,11 +396,21 @@ class Pipeline {
     MW_RETURN_IF_ERROR(remesh::FitLevels(*hierarchy, surface, fit, positions,
                                          out.anchors, &out.stats)
                            .WithContext("fitting the remesh"));
+    const bool least_squares = fit.least_squares_rounds > 0;
+    if (least_squares) {
+      if (index == 0) EndStage("fit");
+      MW_ASSIGN_OR_RETURN(VertexRings rings,
+                          VertexRings::Build((*hierarchy)->vertex_count(plan.levels),
+                                             (*hierarchy)->faces(plan.levels)));
+      const remesh::FitState state{**hierarchy, surface,     fit,
+                                   positions,   out.anchors, out.stats};
+      remesh::FitLeastSquares(state, rings);
+    }
     out.mesh.hierarchy = *hierarchy;
     out.mesh.positions = std::move(positions);
     remesh::SeparateCoincidentVertices(out.mesh.positions,
                                        (*hierarchy)->faces(plan.levels));
-    if (index == 0) EndStage("fit");
+    if (index == 0) EndStage(least_squares ? "least squares" : "fit");
     return out;
   }
 
