@@ -11,6 +11,7 @@
 #include <string_view>
 
 #include "catalog.h"
+#include "meshwave/fidelity.h"
 #include "meshwave/mesh.h"
 #include "meshwave/status.h"
 
@@ -30,8 +31,9 @@ struct IngestResult {
 // (meshwave/fidelity.h), with at most `max_vertex_ratio` finest vertices
 // per input vertex.
 struct EncodeChoices {
-  double fidelity_db = 0;  // 0: default remesh density and precision
-  double max_vertex_ratio = 4;
+  // 0: one remesh at about the input's density, the default precision.
+  double fidelity_db = kDefaultFidelityDb;
+  double max_vertex_ratio = kDefaultMaxVertexRatio;
   // Threads for remeshing and encoding the one mesh (0: the machine's
   // cores); the container does not depend on it.
   int threads = 0;

@@ -127,10 +127,12 @@ int main(int argc, char** argv) {
   ingest->add_option("--fidelity", ingest_options.choices.fidelity_db,
                      "Symmetric surface PSNR (dB) each complete stream should reach against its "
                      "file: denser remesh and finer precision until it does (meshwave encode "
-                     "--fidelity); prints what it reached")
-      ->check(CLI::Range(1.0, 200.0));
+                     "--fidelity); prints what it reached. Default: about what Draco's default "
+                     "quantisation gives; 0: one remesh at about the file's density")
+      ->check(CLI::Range(0.0, 200.0))
+      ->capture_default_str();
   ingest->add_option("--max-vertex-ratio", ingest_options.choices.max_vertex_ratio,
-                     "With --fidelity: the densest remesh, in finest vertices per input vertex")
+                     "The densest remesh --fidelity may make, in finest vertices per input vertex")
       ->check(CLI::Range(1.0, 64.0))
       ->capture_default_str();
   ingest->add_option("--jobs", ingest_options.jobs, "Meshes encoded in parallel")

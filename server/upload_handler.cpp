@@ -86,8 +86,7 @@ void UploadMesh(ServerContext& ctx, Request req, const QueryParams& query,
   if (auto f = query.Get("fidelity")) {
     auto db = ParseUnsigned(*f, kMaxUploadFidelityDb, "fidelity");
     if (!db.ok()) return done(StatusError(db.status()));
-    if (*db == 0) return done(StatusError(InvalidArgument("fidelity must be at least 1 dB")));
-    choices.fidelity_db = static_cast<double>(*db);
+    choices.fidelity_db = static_cast<double>(*db);  // 0: one remesh, no fidelity
     choices.max_vertex_ratio = kUploadMaxVertexRatio;
   }
   if (req.body().empty()) {

@@ -52,7 +52,7 @@ $cli decode "$out/holes.mwv" "$out/holes_level1.ply" --order resolution --max-le
 echo
 echo "== meshwave-server ingest: the sample meshes into a new catalog (elephant.off is remeshed)"
 $server ingest --catalog "$out/catalog" data/elephant.off data/holes.off | tee "$out/ingest.txt"
-id=$(awk '/elephant.off/ {print $1; exit}' "$out/ingest.txt")
+id=$(awk '/^[0-9a-f]{12} / && /elephant.off/ {print $1; exit}' "$out/ingest.txt")
 echo
 echo "== meshwave-server on 127.0.0.1 (a free port)"
 $server --catalog "$out/catalog" --listen 127.0.0.1:0 --port-file "$out/port" > "$out/server.log" 2>&1 &

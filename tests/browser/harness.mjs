@@ -23,9 +23,11 @@ export function tempDir(prefix) { return mkdtempSync(path.join(tmpdir(), prefix)
 // `meshwave-server ingest` of one mesh file; its catalog id.
 export function ingest(serverBinary, catalog, meshFile) {
   const out = execFileSync(serverBinary, ['ingest', '--catalog', catalog, meshFile], { encoding: 'utf8' });
-  const id = out.trim().split(/\s+/)[0];
-  if (!/^[0-9a-f]{12}$/.test(id)) throw new Error(`ingest printed no id: ${out}`);
-  return id;
+  // The id opens the line naming the file (a log line, e.g. a fidelity
+  // warning, may come first).
+  const found = out.match(/^([0-9a-f]{12}) /m);
+  if (!found) throw new Error(`ingest printed no id: ${out}`);
+  return found[1];
 }
 
 // web/viewer with `decoderModule` as its meshwave_decoder.js, in `dir`.

@@ -164,10 +164,12 @@ void AddFidelityOptions(CLI::App* cmd, double& fidelity_db, double& max_vertex_r
   cmd->add_option("--fidelity", fidelity_db,
                   "Symmetric surface PSNR (dB, peak = the input's bounding-box diagonal) " + what +
                       " should reach against the input: remeshed denser until it does; prints "
-                      "what it reached")
-      ->check(CLI::Range(1.0, 200.0));
+                      "what it reached. The default is about what Draco's default quantisation "
+                      "gives; 0 remeshes once at about the input's density")
+      ->check(CLI::Range(0.0, 200.0))
+      ->capture_default_str();
   cmd->add_option("--max-vertex-ratio", max_vertex_ratio,
-                  "With --fidelity: the densest remesh, in finest vertices per input vertex")
+                  "The densest remesh --fidelity may make, in finest vertices per input vertex")
       ->check(CLI::Range(1.0, 64.0))
       ->capture_default_str();
 }

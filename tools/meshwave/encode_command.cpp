@@ -27,8 +27,8 @@ struct EncodeArgs {
   int levels = -1;
   int precision = 16;
   bool precision_given = false;
-  double fidelity_db = 0;
-  double max_vertex_ratio = 16;
+  double fidelity_db = kDefaultFidelityDb;
+  double max_vertex_ratio = kDefaultMaxVertexRatio;
   bool force_remesh = false;
   uint32_t sawt_alpha = EncodeOptions{}.sawt_alpha;
   double sawt_lambda = EncodeOptions{}.sawt_lambda_scale;

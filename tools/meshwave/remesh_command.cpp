@@ -34,8 +34,8 @@ struct RemeshArgs {
   // Fewer samples than `meshwave compare` (10 per face): the figures come
   // with the remesh for free in seconds; use compare for the record.
   double samples_per_face = 2;
-  double fidelity_db = 0;
-  double max_vertex_ratio = 16;
+  double fidelity_db = kDefaultFidelityDb;
+  double max_vertex_ratio = kDefaultMaxVertexRatio;
 };
 
 // Progress on stderr, redrawn in place, only when stderr is a terminal.

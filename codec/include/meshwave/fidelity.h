@@ -14,6 +14,16 @@
 
 namespace meshwave {
 
+// What `meshwave encode`, `remesh` and the server's ingest aim at when not
+// told: Draco's default quantisation (`-qp 11`) lands at 82.6 to 84.0 dB on
+// the shared meshes (docs/RD_RESULTS.md, "Fidelity"), and a user comparing
+// the two expects at least that from a complete stream. The density this
+// may take is bounded by kDefaultMaxVertexRatio finest vertices per input
+// vertex (a mesh that needs more, e.g. a CAD part with sharp edges, gets the
+// best remesh within it and a warning).
+inline constexpr double kDefaultFidelityDb = 84;
+inline constexpr double kDefaultMaxVertexRatio = 4;
+
 // The EncodeOptions::precision whose quantisation error stays about 10 dB
 // under `fidelity_db` (the complete stream's surface PSNR grows by about 6
 // dB a bit of precision, from about 6 p + 12 dB), and never below the
@@ -25,7 +35,8 @@ int PrecisionForFidelity(double fidelity_db);
 // `meshwave remesh` measures) and, while short of `fidelity_db`, redone
 // denser, up to `max_vertex_ratio` finest vertices per input vertex:
 // density from more levels first, the base taking the rest (0.76 to 3
-// times the first attempt's); an attempt that overshoots by more than 2 dB
+// times the first attempt's), or from the base alone when options.levels
+// is set; an attempt that overshoots by more than 2 dB
 // is followed by one between it and the densest still short (6 attempts
 // at most). Keeps the sparsest attempt that reaches the fidelity, else the
 // best one. Never sparser than the default remesh.

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "meshwave/fidelity.h"
 #include "meshwave/mesh.h"
 #include "meshwave/semiregular.h"
 #include "meshwave/status.h"
@@ -22,12 +23,12 @@ struct SemiRegularInputOptions {
   int threads = 0;
   // The remesh's symmetric surface PSNR against the input to reach, in dB
   // (peak: the input's bounding-box diagonal; what `meshwave compare`
-  // reports). 0: remesh once at the default density (about as many finest
-  // vertices as the input has). Otherwise the remesh is measured and,
-  // while short of this, redone denser (more base faces, the same levels),
-  // up to `max_vertex_ratio` times the input's vertices.
-  double fidelity_db = 0;
-  double max_vertex_ratio = 4;
+  // reports): the remesh is measured and, while short of this, redone
+  // denser (RemeshToFidelity), up to `max_vertex_ratio` times the input's
+  // vertices. 0: remesh once at the first density (about as many finest
+  // vertices as the input has).
+  double fidelity_db = kDefaultFidelityDb;
+  double max_vertex_ratio = kDefaultMaxVertexRatio;
 };
 
 struct SemiRegularInput {

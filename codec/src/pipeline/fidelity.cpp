@@ -45,6 +45,9 @@ Result<FidelityRemesh> RemeshToFidelity(const TriMesh& input, RemeshOptions opti
   double input_vertices = 1;
   size_t base_per_ratio = 1;  // base faces asked per unit of ratio (first attempt's)
   int first_levels = 0;
+  // Levels the caller fixed (`--levels J`) stay: the density then comes
+  // from the base alone.
+  const bool levels_fixed = options.levels > 0;
   // The densest attempt still short of the fidelity and the sparsest that
   // reaches it: the two the next guess interpolates between.
   std::optional<Attempt> below, above;
@@ -59,8 +62,10 @@ Result<FidelityRemesh> RemeshToFidelity(const TriMesh& input, RemeshOptions opti
       // (the elephant sample at twice its vertices as 4 levels over half
       // the base came out below its 3-level default): the base takes the
       // rest, from 0.76 to 3 times the first one's.
-      const int extra = std::clamp(static_cast<int>(std::floor(log2_ratio / 2 + 0.2)), 0,
-                                   kMaxRemeshLevels - first_levels);
+      const int extra =
+          levels_fixed ? 0
+                       : std::clamp(static_cast<int>(std::floor(log2_ratio / 2 + 0.2)), 0,
+                                    kMaxRemeshLevels - first_levels);
       options.levels = first_levels + extra;
       const double base =
           static_cast<double>(base_per_ratio) * std::exp2(log2_ratio - 2.0 * extra);
