@@ -44,13 +44,16 @@ run_cases() {
     n=$((n + 1))
     json=$tmp/$n.json
     # shellcheck disable=SC2086  # extra options split on purpose
-    "$cli" rd "$meshes/$file" --coders 3xc,sim,pgc $extra --json > "$json" 2> "$tmp/$n.log"
+    # Equal steps for the three components: the coders are compared on the
+    # vertex error, as Satti et al. 2011 does (docs/RD_RESULTS.md,
+    # "Tangential step").
+    "$cli" rd "$meshes/$file" --coders 3xc,sim,pgc --tangent-step 1 $extra --json > "$json" 2> "$tmp/$n.log"
     jq -r --arg file "$file" --arg extra "$extra" '
       "### \($file)\(if $extra == "" then "" else " (" + $extra + ")" end)\n",
       "\(if .remeshed then "Remeshed (not semi-regular as read)" else "Semi-regular as read" end): " +
       "\(.vertices) vertices, J = \(.levels), \(.base_vertices) base vertices; " +
       "\(.transform)/\(.update), precision \(.precision).\n",
-      "Command: `meshwave rd \($file) --coders 3xc,sim,pgc\(if $extra == "" then "" else " " + $extra end)`\n"
+      "Command: `meshwave rd \($file) --coders 3xc,sim,pgc --tangent-step 1\(if $extra == "" then "" else " " + $extra end)`\n"
     ' "$json" > "$tmp/head.md"
 
     # PSNR at the table rates.

@@ -89,7 +89,11 @@ class ServerHttpTest : public ::testing::Test {
     work_ = tmp_ / "work";
     std::filesystem::create_directories(work_);
     catalog_ = tmp_ / "catalog";
-    std::vector<std::string> args = {"ingest", "--catalog", catalog_.string()};
+    // --fidelity 0: one remesh of the elephant at its own density. Every
+    // test here ingests anew and is about the HTTP API; the default
+    // fidelity's denser remesh is tested by UploadWithAFidelity... and the
+    // suites that ingest once.
+    std::vector<std::string> args = {"ingest", "--catalog", catalog_.string(), "--fidelity", "0"};
     for (const auto& m : TestMeshes(work_)) args.push_back(m.string());
     const pid_t ingest = SpawnServer(args, work_ / "ingest.log");
     ASSERT_EQ(WaitExit(ingest, std::chrono::seconds(120)), 0) << ReadBytes(work_ / "ingest.log");
