@@ -37,9 +37,8 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-$root/build}
 cli=$build/tools/meshwave/meshwave
 [[ -x $cli ]] || { echo "no meshwave binary at $cli (build first)" >&2; exit 1; }
-for tool in draco_encoder draco_decoder jq bc; do
-  command -v $tool > /dev/null || { echo "$tool is needed (apt-get install draco jq bc)" >&2; exit 1; }
-done
+source "$root/bench/lib.sh"
+need_tools draco_encoder draco_decoder jq bc
 shared=$root/../shared/data/meshes
 if [[ -z ${MESHES:-} ]]; then
   [[ -d $shared ]] || { echo "no shared meshes at $shared: set MESHES" >&2; exit 1; }
@@ -53,7 +52,6 @@ qps=${QPS:-8 10 12 14}
 ratio_limit=${MAX_VERTEX_RATIO:-16}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-source "$root/bench/lib.sh"
 
 best_ms() {  # best_ms BUDGET STREAM: meshwave's decode time, best of 3
   local best=

@@ -2,6 +2,15 @@
 # loopback port, wrk's units converted, one wrk run appended to a results
 # table, and the cached semi-regular version of a shared mesh.
 
+# need_tools TOOL...: exits with a line naming the first one missing.
+need_tools() {
+  local tool
+  for tool in "$@"; do
+    command -v "$tool" > /dev/null ||
+      { echo "$tool is needed (bash deploy/install-deps.sh bench)" >&2; exit 1; }
+  done
+}
+
 # free_port: a 127.0.0.1 port nothing answered on a moment ago.
 free_port() {
   local p

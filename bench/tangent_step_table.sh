@@ -16,10 +16,8 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-$root/build}
 cli=$build/tools/meshwave/meshwave
 [[ -x $cli ]] || { echo "no meshwave binary at $cli (build first)" >&2; exit 1; }
-for tool in draco_encoder draco_decoder jq bc; do
-  command -v $tool > /dev/null || { echo "$tool is needed (apt-get install draco jq bc)" >&2; exit 1; }
-done
 source "$root/bench/lib.sh"
+need_tools draco_encoder draco_decoder jq bc
 shared=$root/../shared/data/meshes
 list=${MESHES:-$(shared_meshes_of_at_least 5000)}
 steps=${STEPS:-1 2 4 8 16}

@@ -36,12 +36,17 @@ test=(
   python3-websockets python3-protobuf  # tests/interop: the Python client written from the docs
   chromium                     # the viewer's browser test (tests/browser), headless
 )
+bench=(
+  draco jq bc                  # bench/: Draco 1.5, the baseline, and the tables' arithmetic
+  wrk nginx-light              # bench/http_load.sh: the load generator and the nginx reference
+)
 
 case "${1:-all}" in
   build) packages=("${build[@]}") ;;
   server) packages=("${build[@]}" "${viewer[@]}") ;;
   all) packages=("${build[@]}" "${viewer[@]}" "${test[@]}") ;;
-  *) echo "usage: install-deps.sh [build|server|all]" >&2; exit 2 ;;
+  bench) packages=("${build[@]}" "${test[@]}" "${bench[@]}") ;;
+  *) echo "usage: install-deps.sh [build|server|all|bench]" >&2; exit 2 ;;
 esac
 
 # Kubernetes manifest validation (tests/deploy/validate_manifests.sh), the
