@@ -17,6 +17,7 @@
 #include "meshwave.pb.h"
 #include "meshwave/container.h"
 #include "server/http_client_testonly.h"
+#include "server/sample_catalog_testonly.h"
 #include "server/server_process_testonly.h"
 #include "tcp_proxy_testonly.h"
 #include "websocket.pb.h"
@@ -117,13 +118,8 @@ class ClientE2eTest : public ::testing::Test {
   static void SetUpTestSuite() {
     dir_ = new TempDir();
     catalog_ = *dir_ / "catalog";
-    std::vector<std::string> args = {
-        "ingest", "--catalog", catalog_.string(),
-        testing::SampleMesh("holes.off").string(),
-        testing::SampleMesh("elephant.off").string()};
-    const pid_t ingest = testing::SpawnServer(args, *dir_ / "ingest.log");
-    ASSERT_EQ(testing::WaitExit(ingest, std::chrono::seconds(120)), 0)
-        << ReadBytes(*dir_ / "ingest.log");
+    ASSERT_NO_FATAL_FAILURE(testing::CopySampleCatalog(
+        catalog_, {testing::SampleMesh("holes.off"), testing::SampleMesh("elephant.off")}));
     std::filesystem::create_directories(*dir_ / "server");
     server_ = new ServerProcess(catalog_, *dir_ / "server");
     ASSERT_TRUE(server_->running()) << ReadBytes(server_->log());

@@ -18,7 +18,7 @@ class AbuseTest : public ::testing::Test {
   static void SetUpTestSuite() {
     tmp_ = new TempDir();
     std::filesystem::create_directories(*tmp_ / "work");
-    ASSERT_NO_FATAL_FAILURE(IngestFiles(*tmp_ / "catalog", *tmp_ / "work", {SampleMesh("holes.off")}));
+    ASSERT_NO_FATAL_FAILURE(CopySampleCatalog(*tmp_ / "catalog", {SampleMesh("holes.off")}));
   }
   static void TearDownTestSuite() {
     delete tmp_;

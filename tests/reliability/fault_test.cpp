@@ -113,7 +113,7 @@ TEST(FaultTest, KillDuringStreamingThenRestartServesTheSameBytes) {
   TempDir tmp;
   const auto work = tmp / "work", catalog = tmp / "catalog";
   std::filesystem::create_directories(work);
-  ASSERT_NO_FATAL_FAILURE(IngestFiles(catalog, work, {SampleMesh("holes.off")}));
+  ASSERT_NO_FATAL_FAILURE(CopySampleCatalog(catalog, {SampleMesh("holes.off")}));
   auto server = StartServer(catalog, work);
   ASSERT_TRUE(server->running());
   const std::string id = List(server->port()).meshes(0).id();
@@ -261,7 +261,8 @@ TEST(FaultTest, CorruptContainerOnDiskIsAnErrorNotGarbage) {
   TempDir tmp;
   const auto work = tmp / "work", catalog = tmp / "catalog";
   std::filesystem::create_directories(work);
-  ASSERT_NO_FATAL_FAILURE(IngestFiles(catalog, work, {SampleMesh("holes.off"), SampleMesh("elephant.off")}));
+  ASSERT_NO_FATAL_FAILURE(
+      CopySampleCatalog(catalog, {SampleMesh("holes.off"), SampleMesh("elephant.off")}));
   std::string victim_sha;
   {
     auto server = StartServer(catalog, work);

@@ -1,6 +1,6 @@
-// Helpers of the fault and abuse tests: a catalog ingested once per test,
-// the server started with a config file, raw sockets, and the server's
-// resident memory and descriptor count read from /proc.
+// Helpers of the fault and abuse tests: a catalog of sample meshes
+// (sample_catalog_testonly.h), the server started with a config file, raw
+// sockets, and the server's resident memory and descriptor count from /proc.
 #ifndef MESHWAVE_TESTS_RELIABILITY_RELIABILITY_TESTONLY_H_
 #define MESHWAVE_TESTS_RELIABILITY_RELIABILITY_TESTONLY_H_
 
@@ -15,6 +15,7 @@
 
 #include "e2e/cli_runner.h"
 #include "http_client_testonly.h"
+#include "sample_catalog_testonly.h"
 #include "server_process_testonly.h"
 #include "test_data.h"
 
@@ -27,15 +28,6 @@ inline constexpr char kToken[] = "reliability-token-42";
 inline std::string Numbered(std::string prefix, long i) {
   prefix += std::to_string(i);
   return prefix;
-}
-
-// Ingests `meshes` into `catalog` with the meshwave-server ingest command.
-inline void IngestFiles(const std::filesystem::path& catalog, const std::filesystem::path& work,
-                        const std::vector<std::filesystem::path>& meshes) {
-  std::vector<std::string> args = {"ingest", "--catalog", catalog.string()};
-  for (const auto& m : meshes) args.push_back(m.string());
-  const pid_t pid = SpawnServer(args, work / "ingest.log");
-  ASSERT_EQ(WaitExit(pid, std::chrono::seconds(300)), 0) << ReadBytes(work / "ingest.log");
 }
 
 // Starts the server with `config` (protobuf text) and the upload token.

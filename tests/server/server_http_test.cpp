@@ -19,6 +19,7 @@
 #include "meshwave/metrics.h"
 #include "meshwave/progression.h"
 #include "meshwave/progressive_decoder.h"
+#include "sample_catalog_testonly.h"
 #include "server_process_testonly.h"
 #include "stream.pb.h"
 #include "sha256.h"
@@ -89,14 +90,9 @@ class ServerHttpTest : public ::testing::Test {
     work_ = tmp_ / "work";
     std::filesystem::create_directories(work_);
     catalog_ = tmp_ / "catalog";
-    // --fidelity 0: one remesh of the elephant at its own density. Every
-    // test here ingests anew and is about the HTTP API; the default
-    // fidelity's denser remesh is tested by UploadWithAFidelity... and the
-    // suites that ingest once.
-    std::vector<std::string> args = {"ingest", "--catalog", catalog_.string(), "--fidelity", "0"};
-    for (const auto& m : TestMeshes(work_)) args.push_back(m.string());
-    const pid_t ingest = SpawnServer(args, work_ / "ingest.log");
-    ASSERT_EQ(WaitExit(ingest, std::chrono::seconds(120)), 0) << ReadBytes(work_ / "ingest.log");
+    // Every test changes its own copy; the default fidelity's denser
+    // remesh is tested by UploadWithAFidelity... and tests/server/ingest_test.
+    ASSERT_NO_FATAL_FAILURE(CopySampleCatalog(catalog_, TestMeshes(work_)));
     server_ = std::make_unique<ServerProcess>(
         catalog_, work_, std::vector<std::string>{std::string("MESHWAVE_UPLOAD_TOKEN=") + kToken});
     ASSERT_TRUE(server_->running()) << ReadBytes(server_->log());

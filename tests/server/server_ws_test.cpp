@@ -15,6 +15,7 @@
 #include "e2e/cli_runner.h"
 #include "http_client_testonly.h"
 #include "meshwave/container.h"
+#include "sample_catalog_testonly.h"
 #include "server_process_testonly.h"
 #include "test_data.h"
 #include "ws_client_testonly.h"
@@ -111,15 +112,8 @@ class ServerWsTest : public ::testing::Test {
   static void SetUpTestSuite() {
     dir_ = new TempDir();
     catalog_ = *dir_ / "catalog";
-    const std::vector<std::string> args = {
-        "ingest",
-        "--catalog",
-        catalog_.string(),
-        SampleMesh("elephant.off").string(),
-        SampleMesh("holes.off").string()};
-    const pid_t ingest = SpawnServer(args, *dir_ / "ingest.log");
-    ASSERT_EQ(WaitExit(ingest, std::chrono::seconds(120)), 0)
-        << ReadBytes(*dir_ / "ingest.log");
+    ASSERT_NO_FATAL_FAILURE(
+        CopySampleCatalog(catalog_, {SampleMesh("elephant.off"), SampleMesh("holes.off")}));
     std::filesystem::create_directories(*dir_ / "server");
     server_ = new ServerProcess(catalog_, *dir_ / "server");
     ASSERT_TRUE(server_->running()) << ReadBytes(server_->log());
