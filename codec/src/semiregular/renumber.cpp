@@ -1,12 +1,45 @@
 // RenumberBase: the same semi-regular mesh over a reordered base mesh.
+#include <algorithm>
 #include <string>
-#include <unordered_map>
+#include <utility>
 
-#include "core/edge_key.h"
 #include "meshwave/semiregular.h"
 
 namespace meshwave {
 namespace {
+
+// The edges of one level by their lower endpoint (compressed rows): a vertex
+// has about six, so a lookup scans a few entries. A hash map of the finest
+// level's million edges was a sixth of an encode (its allocations and
+// misses); the rows take two passes over the edges and no hashing.
+class EdgeFinder {
+ public:
+  EdgeFinder(const std::vector<Edge>& edges, uint32_t vertex_count)
+      : begin_(vertex_count + 1, 0), entries_(edges.size()) {
+    for (const Edge& e : edges) ++begin_[std::min(e[0], e[1]) + 1];
+    for (uint32_t v = 0; v < vertex_count; ++v) begin_[v + 1] += begin_[v];
+    std::vector<uint32_t> fill(begin_.begin(), begin_.end() - 1);
+    for (uint32_t k = 0; k < edges.size(); ++k) {
+      const Edge& e = edges[k];
+      entries_[fill[std::min(e[0], e[1])]++] = {std::max(e[0], e[1]), k};
+    }
+  }
+  // The index of edge {a, b}, or kNotFound.
+  uint32_t Find(uint32_t a, uint32_t b) const {
+    const uint32_t lo = std::min(a, b), hi = std::max(a, b);
+    if (lo + 1 >= begin_.size()) return kNotFound;
+    for (uint32_t n = begin_[lo]; n < begin_[lo + 1]; ++n) {
+      if (entries_[n].first == hi) return entries_[n].second;
+    }
+    return kNotFound;
+  }
+  static constexpr uint32_t kNotFound = ~uint32_t{0};
+
+ private:
+  std::vector<uint32_t> begin_;
+  std::vector<std::pair<uint32_t, uint32_t>>
+      entries_;  // (higher endpoint, edge)
+};
 
 }  // namespace
 
@@ -18,8 +51,9 @@ Result<SemiRegularMesh> RenumberBase(const SemiRegularMesh& mesh,
   if (new_of_old.size() != v0 || new_base_faces.size() != old.faces(0).size()) {
     return InvalidArgument("renumbering does not match the base mesh's size");
   }
-  MW_ASSIGN_OR_RETURN(auto fresh, SemiRegularHierarchy::Build(
-                                      v0, std::move(new_base_faces), old.levels()));
+  MW_ASSIGN_OR_RETURN(
+      auto fresh,
+      SemiRegularHierarchy::Build(v0, std::move(new_base_faces), old.levels()));
   // old_of_new[v] for every vertex of the new hierarchy, level by level.
   std::vector<uint32_t> old_of_new(fresh->vertex_count(fresh->levels()));
   std::vector<char> seen(v0, 0);
@@ -31,19 +65,16 @@ Result<SemiRegularMesh> RenumberBase(const SemiRegularMesh& mesh,
     old_of_new[new_of_old[v]] = v;
   }
   for (int j = 0; j < old.levels(); ++j) {
-    std::unordered_map<uint64_t, uint32_t> old_edge;
-    old_edge.reserve(old.subband_size(j));
-    for (uint32_t k = 0; k < old.subband_size(j); ++k) {
-      old_edge.emplace(EdgeKey(old.edges(j)[k][0], old.edges(j)[k][1]), k);
-    }
+    const EdgeFinder old_edge(old.edges(j), old.vertex_count(j));
     for (uint32_t k = 0; k < fresh->subband_size(j); ++k) {
       const Edge& e = fresh->edges(j)[k];
-      auto it = old_edge.find(EdgeKey(old_of_new[e[0]], old_of_new[e[1]]));
-      if (it == old_edge.end()) {
-        return InvalidArgument("reordered base faces are not the same mesh (level " +
-                               std::to_string(j) + ")");
+      const uint32_t found = old_edge.Find(old_of_new[e[0]], old_of_new[e[1]]);
+      if (found == EdgeFinder::kNotFound) {
+        return InvalidArgument(
+            "reordered base faces are not the same mesh (level " +
+            std::to_string(j) + ")");
       }
-      old_of_new[fresh->vertex_count(j) + k] = old.vertex_count(j) + it->second;
+      old_of_new[fresh->vertex_count(j) + k] = old.vertex_count(j) + found;
     }
   }
   SemiRegularMesh out;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <utility>
 
 #include "codec/test_meshes.h"
 #include "meshwave/semiregular.h"
@@ -151,6 +152,22 @@ TEST(RenumberBaseTest, KeepsTheSurfaceAndItsHierarchy) {
   collect(*renumbered, b);
   EXPECT_EQ(a, b);
   EXPECT_FALSE(RenumberBase(*sr, std::vector<uint32_t>(3, 0), order.faces).ok());
+}
+
+// A permutation whose faces name other edges than the mesh has: refused
+// with a message, not a wrong mesh.
+TEST(RenumberBaseTest, RefusesFacesThatAreNotTheSameMesh) {
+  auto sr = Subdivide(testing::OpenPatch(), 2, SubdivisionScheme::kButterfly);
+  ASSERT_TRUE(sr.ok());
+  const BaseMeshOrder order = *ChooseTransmissionOrder(
+      sr->hierarchy->vertex_count(0), sr->hierarchy->faces(0));
+  std::vector<uint32_t> swapped = order.new_of_old;
+  // The base's first and last vertex trade places, the faces stay.
+  std::swap(swapped.front(), swapped.back());
+  auto renumbered = RenumberBase(*sr, swapped, order.faces);
+  ASSERT_FALSE(renumbered.ok());
+  EXPECT_NE(renumbered.status().message().find("not the same mesh"), std::string::npos)
+      << renumbered.status().ToString();
 }
 
 }  // namespace
