@@ -125,10 +125,10 @@ TEST(MeshIoTest, ReadMeshNamesAMissingFile) {
   ASSERT_FALSE(mesh.ok());
   EXPECT_EQ(mesh.status().code(), StatusCode::kIoError);
   EXPECT_THAT(mesh.status().message(), HasSubstr("/nonexistent/dir/bunny.ply"));
-  EXPECT_EQ(ReadMesh(std::filesystem::temp_directory_path() / "x.ply")
-                .status()
-                .code(),
-            StatusCode::kIoError);
+  // A missing file in a folder that exists (not a fixed name in /tmp,
+  // which another program may have written).
+  meshwave::testing::TempDir dir;
+  EXPECT_EQ(ReadMesh(dir / "x.ply").status().code(), StatusCode::kIoError);
 }
 
 TEST(MeshIoTest, BoundingBoxCoversAllPositions) {
