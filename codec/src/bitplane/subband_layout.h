@@ -33,25 +33,65 @@ std::vector<T> InMortonOrder(const CoefficientOctree& tree, std::span<const T> v
   return out;
 }
 
+// Builds the subbands' layouts one at a time, coarsest first (subband j's
+// parents are in j - 1's octree), so that a decoder can decode the coarse
+// subbands' packets while the finer octrees are still being built. Each
+// Next() costs about what subband j alone costs; the positions carried
+// between calls are level j's vertices (ReferencePositions, level by level).
+class SubbandLayoutBuilder {
+ public:
+  SubbandLayoutBuilder(const SemiRegularHierarchy& h, std::span<const IntVec3> base_grid,
+                       uint32_t leaf_size)
+      : h_(&h), vertices_(base_grid.begin(), base_grid.end()), leaf_size_(leaf_size) {}
+
+  // Subbands built so far.
+  int built() const { return next_; }
+  // The layout of subband built(); at most levels() calls.
+  SubbandLayout Next() {
+    const int j = next_++;
+    const auto& edges = h_->edges(j);
+    // Exact integer midpoints of level j's edges, at scale 2^(j+1): the
+    // same positions as ReferencePositions(h, base)[j].
+    std::vector<IntVec3> positions(edges.size());
+    for (size_t k = 0; k < edges.size(); ++k) {
+      for (int a = 0; a < 3; ++a) {
+        positions[k][a] = vertices_[edges[k][0]][a] + vertices_[edges[k][1]][a];
+      }
+    }
+    SubbandLayout layout{CoefficientOctree(positions, leaf_size_), {}};
+    if (j > 0) {
+      layout.parent_position.resize(h_->subband_size(j));
+      for (uint32_t i = 0; i < layout.parent_position.size(); ++i) {
+        layout.parent_position[i] = position_of_[h_->Parent(j, layout.tree.At(i))];
+      }
+    }
+    if (next_ < h_->levels()) {
+      position_of_.resize(layout.tree.size());
+      for (uint32_t i = 0; i < position_of_.size(); ++i) position_of_[layout.tree.At(i)] = i;
+      // Level j + 1's vertices: level j's at twice the scale, then the midpoints.
+      for (IntVec3& v : vertices_) {
+        for (int64_t& x : v) x *= 2;
+      }
+      vertices_.insert(vertices_.end(), positions.begin(), positions.end());
+    }
+    return layout;
+  }
+
+ private:
+  const SemiRegularHierarchy* h_;
+  std::vector<IntVec3> vertices_;      // level next_'s vertices, scale 2^next_
+  std::vector<uint32_t> position_of_;  // coefficient -> Morton position, next_ - 1
+  uint32_t leaf_size_;
+  int next_ = 0;
+};
+
 inline std::vector<SubbandLayout> BuildSubbandLayouts(
     const SemiRegularHierarchy& h, std::span<const IntVec3> base_grid,
     uint32_t leaf_size) {
-  const auto positions = ReferencePositions(h, base_grid);
+  SubbandLayoutBuilder builder(h, base_grid, leaf_size);
   std::vector<SubbandLayout> out;
   out.reserve(h.levels());
-  std::vector<uint32_t> position_of;  // coefficient -> Morton position, j - 1
-  for (int j = 0; j < h.levels(); ++j) {
-    SubbandLayout layout{CoefficientOctree(positions[j], leaf_size), {}};
-    if (j > 0) {
-      layout.parent_position.resize(h.subband_size(j));
-      for (uint32_t i = 0; i < layout.parent_position.size(); ++i) {
-        layout.parent_position[i] = position_of[h.Parent(j, layout.tree.At(i))];
-      }
-    }
-    position_of.resize(layout.tree.size());
-    for (uint32_t i = 0; i < position_of.size(); ++i) position_of[layout.tree.At(i)] = i;
-    out.push_back(std::move(layout));
-  }
+  while (builder.built() < h.levels()) out.push_back(builder.Next());
   return out;
 }
 

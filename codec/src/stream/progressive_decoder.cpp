@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 #include <string>
 
@@ -34,20 +35,16 @@ constexpr int kEagerTransformLevels = 2;
 }  // namespace
 
 struct ProgressiveDecoder::Impl {
-  // What packets decode into: the subbands' octrees and the coding state of
-  // every (subband, component).
-  struct PacketState {
-    std::vector<SubbandLayout> layouts;
-    std::vector<std::array<ComponentState, 3>> states;
+  // What the packets of subband j decode into: its octree and the coding
+  // state of its three components.
+  struct SubbandCoding {
+    SubbandLayout layout;
+    std::array<ComponentState, 3> states;
   };
 
-  static void InitStates(const StreamHeader& header, PacketState& p) {
-    const int levels = static_cast<int>(p.layouts.size());
-    p.states.resize(levels);  // Init reuses the lists' memory
-    for (int j = 0; j < levels; ++j) {
-      for (int c = 0; c < 3; ++c) {
-        p.states[j][c].Init(p.layouts[j].tree, header.quantizer(j, c).top_bitplane);
-      }
+  static void InitStates(const StreamHeader& header, int j, SubbandCoding& s) {
+    for (int c = 0; c < 3; ++c) {  // Init reuses the lists' memory
+      s.states[c].Init(s.layout.tree, header.quantizer(j, c).top_bitplane);
     }
   }
 
@@ -58,6 +55,9 @@ struct ProgressiveDecoder::Impl {
   std::unique_ptr<WaveletTransform> coarse;  // levels < kEagerTransformLevels
   DecodedBase base;
   std::vector<char> have;
+  // Subbands a packet has decoded into since the last Reset: the others
+  // hold their initial state, which nobody needs to wait for.
+  std::vector<char> touched;
   std::unique_ptr<PacketLayout> packets;
   DistortionEstimates estimates;
   std::vector<double> chain_now;  // each chain's estimated term now
@@ -68,7 +68,7 @@ struct ProgressiveDecoder::Impl {
   double diagonal = 0;
   // Last, so that they are destroyed (their threads joined) before what
   // their builders read.
-  Deferred<PacketState> coding;
+  DeferredSequence<SubbandCoding> coding;  // subband by subband, coarsest first
   Deferred<Result<WaveletTransform>> transform;
 
   bool parent_contexts() const { return header.coder == StreamCoder::k3xC; }
@@ -118,15 +118,20 @@ Result<std::unique_ptr<ProgressiveDecoder>> ProgressiveDecoder::Create(
   impl->packets = std::make_unique<PacketLayout>(header);
   impl->estimates = ReadDistortionIndex(header, PacketChains(header));
   // The octrees (about a quarter of the set-up on igea) and the finer
-  // levels' stencils (about two thirds) are independent of each other.
+  // levels' stencils (about two thirds) are independent of each other. The
+  // octrees come one subband at a time, coarsest first: a packet waits
+  // only for its own subband's (and the coarse subbands' packets come
+  // first in every order).
   const bool background = SetUpInBackground(options.threads);
   Impl* m = impl.get();
-  m->coding.Start(background, [m] {
-    Impl::PacketState p;
-    p.layouts = BuildSubbandLayouts(*m->hierarchy, m->base.grid, m->header.octree_leaf_size);
-    Impl::InitStates(m->header, p);
-    return p;
-  });
+  auto layouts = std::make_shared<SubbandLayoutBuilder>(*m->hierarchy, m->base.grid,
+                                                        m->header.octree_leaf_size);
+  m->coding.Start(background, static_cast<size_t>(m->hierarchy->levels()),
+                  [m, layouts](size_t j) {
+                    Impl::SubbandCoding s{layouts->Next(), {}};
+                    Impl::InitStates(m->header, static_cast<int>(j), s);
+                    return s;
+                  });
   // (The full transform builds the coarse levels again: a few percent.)
   if (m->coarse->levels() < m->hierarchy->levels()) {
     m->transform.Start(background,
@@ -138,7 +143,7 @@ Result<std::unique_ptr<ProgressiveDecoder>> ProgressiveDecoder::Create(
 }
 
 void ProgressiveDecoder::CompleteSetUp() const {
-  impl_->coding.Get();
+  for (size_t j = 0; j < impl_->coding.size(); ++j) impl_->coding.Get(j);
   impl_->TransformTo(impl_->hierarchy->levels());
 }
 
@@ -146,7 +151,12 @@ void ProgressiveDecoder::Reset() {
   Impl& m = *impl_;
   // Only decoding changes the coding state (a packet refused before it
   // decodes changes nothing): fresh states need no new start, nor waiting.
-  if (!m.fresh()) Impl::InitStates(m.header, m.coding.Get());
+  if (!m.fresh()) {
+    for (size_t j = 0; j < m.touched.size(); ++j) {
+      if (m.touched[j]) Impl::InitStates(m.header, static_cast<int>(j), m.coding.Get(j));
+    }
+  }
+  m.touched.assign(m.coding.size(), 0);
   m.have.assign(m.header.packets.length.size(), 0);
   m.chain_now = m.estimates.chain_start;
   m.distortion = m.estimates.start();
@@ -205,16 +215,17 @@ Status ProgressiveDecoder::AddPacket(uint32_t id, std::string_view payload) {
   if (!PacketCheckMatches(index, id, payload)) {
     return ParseError(what() + ": CRC-16 check mismatch (corrupt payload)");
   }
-  Impl::PacketState& coding = m.coding.Get();
+  m.touched[j] = 1;  // before decoding: a corrupt packet leaves its state changed
+  Impl::SubbandCoding& coding = m.coding.Get(j);
   DecoderIo io(payload);
-  const SubbandLayout& layout = coding.layouts[j];
+  const SubbandLayout& layout = coding.layout;
   ComponentContexts contexts;  // shared by the packet's three components
   for (int c = 0; c < 3; ++c) {
-    ComponentState& s = coding.states[j][c];
+    ComponentState& s = coding.states[c];
     if (b > s.top) continue;
     ParentView parent;
     if (m.parent_contexts() && j > 0) {
-      const ComponentState& up = coding.states[j - 1][c];
+      const ComponentState& up = m.coding.Get(j - 1).states[c];
       parent = {layout.parent_position, up.mag, up.negative};
     }
     CodeBitplane(layout.tree, s, b, parent, contexts, io);
@@ -245,10 +256,10 @@ int ProgressiveDecoder::CompleteLevels() const {
     for (int c = 0; c < 3; ++c) {
       // Before any packet a component is complete only with nothing to code.
       const int top = m.header.quantizer(j, c).top_bitplane;
-      if (m.fresh()) {
+      if (!m.touched[j]) {
         all = all && top < 0;
       } else {
-        const ComponentState& s = m.coding.Get().states[j][c];
+        const ComponentState& s = m.coding.Get(j).states[c];
         all = all && (s.top < 0 || s.known_from() <= s.top);
       }
     }
@@ -260,10 +271,9 @@ int ProgressiveDecoder::CompleteLevels() const {
 
 int ProgressiveDecoder::DetailLevels() const {
   const Impl& m = *impl_;
-  if (m.fresh()) return 0;  // and no waiting for the coding state
-  const auto& states = m.coding.Get().states;
-  for (int j = static_cast<int>(states.size()) - 1; j >= 0; --j) {
-    for (const ComponentState& s : states[j]) {
+  for (int j = static_cast<int>(m.touched.size()) - 1; j >= 0; --j) {
+    if (!m.touched[j]) continue;  // no detail, and no waiting for its state
+    for (const ComponentState& s : m.coding.Get(j).states) {
       const int n = s.known_from();
       if (n > s.top) continue;
       // Nonzero exactly as Positions dequantises it.
@@ -290,11 +300,11 @@ std::vector<Vec3> ProgressiveDecoder::Positions(int max_level) const {
   for (int j = 0; j < level; ++j) {
     auto& band = p.subbands[j];
     band.assign(h.subband_size(j), Vec3::Zero());
-    if (m.fresh()) continue;  // every detail is zero yet
-    const Impl::PacketState& coding = m.coding.Get();
-    const CoefficientOctree& tree = coding.layouts[j].tree;
+    if (!m.touched[j]) continue;  // every detail is zero yet
+    const Impl::SubbandCoding& coding = m.coding.Get(j);
+    const CoefficientOctree& tree = coding.layout.tree;
     for (int c = 0; c < 3; ++c) {
-      const ComponentState& s = coding.states[j][c];
+      const ComponentState& s = coding.states[c];
       const StreamHeader::Quantizer& q = m.header.quantizer(j, c);
       const int n = s.known_from();
       if (n > s.top) continue;

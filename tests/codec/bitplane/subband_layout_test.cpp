@@ -51,6 +51,25 @@ TEST(SubbandLayoutTest, ParentPositionNamesTheParentInTheParentsMortonOrder) {
   EXPECT_GT(reordered, 0);
 }
 
+// The builder's octrees, level by level, are those of the reference
+// positions computed all at once (ReferencePositions, which the octree
+// tests check against their definition).
+TEST(SubbandLayoutTest, TheBuilderOrdersEachLevelAsItsReferencePositions) {
+  const LayoutFixture f = MakeLayoutFixture();
+  const auto positions = ReferencePositions(*f.h, f.grid);
+  SubbandLayoutBuilder builder(*f.h, f.grid, 4);
+  for (int j = 0; j < 3; ++j) {
+    ASSERT_EQ(builder.built(), j);
+    const SubbandLayout layout = builder.Next();
+    const CoefficientOctree direct(positions[j], 4);
+    ASSERT_EQ(layout.tree.size(), direct.size());
+    for (uint32_t i = 0; i < direct.size(); ++i) {
+      ASSERT_EQ(layout.tree.At(i), direct.At(i)) << "level " << j << " position " << i;
+    }
+  }
+  EXPECT_EQ(builder.built(), 3);
+}
+
 TEST(SubbandLayoutTest, InMortonOrderPermutesByTheTree) {
   const LayoutFixture f = MakeLayoutFixture();
   const auto layouts = BuildSubbandLayouts(*f.h, f.grid, 4);
