@@ -97,7 +97,7 @@ Result<IngestResult> IngestMeshBytes(Catalog& catalog, std::string_view bytes,
   MW_ASSIGN_OR_RETURN(EncodedStream stream, EncodeMesh(input.mesh, options));
   double reached = 0;
   if (fidelity) {
-    MW_ASSIGN_OR_RETURN(reached, CompleteStreamPsnr(original, stream));
+    MW_ASSIGN_OR_RETURN(reached, CompleteStreamPsnr(original, stream, choices.threads));
     const auto level = reached >= choices.fidelity_db ? spdlog::level::info : spdlog::level::warn;
     spdlog::log(level,
                 "{}: the complete stream is at {:.2f} dB against the upload (asked {:.2f} dB; "

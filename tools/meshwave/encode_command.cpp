@@ -68,7 +68,7 @@ Result<SemiRegularInput> LoadSemiRegular(const EncodeArgs& args, TriMesh mesh) {
 Status ReportFidelity(const EncodeArgs& args, const TriMesh& original,
                       const SemiRegularInput& input, const EncodedStream& stream,
                       int precision) {
-  MW_ASSIGN_OR_RETURN(const double psnr, CompleteStreamPsnr(original, stream));
+  MW_ASSIGN_OR_RETURN(const double psnr, CompleteStreamPsnr(original, stream, args.threads));
   std::printf("fidelity: the complete stream is at %.2f dB of symmetric surface PSNR "
               "against %s (asked %.2f dB; precision %d)\n",
               psnr, args.in.c_str(), args.fidelity_db, precision);

@@ -48,8 +48,10 @@ struct FidelityRemesh {
 Result<FidelityRemesh> RemeshToFidelity(const TriMesh& input, RemeshOptions options,
                                         double fidelity_db, double max_vertex_ratio);
 
-// The complete stream's symmetric surface PSNR against `original`.
-Result<double> CompleteStreamPsnr(const TriMesh& original, const EncodedStream& stream);
+// The complete stream's symmetric surface PSNR against `original`, on
+// `threads` threads (0: the machine's cores; the same value for any count).
+Result<double> CompleteStreamPsnr(const TriMesh& original, const EncodedStream& stream,
+                                  int threads = 0);
 
 }  // namespace meshwave
 

@@ -68,6 +68,9 @@ struct SurfaceDistanceOptions {
   uint64_t seed = 1;
   // Lower bound on the number of face samples of each mesh.
   size_t min_samples = 10000;
+  // Threads (0: the machine's cores): the two directions are measured side
+  // by side, each as on one thread, so the result is the same for any count.
+  int threads = 0;
 };
 
 // One-sided and symmetric sampled distances, in the units of the meshes.

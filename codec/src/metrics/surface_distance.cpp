@@ -5,6 +5,8 @@
 #include <limits>
 #include <string>
 
+#include "core/parallel_for.h"
+
 #include "meshwave/metrics.h"
 #include "metrics/input_checks.h"
 #include "metrics/surface_sampler.h"
@@ -80,11 +82,16 @@ Result<SurfaceDistance> SymmetricSurfaceDistance(
                            " samples per mesh asked for, more than 2^31");
   }
 
-  const metrics::TriangleBvh bvh_a(a.positions, a.faces);
-  const metrics::TriangleBvh bvh_b(b.positions, b.faces);
+  // Each direction builds its index and measures on a thread of its own.
   const auto count = static_cast<uint64_t>(face_samples);
-  const OneSided ab = Measure(a, bvh_b, count, options.seed);
-  const OneSided ba = Measure(b, bvh_a, count, options.seed ^ kSeedMixForB);
+  OneSided ab, ba;
+  ParallelInvoke(
+      options.threads,
+      [&] { ab = Measure(a, metrics::TriangleBvh(b.positions, b.faces), count, options.seed); },
+      [&] {
+        ba = Measure(b, metrics::TriangleBvh(a.positions, a.faces), count,
+                     options.seed ^ kSeedMixForB);
+      });
 
   SurfaceDistance out;
   out.rms_ab = ab.rms;

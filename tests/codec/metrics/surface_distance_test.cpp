@@ -110,6 +110,24 @@ TEST(SurfaceDistanceTest, SameSeedGivesIdenticalResults) {
   EXPECT_NEAR(first.rms_ab, other.rms_ab, 0.01 * first.rms_ab);
 }
 
+// The two directions run side by side: the same numbers on 1 or 2 threads.
+TEST(SurfaceDistanceTest, ThreadCountDoesNotChangeTheResult) {
+  const TriMesh a = testing::Icosphere(2);
+  const TriMesh b = testing::Icosphere(3);
+  SurfaceDistanceOptions one, two;
+  one.threads = 1;
+  two.threads = 2;
+  const SurfaceDistance x = Measure(a, b, one);
+  const SurfaceDistance y = Measure(a, b, two);
+  EXPECT_EQ(x.rms_ab, y.rms_ab);
+  EXPECT_EQ(x.rms_ba, y.rms_ba);
+  EXPECT_EQ(x.mean, y.mean);
+  EXPECT_EQ(x.hausdorff_ab, y.hausdorff_ab);
+  EXPECT_EQ(x.hausdorff_ba, y.hausdorff_ba);
+  EXPECT_EQ(x.samples_a, y.samples_a);
+  EXPECT_EQ(x.samples_b, y.samples_b);
+}
+
 TEST(SurfaceDistanceTest, SampleCountsFollowTheDenserMeshAndTheMinimum) {
   const TriMesh a = testing::GridPatch(2, 0, 0, 1);   // 9 vertices, 8 faces
   const TriMesh b = testing::GridPatch(50, 0, 0, 1);  // 2601 v, 5000 faces
