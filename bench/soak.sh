@@ -6,7 +6,8 @@
 #   Expects BUILD_DIR/server/meshwave-server (and bench/ws_load when the
 #   WebSocket load tool exists). Loopback only; everything it starts is
 #   stopped on exit. Output: TMP/samples.tsv (t, rss_kib, fds, requests,
-#   non-2xx) and a summary on stdout; KEEP=1 keeps TMP.
+#   non-2xx) and a summary on stdout; KEEP=1 keeps TMP; SAVE_SAMPLES=1
+#   also writes the samples to bench/soak_samples.tsv (the recorded run).
 # Load (all under nice -n 10, so the machine's other users come first):
 #   - wrk, 1 thread, 8 connections: a Lua script rotating over packet
 #     fetches, /stream prefixes at several budgets, orders and cursors,
@@ -143,4 +144,9 @@ awk -F'\t' 'NR > 1 && $1 >= 60 {if (!n++) {min = max = $2}; if ($2 < min) min = 
   END {printf "rss_after_warmup_kib min %d max %d last %d spread %.1f%%\nfds_after_warmup min %d max %d\n",
     min, max, last, 100 * (max - min) / min, fmin, fmax}' "$tmp/samples.tsv"
 echo "server log lines with error: $(grep -ci error "$tmp/server.log" || true)"
-cp "$tmp/samples.tsv" "$root/bench/soak_samples.tsv" 2> /dev/null || true
+# The recorded samples (bench/soak_samples.tsv, what docs/RELIABILITY.md
+# cites) are replaced only when asked: SAVE_SAMPLES=1.
+if [[ ${SAVE_SAMPLES:-0} == 1 ]]; then
+  cp "$tmp/samples.tsv" "$root/bench/soak_samples.tsv"
+  echo "samples written to bench/soak_samples.tsv"
+fi
