@@ -12,7 +12,9 @@
 #     The same build is a fuzzing build: bench/fuzz_run.sh runs its targets.
 #   tsan: clang, TSan (build-tsan): the server's concurrency tests, i.e. the
 #     HTTP and WebSocket integration suites and the fault and abuse tests,
-#     whose meshwave-server processes (2 io threads) are TSan builds.
+#     whose meshwave-server processes (2 io threads) are TSan builds; the
+#     core and stream suites (Deferred, DeferredSequence, ParallelFor, the
+#     decoder's set-up threads).
 # Both stages build with clang in unity batches (tools/build_flags.sh) and
 # without the WebAssembly module; the Release stage is gcc's.
 # Left out for time: the analysis and CLI suites (the CLI's code is the
