@@ -7,13 +7,18 @@
 # only the next packets. It prints the browser viewer's URL
 # (http://127.0.0.1:PORT/viewer/) and, run from a terminal, keeps the server
 # up until Enter.
+#   DEMO_BUILD_DIR=DIR  use DIR's programs as they are: no install, no build
+#                       (the test suite's demo_test runs it so)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash deploy/install-deps.sh
-cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
-cmake --build build -j2 --target meshwave meshwave-server
-cli=build/tools/meshwave/meshwave
-server=build/server/meshwave-server
+build=${DEMO_BUILD_DIR:-build}
+if [[ -z ${DEMO_BUILD_DIR:-} ]]; then
+  bash deploy/install-deps.sh
+  cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
+  cmake --build build -j2 --target meshwave meshwave-server
+fi
+cli=$build/tools/meshwave/meshwave
+server=$build/server/meshwave-server
 out=$(mktemp -d)
 server_pid=
 cleanup() {
@@ -52,7 +57,13 @@ $cli decode "$out/holes.mwv" "$out/holes_level1.ply" --order resolution --max-le
 echo
 echo "== meshwave-server ingest: the sample meshes into a new catalog (elephant.off is remeshed)"
 $server ingest --catalog "$out/catalog" data/elephant.off data/holes.off | tee "$out/ingest.txt"
-id=$(awk '/^[0-9a-f]{12} / && /elephant.off/ {print $1; exit}' "$out/ingest.txt")
+# The id opens the line that names the file (grep -E: Debian's awk, mawk,
+# has no {12}).
+id=$(grep -E '^[0-9a-f]{12} .*elephant\.off' "$out/ingest.txt" | head -n 1 | cut -d ' ' -f 1)
+if [[ -z $id ]]; then
+  echo "demo: the ingest printed no id for elephant.off" >&2
+  exit 1
+fi
 echo
 echo "== meshwave-server on 127.0.0.1 (a free port)"
 $server --catalog "$out/catalog" --listen 127.0.0.1:0 --port-file "$out/port" > "$out/server.log" 2>&1 &
