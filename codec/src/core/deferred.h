@@ -76,7 +76,6 @@ class Deferred {
   mutable std::once_flag once_;
 };
 
-
 // Values 0..count-1 built in that order, each once, by one builder (which
 // may keep state from one to the next), either on a thread of its own
 // started right away or, without one, on the caller's thread as far as a
@@ -119,7 +118,8 @@ class DeferredSequence {
   T& Get(size_t i) const {
     std::unique_lock lock(mutex_);
     if (!thread_.joinable()) {
-      // No thread: build under the lock (callers wait as they would).
+      // No thread: this caller builds the values up to i, one caller at a
+      // time (foreground_), the others waiting as they would for a thread.
       while (built_ <= i && !error_) {
         lock.unlock();
         {

@@ -6,7 +6,6 @@
 #include <string>
 
 #include "core/parallel_for.h"
-
 #include "meshwave/metrics.h"
 #include "metrics/input_checks.h"
 #include "metrics/surface_sampler.h"

@@ -219,13 +219,16 @@ Status ProgressiveDecoder::AddPacket(uint32_t id, std::string_view payload) {
   Impl::SubbandCoding& coding = m.coding.Get(j);
   DecoderIo io(payload);
   const SubbandLayout& layout = coding.layout;
+  // Built before subband j (the sequence's order): no wait, one lock.
+  const Impl::SubbandCoding* up_coding =
+      m.parent_contexts() && j > 0 ? &m.coding.Get(j - 1) : nullptr;
   ComponentContexts contexts;  // shared by the packet's three components
   for (int c = 0; c < 3; ++c) {
     ComponentState& s = coding.states[c];
     if (b > s.top) continue;
     ParentView parent;
-    if (m.parent_contexts() && j > 0) {
-      const ComponentState& up = m.coding.Get(j - 1).states[c];
+    if (up_coding != nullptr) {
+      const ComponentState& up = up_coding->states[c];
       parent = {layout.parent_position, up.mag, up.negative};
     }
     CodeBitplane(layout.tree, s, b, parent, contexts, io);
