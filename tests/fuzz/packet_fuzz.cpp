@@ -4,9 +4,12 @@
 // payload with a valid check: what a malicious server can send). Byte 0 picks
 // the packet; the packets before it in index order (a dependency-closed
 // prefix) are the real ones, and the real packets after it are added
-// afterwards: each must be decoded or refused, never crash.
+// afterwards: each must be decoded or refused, never crash. A base
+// refinement packet's length is fixed by the header (3 bits per base
+// vertex), so its bytes are cut or zero-padded to that length.
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <string_view>
 
 #include "fuzz_fixture_testonly.h"
@@ -20,8 +23,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const fuzz::Fixture& f = fuzz::GetFixture();
   const uint32_t n = static_cast<uint32_t>(f.payloads.size());
   const uint32_t id = data[0] % n;
-  const std::string_view payload(reinterpret_cast<const char*>(data + 1), size - 1);
+  std::string bytes(reinterpret_cast<const char*>(data + 1), size - 1);
   StreamHeader h = f.header;
+  if (PacketLayout(h).IsBase(id)) bytes.resize(h.packets.length[id], '\0');
+  const std::string_view payload = bytes;
   h.packets.length[id] = static_cast<uint32_t>(payload.size());
   const uint16_t check = PacketCheck(payload);
   h.packets.check[2 * id] = static_cast<char>(check >> 8);

@@ -113,11 +113,24 @@ class Layout:
             for b in range(self.top[j], -1, -1):
                 self.id[(j, b)] = n
                 n += 1
+        # Then the base refinement's packets, planes descending (FORMAT.md 3.3).
+        self.base_planes = header.base.refinement_planes
+        self.base = [None] * self.base_planes
+        for b in range(self.base_planes - 1, -1, -1):
+            self.id[("base", b)] = n
+            self.base[b] = n
+            n += 1
         self.jb = {v: k for k, v in self.id.items()}
         self.count = n
 
+    def chain(self, i):
+        j, _ = self.jb[i]
+        return self.levels if j == "base" else j
+
     def deps(self, i):
         j, b = self.jb[i]
+        if j == "base":
+            return [self.base[b + 1]] if b + 1 < self.base_planes else []
         out = []
         if (j, b + 1) in self.id:
             out.append(self.id[(j, b + 1)])
@@ -130,23 +143,36 @@ class Layout:
 
     def order(self, name, max_level=None):
         used = self.levels if max_level is None else min(max_level, self.levels)
+        base = [self.base[b] for b in range(self.base_planes - 1, -1, -1)]
         if name == "resolution":
-            return [self.id[(j, b)] for j in range(used) for b in range(self.top[j], -1, -1)]
+            return base + [self.id[(j, b)] for j in range(used) for b in range(self.top[j], -1, -1)]
         if name == "quality":
+            # Base plane b goes just before the details' bitplane b + shift.
             top = max([self.top[j] for j in range(used)] + [-1])
-            return [self.id[(j, b)] for b in range(top, -1, -1) for j in range(used) if (j, b) in self.id]
+            ratio = self.h.base.step / self.h.quantizers[0].step if len(self.h.quantizers) else 0
+            shift = math.floor(math.log2(ratio) + 0.5) if ratio > 0 and math.isfinite(ratio) else 0
+            out, b = [], self.base_planes - 1
+            while b >= 0 and b + shift > top:
+                out.append(self.base[b]); b -= 1
+            for n in range(top, -1, -1):
+                while b >= 0 and b + shift == n:
+                    out.append(self.base[b]); b -= 1
+                out += [self.id[(j, n)] for j in range(used) if (j, n) in self.id]
+            while b >= 0:
+                out.append(self.base[b]); b -= 1
+            return out
         # rd: greedy on the estimated reduction per (length + 4) bytes.
         exp2 = getattr(math, "exp2", lambda x: 2.0 ** x)
         current = list(self.h.packets.chain_distortion)
         steps = self.h.packets.distortion_step
         reduction = [0.0] * self.count
         for i in range(self.count):  # chains in index order: bitplanes descending
-            j, _ = self.jb[i]
+            j = self.chain(i)
             d = steps[i]
             nxt = 0.0 if d == 255 else current[j] * exp2(-d / 32)
             reduction[i] = current[j] - nxt
             current[j] = nxt
-        candidates = [self.id[(j, b)] for j in range(used) for b in range(self.top[j], -1, -1)]
+        candidates = [self.id[(j, b)] for j in range(used) for b in range(self.top[j], -1, -1)] + base
         sent, order = set(), []
         while len(order) < len(candidates):
             best, best_value = None, None

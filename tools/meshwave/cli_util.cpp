@@ -129,10 +129,19 @@ void AddQuantizerOption(CLI::App* cmd, QuantizerArgs& args) {
                   "quantises all three alike")
       ->check(CLI::Range(1.0, 1024.0))
       ->capture_default_str();
+  cmd->add_option("--base-refinement", args.base_refinement,
+                  "The base mesh's positions travel in the header this many bits per "
+                  "coordinate coarser, and as many packets refine them, so that a small "
+                  "budget does not pay for their low bits; -1: as many as cost the whole "
+                  "stream nothing (at most 2 % more base bytes); 0: the whole base in the "
+                  "header")
+      ->check(CLI::Range(-1, 20))
+      ->capture_default_str();
 }
 
 Status ApplyQuantizerOption(const QuantizerArgs& args, EncodeOptions& options) {
   options.tangent_step_scale = args.tangent_step;
+  options.base_refinement_planes = args.base_refinement;
   const std::string& quantizer = args.quantizer;
   // Codes of quant/deadzone_quantizer.h.
   if (quantizer == "saq") options.deadzone = 0;

@@ -42,10 +42,12 @@ Status ApplyTransformOptions(const std::string& predictor,
 // --quantizer saq|ueq|z1.5|z2.5|auto: the deadzone of every (subband,
 // component), or `auto`, chosen per (subband, component) from the fitted
 // Laplacian mixture (Satti et al. 2011).
-// --quantizer (the deadzone) and --tangent-step (EncodeOptions::tangent_step_scale).
+// --quantizer (the deadzone), --tangent-step (EncodeOptions::tangent_step_scale)
+// and --base-refinement (EncodeOptions::base_refinement_planes).
 struct QuantizerArgs {
   std::string quantizer = "saq";
   double tangent_step = EncodeOptions{}.tangent_step_scale;
+  int base_refinement = EncodeOptions{}.base_refinement_planes;
 };
 void AddQuantizerOption(CLI::App* cmd, QuantizerArgs& args);
 Status ApplyQuantizerOption(const QuantizerArgs& args, EncodeOptions& options);

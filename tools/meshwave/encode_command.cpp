@@ -113,10 +113,13 @@ Status Run(const EncodeArgs& args) {
   uint64_t payload = 0;
   for (const auto& p : stream.packets) payload += p.size();
   const double v = static_cast<double>(stream.header.vertices);
-  std::printf("wrote %s: %zu bytes (header %zu incl. base mesh %zu, %zu packets %llu)\n",
+  const uint32_t planes = stream.header.base.refinement_planes;
+  std::printf("wrote %s: %zu bytes (header %zu incl. base mesh %zu, %zu packets %llu "
+              "incl. %u base refinement planes of %zu)\n",
               args.out.c_str(), bytes.size(), bytes.size() - payload,
               stream.header.base.coded.size(), stream.packets.size(),
-              static_cast<unsigned long long>(payload));
+              static_cast<unsigned long long>(payload), planes,
+              planes == 0 ? size_t{0} : stream.packets.back().size());
   std::printf("%llu vertices, %u levels, %s/%s %s: %.3f bits per vertex in all\n",
               static_cast<unsigned long long>(stream.header.vertices),
               stream.header.transform.levels,

@@ -34,6 +34,13 @@ struct EncodeOptions {
   // 4 and 16 at mid and high rates on the shared meshes (docs/RD_RESULTS.md,
   // "Tangential step"). 1 quantises every component alike.
   double tangent_step_scale = 8;
+  // The base mesh's positions travel in the header on a grid 2^R times
+  // coarser than their own, and R packets refine them a bit per coordinate
+  // at a time (docs/FORMAT.md 3.3), so that a low-rate prefix does not pay
+  // for the base's low bits. -1: the largest R that costs the complete
+  // stream at most 2 % more base bytes (ChooseBaseRefinementPlanes); 0: the
+  // whole base in the header. PGC always sends the whole base.
+  int base_refinement_planes = -1;
   int deadzone = 0;  // xi0 code (quant/deadzone_quantizer.h): 0 = SAQ
   // `--quantizer auto` (Satti et al. 2011): each (subband, component) gets the
   // deadzone its fitted Laplacian mixture calls for (sigma2/sigma1: UEQ

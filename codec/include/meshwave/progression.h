@@ -14,8 +14,12 @@
 namespace meshwave {
 
 enum class Progression {
-  kQuality,     // bitplane-major, coarse subbands first within a bitplane
-  kResolution,  // subband-major: all bitplanes of d^0, then d^1, ...
+  // Bitplane-major, coarse subbands first within a bitplane; each base
+  // refinement plane just before the details' bitplane of its step
+  // (BaseQualityShift).
+  kQuality,
+  // Subband-major: the base refinement, all bitplanes of d^0, then d^1, ...
+  kResolution,
   kRd,          // greedy by distortion reduction per byte
 };
 Result<Progression> ParseProgression(const std::string& name);
@@ -26,6 +30,12 @@ const char* ProgressionName(Progression p);
 // (ProgressiveDecoder::Create or ValidateStreamHeader).
 std::vector<uint32_t> PacketOrder(const StreamHeader& header,
                                   Progression progression, int max_level = -1);
+
+// The quality order sends base refinement plane b just before the details'
+// bitplane b + shift, shift = floor(log2(base.step / step of subband 0's
+// first component) + 0.5): where the base's finest-grid cells, 2^b of them,
+// match that bitplane's step (docs/FORMAT.md 7). 0 without quantizers.
+int BaseQualityShift(const StreamHeader& header);
 
 // The packets that packet `id` needs first (at most two).
 std::vector<uint32_t> PacketDependencies(const StreamHeader& header,

@@ -47,8 +47,9 @@ struct StreamHeader {
     uint32_t vertex_count = 0;
     uint32_t face_count = 0;
     std::vector<double> origin;
-    double step = 0;
+    double step = 0;  // of the finest grid
     std::string coded;
+    uint32_t refinement_planes = 0;  // the coded grid is 2^this coarser
   };
   struct Quantizer {
     double step = 0;

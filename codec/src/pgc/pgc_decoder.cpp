@@ -20,6 +20,9 @@ Status ValidatePgcHeader(const StreamHeader& h) {
                       " is not PGC");
   }
   MW_RETURN_IF_ERROR(ValidateQuantizers(h));
+  if (h.base.refinement_planes != 0) {
+    return ParseError("PGC header: the base mesh has refinement planes (PGC sends it whole)");
+  }
   int top = -1;
   for (const auto& q : h.quantizers) top = std::max(top, q.top_bitplane);
   return ValidateCompactIndex(h, top + 1, 1);

@@ -30,7 +30,11 @@ Result<PgcStream> EncodePgc(const SemiRegularMesh& input,
   // The checks, steps and header fields below follow EncodeMesh exactly, so
   // that PGC, SIM and 3xC code the same quantised coefficients
   // (ZerotreeCoderTest.UsesTheQuantizersAndVertexOrderOfEncodeMesh pins it).
-  MW_ASSIGN_OR_RETURN(PreparedStream prepared, PrepareStream(input, options));
+  // PGC's one chain has no room for the base refinement: the whole base
+  // travels in the header, as in Khodakovsky et al.'s coder.
+  EncodeOptions whole_base = options;
+  whole_base.base_refinement_planes = 0;
+  MW_ASSIGN_OR_RETURN(PreparedStream prepared, PrepareStream(input, whole_base));
   PgcStream out;
   out.mesh = std::move(prepared.mesh);
   const SemiRegularMesh& mesh = out.mesh;

@@ -6,6 +6,7 @@
 
 #include "core/edge_key.h"
 #include "entropy/adaptive_golomb.h"
+#include "stream/stream_format.h"
 
 namespace meshwave {
 namespace {
@@ -81,23 +82,32 @@ Result<BaseMeshOrder> ChooseTransmissionOrder(uint32_t vertex_count,
   return TraverseBaseMesh(vertex_count, faces, nullptr);
 }
 
-Result<StreamHeader::BaseMesh> EncodeBaseMesh(const std::vector<Vec3>& positions,
-                                       const std::vector<Face>& faces,
-                                       double step) {
+Result<EncodedBaseMesh> EncodeBaseMesh(const std::vector<Vec3>& positions,
+                                       const std::vector<Face>& faces, double step,
+                                       uint32_t refinement_planes) {
   if (positions.empty() || faces.empty()) return InvalidArgument("empty base mesh");
   if (!(step > 0) || !std::isfinite(step)) {
     return InvalidArgument("base quantisation step must be positive");
   }
+  if (refinement_planes > kMaxBaseRefinementPlanes) {
+    return InvalidArgument("at most " + std::to_string(kMaxBaseRefinementPlanes) +
+                           " base refinement planes");
+  }
   Vec3 origin = positions[0];
   for (const Vec3& p : positions) origin = origin.cwiseMin(p);
+  const int64_t low = (int64_t{1} << refinement_planes) - 1;
   std::vector<IntVec3> grid(positions.size());
+  EncodedBaseMesh out;
+  out.residual.assign(positions.size(), IntVec3{0, 0, 0});
   for (size_t v = 0; v < positions.size(); ++v) {
     for (int a = 0; a < 3; ++a) {
       const double x = std::round((positions[v][a] - origin[a]) / step);
       if (!(x >= 0) || x >= 2147483647.0) {
         return InvalidArgument("base mesh does not fit a 31-bit grid at this precision");
       }
-      grid[v][a] = static_cast<int64_t>(x);
+      const auto fine = static_cast<int64_t>(x);
+      grid[v][a] = fine >> refinement_planes;
+      out.residual[v][a] = fine & low;
     }
   }
   ArithmeticEncoder enc;
@@ -116,12 +126,13 @@ Result<StreamHeader::BaseMesh> EncodeBaseMesh(const std::vector<Vec3>& positions
     const IntVec3 p = predictor.Predict(v, grid);
     for (int a = 0; a < 3; ++a) EncodeSignedGolomb(enc, pc.residual[a], grid[v][a] - p[a]);
   }
-  StreamHeader::BaseMesh out;
-  out.vertex_count = static_cast<uint32_t>(positions.size());
-  out.face_count = static_cast<uint32_t>(faces.size());
-  for (int a = 0; a < 3; ++a) out.origin.push_back(origin[a]);
-  out.step = step;
-  out.coded = enc.Finish();
+  StreamHeader::BaseMesh& base = out.header;
+  base.vertex_count = static_cast<uint32_t>(positions.size());
+  base.face_count = static_cast<uint32_t>(faces.size());
+  for (int a = 0; a < 3; ++a) base.origin.push_back(origin[a]);
+  base.step = step;
+  base.coded = enc.Finish();
+  base.refinement_planes = refinement_planes;
   return out;
 }
 
@@ -144,6 +155,13 @@ Result<DecodedBase> DecodeBaseMesh(const StreamHeader::BaseMesh& base, uint32_t 
   for (double o : base.origin) {
     if (!std::isfinite(o)) return ParseError("base mesh: origin is not finite");
   }
+  if (base.refinement_planes > kMaxBaseRefinementPlanes) {
+    return ParseError("base mesh: " + std::to_string(base.refinement_planes) +
+                      " refinement planes (at most " +
+                      std::to_string(kMaxBaseRefinementPlanes) + ")");
+  }
+  // Finest-grid coordinates, 2^R times the coarse ones, stay below 2^31.
+  const int64_t grid_limit = int64_t{0x7fffffff} >> base.refinement_planes;
   ArithmeticDecoder dec(base.coded);
   DecodedBase out;
   MW_ASSIGN_OR_RETURN(out.faces,
@@ -157,15 +175,40 @@ Result<DecodedBase> DecodeBaseMesh(const StreamHeader::BaseMesh& base, uint32_t 
     const IntVec3 p = predictor.Predict(i, out.grid);
     for (int a = 0; a < 3; ++a) {
       const int64_t q = p[a] + DecodeSignedGolomb(dec, pc.residual[a]);
-      if (q < 0 || q > 0x7fffffff) {
+      if (q < 0 || q > grid_limit) {
         return ParseError("base mesh: vertex " + std::to_string(i) + " leaves the grid");
       }
       out.grid[i][a] = q;
-      out.positions[i][a] = base.origin[static_cast<size_t>(a)] + base.step * static_cast<double>(q);
     }
   }
   if (dec.overrun()) return ParseError("base mesh: coded bytes truncated");
+  ForgetBaseRefinement(base, out);
   return out;
+}
+
+Status RefineBase(const StreamHeader::BaseMesh& header, int plane, std::string_view payload,
+                  DecodedBase& base) {
+  if (plane != base.missing_planes - 1) {
+    return InvalidArgument("base refinement plane " + std::to_string(plane) +
+                           " out of turn (next: " + std::to_string(base.missing_planes - 1) +
+                           ")");
+  }
+  MW_RETURN_IF_ERROR(DecodeBaseRefinementPlane(payload, plane, base.refinement));
+  base.missing_planes = plane;
+  for (size_t v = 0; v < base.grid.size(); ++v) {
+    base.positions[v] = RefinedBasePosition(header, base.grid[v], base.refinement[v], plane);
+  }
+  return Status::Ok();
+}
+
+void ForgetBaseRefinement(const StreamHeader::BaseMesh& header, DecodedBase& base) {
+  base.missing_planes = static_cast<int>(header.refinement_planes);
+  base.refinement.assign(base.grid.size(), IntVec3{0, 0, 0});
+  base.positions.resize(base.grid.size());
+  for (size_t v = 0; v < base.grid.size(); ++v) {
+    base.positions[v] =
+        RefinedBasePosition(header, base.grid[v], base.refinement[v], base.missing_planes);
+  }
 }
 
 }  // namespace meshwave

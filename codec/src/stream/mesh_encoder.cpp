@@ -12,6 +12,7 @@
 #include "quant/deadzone_quantizer.h"
 #include "quant/subband_gains.h"
 #include "stream/base_mesh_codec.h"
+#include "stream/base_refinement.h"
 #include "stream/distortion_index_writer.h"
 #include "stream/packet_index.h"
 #include "stream/stream_format.h"
@@ -52,7 +53,10 @@ Result<EncodedStream> EncodeMesh(const SemiRegularMesh& input,
   header.set_octree_leaf_size(options.octree_leaf_size);
   DistortionModel model;
   model.base = prepared.base_distortion;
-  model.chain_start.assign(static_cast<size_t>(levels), 0.0);
+  // A chain per subband, then the base refinement's (packet_index.h).
+  model.chain_start.assign(static_cast<size_t>(levels) + 1, 0.0);
+  const std::vector<double>& base_error = prepared.base_error;
+  model.chain_start[static_cast<size_t>(levels)] = base_error.back() - base_error.front();
   const auto layouts =
       BuildSubbandLayouts(h, base.grid, options.octree_leaf_size);
 
@@ -139,6 +143,15 @@ Result<EncodedStream> EncodeMesh(const SemiRegularMesh& input,
       AddCodedPacket(packet.payload, static_cast<uint32_t>(j), packet.reduction, index, model);
       out.packets.push_back(std::move(packet.payload));
     }
+  }
+  // The base refinement: plane R-1 first; each takes the base's error from
+  // base_error[b + 1] to base_error[b].
+  for (int b = static_cast<int>(base_error.size()) - 2; b >= 0; --b) {
+    std::string payload = EncodeBaseRefinementPlane(prepared.base_residual, b);
+    AddCodedPacket(payload, static_cast<uint32_t>(levels),
+                   base_error[static_cast<size_t>(b) + 1] - base_error[static_cast<size_t>(b)],
+                   index, model);
+    out.packets.push_back(std::move(payload));
   }
   WriteDistortionIndex(model, prepared.zero_packet_distortion, header);
   MW_ASSIGN_OR_RETURN(out.header, ToStreamHeader(header));

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/crc.h"
+#include "stream/stream_format.h"
 
 namespace meshwave {
 
@@ -34,6 +35,16 @@ PacketLayout::PacketLayout(const StreamHeader& h) {
     for (int b = top; b >= 0; --b) subband_.push_back(j);
     count_ += top + 1;
   }
+  detail_count_ = count_;
+  // Clamped for headers not validated yet (ValidateStreamHeader refuses more).
+  base_planes_ = static_cast<int>(
+      std::min<uint32_t>(h.base.refinement_planes, kMaxBaseRefinementPlanes));
+  count_ += base_planes_;
+}
+
+int PacketLayout::BaseId(int plane) const {
+  if (plane < 0 || plane >= base_planes_) return -1;
+  return detail_count_ + (base_planes_ - 1 - plane);
 }
 
 int PacketLayout::Id(int j, int b) const {
@@ -44,6 +55,12 @@ int PacketLayout::Id(int j, int b) const {
 PacketLayout::Needs PacketLayout::Dependencies(uint32_t id, bool parent_contexts) const {
   Needs needs;
   if (id >= static_cast<uint32_t>(count())) return needs;
+  if (IsBase(id)) {
+    if (int up = BaseId(Bitplane(id) + 1); up >= 0) {
+      needs.ids[needs.count++] = static_cast<uint32_t>(up);
+    }
+    return needs;
+  }
   const int j = Subband(id);
   const int b = Bitplane(id);
   if (int up = Id(j, b + 1); up >= 0) needs.ids[needs.count++] = static_cast<uint32_t>(up);
@@ -56,6 +73,7 @@ PacketLayout::Needs PacketLayout::Dependencies(uint32_t id, bool parent_contexts
 }
 
 int PacketLayout::Bitplane(uint32_t id) const {
+  if (IsBase(id)) return base_planes_ - 1 - (static_cast<int>(id) - detail_count_);
   const int j = subband_[id];
   return top_[static_cast<size_t>(j)] - (static_cast<int>(id) - first_[static_cast<size_t>(j)]);
 }
@@ -65,7 +83,9 @@ std::vector<uint32_t> PacketChains(const StreamHeader& header) {
   std::vector<uint32_t> chain(static_cast<size_t>(count), 0);
   const PacketLayout layout(header);
   for (int id = 0; id < count && id < layout.count(); ++id) {
-    chain[static_cast<size_t>(id)] = static_cast<uint32_t>(layout.Subband(static_cast<uint32_t>(id)));
+    const auto u = static_cast<uint32_t>(id);
+    chain[static_cast<size_t>(id)] =
+        static_cast<uint32_t>(layout.IsBase(u) ? layout.levels() : layout.Subband(u));
   }
   return chain;
 }

@@ -4,8 +4,8 @@
 //
 // Distortion model. The packets form chains: in a 3xC or SIM stream the
 // packets of one subband (j, B_j) ... (j, 0), which the dependencies force
-// to arrive in that order (the PGC measurement coder, pgc/, makes all its
-// packets one chain). The
+// to arrive in that order, and chain J, the base refinement's planes (the
+// PGC measurement coder, pgc/, makes all its packets one chain). The
 // estimated distortion of a decoder holding some packets is
 //   base_distortion + sum over chains of E_c(last packet of c held),
 // with E_c(none) = chain_distortion[c]. Every term is positive, so a coarse
@@ -41,22 +41,32 @@ bool PacketCheckMatches(const StreamHeader::PacketIndex& index, uint32_t id,
                         std::string_view payload);
 
 // Packet ids <-> (subband, bitplane), from the quantizers' top bitplanes:
-// ids run subband by subband, bitplanes descending (FORMAT.md 2.1).
+// ids run subband by subband, bitplanes descending, then the base
+// refinement's packets, planes descending (FORMAT.md 2.1).
 class PacketLayout {
  public:
   explicit PacketLayout(const StreamHeader& h);
   // Id of packet (j, b), -1 when it does not exist.
   int Id(int j, int b) const;
+  // Id of the base refinement packet of `plane`, -1 when it does not exist.
+  int BaseId(int plane) const;
   int Top(int j) const { return top_[static_cast<size_t>(j)]; }
   int levels() const { return static_cast<int>(top_.size()); }
   int count() const { return count_; }
-  // The subband and bitplane of packet `id` (0 <= id < count()).
-  int Subband(uint32_t id) const { return subband_[id]; }
+  int detail_count() const { return detail_count_; }
+  int base_planes() const { return base_planes_; }
+  bool IsBase(uint32_t id) const {
+    return id >= static_cast<uint32_t>(detail_count_) && id < static_cast<uint32_t>(count_);
+  }
+  // The subband (-1 for a base refinement packet) and bitplane (the base
+  // refinement's plane) of packet `id` (0 <= id < count()).
+  int Subband(uint32_t id) const { return IsBase(id) ? -1 : subband_[id]; }
   int Bitplane(uint32_t id) const;
   // The packets `id` needs first (PacketDependencies): the one above it in
-  // its subband and, with parent contexts (3xC), the parent subband's at the
-  // same bitplane. Empty for an id out of range. At most two, so no
-  // allocation: the decoder asks for every packet it is offered.
+  // its subband (or in the base refinement) and, with parent contexts
+  // (3xC), the parent subband's at the same bitplane. Empty for an id out
+  // of range. At most two, so no allocation: the decoder asks for every
+  // packet it is offered.
   struct Needs {
     std::array<uint32_t, 2> ids{};
     int count = 0;
@@ -69,6 +79,8 @@ class PacketLayout {
   std::vector<int> first_;  // id of (j, top_j)
   std::vector<int> top_;
   std::vector<int> subband_;
+  int detail_count_ = 0;
+  int base_planes_ = 0;
   int count_ = 0;
 };
 
@@ -89,7 +101,8 @@ struct DistortionEstimates {
 };
 DistortionEstimates ReadDistortionIndex(const StreamHeader& header,
                                         std::span<const uint32_t> chain_of);
-// The chain of each packet: its subband (3xC and SIM).
+// The chain of each packet: its subband (3xC and SIM), J for the base
+// refinement's packets.
 std::vector<uint32_t> PacketChains(const StreamHeader& header);
 
 // The estimated PSNR rule, the one ProgressiveDecoder::EstimatedPsnr and

@@ -8,6 +8,7 @@
 #include "quant/deadzone_quantizer.h"
 #include "stream/decoder_setup.h"
 #include "stream/packet_index.h"
+#include "stream/base_refinement.h"
 #include "stream/stream_format.h"
 
 namespace meshwave {
@@ -39,12 +40,25 @@ Status ValidateStreamHeader(const StreamHeader& h) {
     return ParseError("header: octree leaf size out of range");
   }
   MW_RETURN_IF_ERROR(ValidateQuantizers(h));
+  if (h.base.refinement_planes > kMaxBaseRefinementPlanes) {
+    return ParseError("header: " + std::to_string(h.base.refinement_planes) +
+                      " base refinement planes (at most " +
+                      std::to_string(kMaxBaseRefinementPlanes) + ")");
+  }
   const auto& index = h.packets;
   const PacketLayout map(h);
-  MW_RETURN_IF_ERROR(ValidateCompactIndex(h, map.count(), static_cast<int>(levels)));
+  // One chain per subband and the base refinement's.
+  MW_RETURN_IF_ERROR(ValidateCompactIndex(h, map.count(), static_cast<int>(levels) + 1));
+  const uint64_t refinement_bytes = BaseRefinementBytes(h.base.vertex_count);
   for (int id = 0; id < map.count(); ++id) {
-    if (index.length[static_cast<size_t>(id)] > (1u << 30)) {
+    const uint32_t length = index.length[static_cast<size_t>(id)];
+    if (length > (1u << 30)) {
       return ParseError("header: packet " + std::to_string(id) + " is too long");
+    }
+    if (map.IsBase(static_cast<uint32_t>(id)) && length != refinement_bytes) {
+      return ParseError("header: base refinement packet " + std::to_string(id) + " has " +
+                        std::to_string(length) + " bytes, not " +
+                        std::to_string(refinement_bytes) + " (3 bits per base vertex)");
     }
   }
   return Status::Ok();
@@ -56,6 +70,13 @@ std::vector<uint32_t> PacketDependencies(const StreamHeader& h,
   return {needs.begin(), needs.end()};
 }
 
+int BaseQualityShift(const StreamHeader& h) {
+  if (h.quantizers.empty()) return 0;
+  const double ratio = h.base.step / h.quantizers[0].step;
+  if (!(ratio > 0) || !std::isfinite(ratio)) return 0;
+  return static_cast<int>(std::floor(std::log2(ratio) + 0.5));
+}
+
 std::vector<uint32_t> PacketOrder(const StreamHeader& h,
                                   Progression progression, int max_level) {
   const PacketLayout map(h);
@@ -64,15 +85,30 @@ std::vector<uint32_t> PacketOrder(const StreamHeader& h,
   int top = -1;
   for (int j = 0; j < used; ++j) top = std::max(top, map.Top(j));
   std::vector<uint32_t> order;
+  // The base refinement belongs to level 0, which every order draws. The
+  // resolution order sends it first, as the whole base travelled in the
+  // header before version 5; the quality order sends each plane with the
+  // details' bitplane of the same step (BaseQualityShift); the rd order
+  // weighs it as any other chain.
+  const int base_planes = map.base_planes();
+  auto base_plane = [&](int b) { order.push_back(static_cast<uint32_t>(map.BaseId(b))); };
   switch (progression) {
-    case Progression::kQuality:
-      for (int b = top; b >= 0; --b) {
+    case Progression::kQuality: {
+      const int shift = BaseQualityShift(h);
+      // Planes coarser than every detail bitplane first.
+      int b = base_planes - 1;
+      for (; b >= 0 && b + shift > top; --b) base_plane(b);
+      for (int n = top; n >= 0; --n) {
+        for (; b >= 0 && b + shift == n; --b) base_plane(b);
         for (int j = 0; j < used; ++j) {
-          if (int id = map.Id(j, b); id >= 0) order.push_back(static_cast<uint32_t>(id));
+          if (int id = map.Id(j, n); id >= 0) order.push_back(static_cast<uint32_t>(id));
         }
       }
+      for (; b >= 0; --b) base_plane(b);  // finer than every detail bitplane
       break;
+    }
     case Progression::kResolution:
+      for (int b = base_planes - 1; b >= 0; --b) base_plane(b);
       for (int j = 0; j < used; ++j) {
         for (int b = map.Top(j); b >= 0; --b) order.push_back(static_cast<uint32_t>(map.Id(j, b)));
       }
@@ -83,6 +119,9 @@ std::vector<uint32_t> PacketOrder(const StreamHeader& h,
       std::vector<uint32_t> candidates;
       for (int j = 0; j < used; ++j) {
         for (int b = map.Top(j); b >= 0; --b) candidates.push_back(static_cast<uint32_t>(map.Id(j, b)));
+      }
+      for (int b = map.base_planes() - 1; b >= 0; --b) {
+        candidates.push_back(static_cast<uint32_t>(map.BaseId(b)));
       }
       std::vector<char> sent(h.packets.length.size(), 0);
       const std::vector<uint32_t> chains = PacketChains(h);

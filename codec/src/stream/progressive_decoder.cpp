@@ -54,6 +54,7 @@ struct ProgressiveDecoder::Impl {
   TransformSettings settings;
   std::unique_ptr<WaveletTransform> coarse;  // levels < kEagerTransformLevels
   DecodedBase base;
+  bool base_refined = false;  // a base refinement packet moved `base`
   std::vector<char> have;
   // Subbands a packet has decoded into since the last Reset: the others
   // hold their initial state, which nobody needs to wait for.
@@ -72,6 +73,20 @@ struct ProgressiveDecoder::Impl {
   Deferred<Result<WaveletTransform>> transform;
 
   bool parent_contexts() const { return header.coder == StreamCoder::k3xC; }
+
+  // Packet `id` decoded: it is held, and its chain's estimate moves.
+  static void Record(Impl& m, uint32_t id, size_t bytes) {
+    m.have[id] = 1;
+    ++m.decoded;
+    m.bytes += bytes;
+    // A chain's packets arrive in bitplane order (its dependencies), so the
+    // packet just added is the chain's last; summing the chains in a fixed
+    // order makes the estimate independent of the order of arrival.
+    if (id < m.estimates.chain.size() && m.estimates.chain[id] < m.chain_now.size()) {
+      m.chain_now[m.estimates.chain[id]] = m.estimates.after[id];
+    }
+    m.distortion = m.estimates.Estimate(m.chain_now);
+  }
   // No packet has touched the coding state: every detail is zero, and no
   // caller needs to wait for that state to be built.
   bool fresh() const { return decoded == 0 && !broken; }
@@ -156,6 +171,8 @@ void ProgressiveDecoder::Reset() {
       if (m.touched[j]) Impl::InitStates(m.header, static_cast<int>(j), m.coding.Get(j));
     }
   }
+  if (m.base_refined) ForgetBaseRefinement(m.header.base, m.base);
+  m.base_refined = false;
   m.touched.assign(m.coding.size(), 0);
   m.have.assign(m.header.packets.length.size(), 0);
   m.chain_now = m.estimates.chain_start;
@@ -192,21 +209,23 @@ Status ProgressiveDecoder::AddPacket(uint32_t id, std::string_view payload) {
                            std::to_string(m.have.size()) + " packets");
   }
   const auto& index = m.header.packets;
+  const bool base = m.packets->IsBase(id);
   const int j = m.packets->Subband(id);
   const int b = m.packets->Bitplane(id);
-  // The packet's name, for errors only: built on the way out (it was a
+  // A packet's name, for errors only: built on the way out (it was a
   // tenth of a small packet's decoding time).
-  auto what = [&] {
-    return "packet " + std::to_string(id) + " (subband " + std::to_string(j) + ", bitplane " +
-           std::to_string(b) + ")";
+  auto name = [&](uint32_t p) {
+    if (m.packets->IsBase(p)) {
+      return "packet " + std::to_string(p) + " (base refinement, plane " +
+             std::to_string(m.packets->Bitplane(p)) + ")";
+    }
+    return "packet " + std::to_string(p) + " (subband " + std::to_string(m.packets->Subband(p)) +
+           ", bitplane " + std::to_string(m.packets->Bitplane(p)) + ")";
   };
+  auto what = [&] { return name(id); };
   if (m.have[id]) return InvalidArgument(what() + " was already added");
   for (uint32_t d : m.packets->Dependencies(id, m.parent_contexts())) {
-    if (!m.have[d]) {
-      return InvalidArgument(what() + " needs packet " + std::to_string(d) + " (subband " +
-                             std::to_string(m.packets->Subband(d)) + ", bitplane " +
-                             std::to_string(m.packets->Bitplane(d)) + ") first");
-    }
+    if (!m.have[d]) return InvalidArgument(what() + " needs " + name(d) + " first");
   }
   if (payload.size() != index.length[id]) {
     return ParseError(what() + ": " + std::to_string(payload.size()) + " bytes, index says " +
@@ -214,6 +233,17 @@ Status ProgressiveDecoder::AddPacket(uint32_t id, std::string_view payload) {
   }
   if (!PacketCheckMatches(index, id, payload)) {
     return ParseError(what() + ": CRC-16 check mismatch (corrupt payload)");
+  }
+  if (base) {
+    // Its length is checked (the index's, validated): every bit pattern is
+    // a refinement, and the dependencies bring the planes in turn.
+    if (Status s = RefineBase(m.header.base, b, payload, m.base); !s.ok()) {
+      m.broken = true;
+      return s.WithContext(what());
+    }
+    m.base_refined = true;
+    Impl::Record(m, id, payload.size());
+    return Status::Ok();
   }
   m.touched[j] = 1;  // before decoding: a corrupt packet leaves its state changed
   Impl::SubbandCoding& coding = m.coding.Get(j);
@@ -237,22 +267,15 @@ Status ProgressiveDecoder::AddPacket(uint32_t id, std::string_view payload) {
     m.broken = true;
     return ParseError(what() + ": payload ends before its symbols (corrupt stream)");
   }
-  m.have[id] = 1;
-  ++m.decoded;
-  m.bytes += payload.size();
-  // A chain's packets arrive in bitplane order (its dependencies), so the
-  // packet just added is the chain's last; summing the chains in a fixed
-  // order makes the estimate independent of the order of arrival.
-  if (id < m.estimates.chain.size() && m.estimates.chain[id] < m.chain_now.size()) {
-    m.chain_now[m.estimates.chain[id]] = m.estimates.after[id];
-  }
-  m.distortion = m.estimates.Estimate(m.chain_now);
+  Impl::Record(m, id, payload.size());
   return Status::Ok();
 }
 
 int ProgressiveDecoder::CompleteLevels() const {
   const Impl& m = *impl_;
   const int levels = m.hierarchy->levels();
+  // Every level's positions rest on the base's.
+  if (m.base.missing_planes > 0) return 0;
   int level = 0;
   for (int j = 0; j < levels; ++j) {
     bool all = true;

@@ -13,7 +13,8 @@
 
 namespace meshwave {
 
-inline constexpr uint32_t kFormatVersion = 4;  // 3: Transform.sawt; 4: compact packet index
+// 3: Transform.sawt; 4: compact packet index; 5: base refinement packets
+inline constexpr uint32_t kFormatVersion = 5;
 inline constexpr char kContainerMagic[4] = {'M', 'W', 'V', '1'};
 // StreamHeader.present's field number in stream.proto, for the decoder
 // library, which has no generated code (stream_format_writer.cpp asserts it
@@ -21,6 +22,7 @@ inline constexpr char kContainerMagic[4] = {'M', 'W', 'V', '1'};
 inline constexpr uint32_t kHeaderPresentField = 14;
 // Limits on what a stream may ask a decoder to build.
 inline constexpr uint32_t kMaxBaseVertices = 1u << 24;
+inline constexpr uint32_t kMaxBaseRefinementPlanes = 20;
 
 inline Result<TransformSettings> ReadTransformSettings(const StreamHeader::Transform& t) {
   TransformSettings s;

@@ -14,6 +14,7 @@ void ToProto(const StreamHeader::BaseMesh& base, proto::BaseMesh& out) {
   for (double o : base.origin) out.add_origin(o);
   out.set_step(base.step);
   out.set_coded(base.coded);
+  out.set_refinement_planes(base.refinement_planes);
 }
 
 void ToProto(const StreamHeader::SawtChoices& sawt, proto::SawtChoices& out) {

@@ -281,6 +281,7 @@ Field ReadBase(uint32_t number, uint32_t wire, WireReader& r, StreamHeader::Base
     case 3: return ReadRepeatedFixed<double>(wire, r, b.origin);
     case 4: return ReadDouble(wire, r, b.step);
     case 6: return ReadBytes(wire, r, b.coded);
+    case 7: return ReadVarint32(wire, r, b.refinement_planes);
     default: return Field::kUnknown;
   }
 }

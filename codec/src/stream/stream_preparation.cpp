@@ -32,10 +32,37 @@ double BaseStep(const PreparedStream& p, const SemiRegularHierarchy& h) {
 // The grid a decoder will hold for these base positions.
 Result<std::vector<IntVec3>> DecodedGrid(const std::vector<Vec3>& base, const PreparedStream& p,
                                          const SemiRegularHierarchy& h) {
-  MW_ASSIGN_OR_RETURN(const StreamHeader::BaseMesh coded,
-                      EncodeBaseMesh(base, h.faces(0), BaseStep(p, h)));
-  MW_ASSIGN_OR_RETURN(DecodedBase decoded, DecodeBaseMesh(coded, coded.vertex_count));
+  MW_ASSIGN_OR_RETURN(const EncodedBaseMesh coded,
+                      EncodeBaseMesh(base, h.faces(0), BaseStep(p, h),
+                                     p.header.base().refinement_planes()));
+  MW_ASSIGN_OR_RETURN(DecodedBase decoded,
+                      DecodeBaseMesh(coded.header, coded.header.vertex_count));
   return std::move(decoded.grid);
+}
+
+// base_error (PreparedStream): the error of the base with each number of
+// low bits missing, as a decoder would place it, weighed as the details'
+// is: along the base's vertex normals in full, the slide along the surface
+// by `tangent_weight` (the grid's error is isotropic, so without this the
+// order would value the base's low bits about three times too much).
+std::vector<double> BaseErrors(const std::vector<Vec3>& exact, const std::vector<Face>& faces,
+                               const EncodedBaseMesh& coded, const DecodedBase& decoded,
+                               double gain, double tangent_weight) {
+  const std::vector<Vec3> normals = VertexNormals(faces, exact, exact.size());
+  const auto planes = static_cast<int>(coded.header.refinement_planes);
+  std::vector<double> error(static_cast<size_t>(planes) + 1, 0.0);
+  for (int m = 0; m <= planes; ++m) {
+    const int64_t keep = ~((int64_t{1} << m) - 1);
+    for (size_t v = 0; v < exact.size(); ++v) {
+      const IntVec3& r = coded.residual[v];
+      const IntVec3 known{r[0] & keep, r[1] & keep, r[2] & keep};
+      const Vec3 e = RefinedBasePosition(coded.header, decoded.grid[v], known, m) - exact[v];
+      const double along = e.dot(normals[v]);
+      error[static_cast<size_t>(m)] +=
+          gain * (along * along + tangent_weight * (e.squaredNorm() - along * along));
+    }
+  }
+  return error;
 }
 
 // SAWT regions live on the decoded base grid, but with an update step the
@@ -77,8 +104,29 @@ Result<std::shared_ptr<const SawtPlan>> PlanSawt(const PreparedStream& p,
 
 }  // namespace
 
+Result<uint32_t> ChooseBaseRefinementPlanes(const std::vector<Vec3>& positions,
+                                            const std::vector<Face>& faces, double step) {
+  MW_ASSIGN_OR_RETURN(const EncodedBaseMesh whole, EncodeBaseMesh(positions, faces, step, 0));
+  const double limit = 1.02 * static_cast<double>(whole.header.coded.size());
+  const double per_packet =
+      static_cast<double>(BaseRefinementBytes(static_cast<uint32_t>(positions.size()))) + 5;
+  uint32_t chosen = 0;
+  for (uint32_t planes = 1; planes <= kMaxBaseRefinementPlanes; ++planes) {
+    MW_ASSIGN_OR_RETURN(const EncodedBaseMesh coarse,
+                        EncodeBaseMesh(positions, faces, step, planes));
+    const double total = static_cast<double>(coarse.header.coded.size()) + planes * per_packet;
+    if (total > limit) break;
+    chosen = planes;
+  }
+  return chosen;
+}
+
 Result<PreparedStream> PrepareStream(const SemiRegularMesh& input,
                                      const EncodeOptions& options) {
+  if (options.base_refinement_planes > static_cast<int>(kMaxBaseRefinementPlanes)) {
+    return InvalidArgument("at most " + std::to_string(kMaxBaseRefinementPlanes) +
+                           " base refinement planes");
+  }
   if (options.precision < 4 || options.precision > 30) {
     return InvalidArgument("precision must be in [4, 30]");
   }
@@ -103,6 +151,16 @@ Result<PreparedStream> PrepareStream(const SemiRegularMesh& input,
       options.transform.frames == FrameMode::kLocal ? options.tangent_step_scale : 1.0;
   out.gains = ComputeSubbandGains(options.transform, levels);
   out.transform = options.transform;
+  // Fixed before the SAWT plan, whose regions live on the coarse grid.
+  uint32_t planes = 0;
+  if (options.base_refinement_planes < 0) {
+    const std::vector<Vec3> base(out.mesh.positions.begin(),
+                                 out.mesh.positions.begin() + h.vertex_count(0));
+    MW_ASSIGN_OR_RETURN(planes, ChooseBaseRefinementPlanes(base, h.faces(0), BaseStep(out, h)));
+  } else {
+    planes = static_cast<uint32_t>(options.base_refinement_planes);
+  }
+  out.header.mutable_base()->set_refinement_planes(planes);
   if (out.transform.predictor == Predictor::kSawt) {
     MW_ASSIGN_OR_RETURN(out.transform.sawt, PlanSawt(out, options));
   }
@@ -120,18 +178,19 @@ Result<PreparedStream> PrepareStream(const SemiRegularMesh& input,
     header.add_bbox_max(box.max[a]);
   }
   ToProto(out.transform, levels, *header.mutable_transform());
-  MW_ASSIGN_OR_RETURN(const StreamHeader::BaseMesh base,
-                      EncodeBaseMesh(out.pyramid.base, h.faces(0), BaseStep(out, h)));
-  ToProto(base, *header.mutable_base());
-  MW_ASSIGN_OR_RETURN(out.base, DecodeBaseMesh(base, base.vertex_count));
+  MW_ASSIGN_OR_RETURN(EncodedBaseMesh base,
+                      EncodeBaseMesh(out.pyramid.base, h.faces(0), BaseStep(out, h), planes));
+  ToProto(base.header, *header.mutable_base());
+  MW_ASSIGN_OR_RETURN(out.base, DecodeBaseMesh(base.header, base.header.vertex_count));
   if (out.transform.sawt) {
     ToProto(EncodeSawtChoices(h, out.base.grid, *out.transform.sawt, options.sawt_alpha),
             *header.mutable_transform()->mutable_sawt());
   }
-  for (size_t v = 0; v < out.base.positions.size(); ++v) {
-    out.base_distortion +=
-        out.gains.base * (out.pyramid.base[v] - out.base.positions[v]).squaredNorm();
-  }
+  const double tangent_weight = 1 / (out.tangent_step_scale * out.tangent_step_scale);
+  out.base_error = BaseErrors(out.pyramid.base, h.faces(0), base, out.base, out.gains.base,
+                              tangent_weight);
+  out.base_distortion = out.base_error[0];
+  out.base_residual = std::move(base.residual);
   // What a decoder holding no packet shows: the decoded base, no details.
   // (Built zeroed, not copied from the pyramid and cleared: a copy of every
   // detail is 40 MB on a 1.66 M-vertex mesh.)
@@ -146,7 +205,6 @@ Result<PreparedStream> PrepareStream(const SemiRegularMesh& input,
   // Weighed as the packets' reductions are: the error along the encoded
   // surface's normal in full, the rest (a slide along the surface) by
   // 1 / tangent_step_scale^2.
-  const double tangent_weight = 1 / (out.tangent_step_scale * out.tangent_step_scale);
   const std::vector<Vec3> normals =
       VertexNormals(h.faces(levels), out.mesh.positions, start.size());
   for (size_t v = 0; v < start.size(); ++v) {

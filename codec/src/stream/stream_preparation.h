@@ -18,12 +18,20 @@ struct PreparedStream {
   TransformSettings transform;  // the options' transform, with its SAWT plan
   Pyramid pyramid;
   SubbandGains gains;
-  DecodedBase base;            // the base mesh as a decoder will hold it
+  // The base mesh as a decoder holding no packet has it (coarse grid, no
+  // refinement).
+  DecodedBase base;
+  // What the base refinement packets carry (EncodedBaseMesh::residual), and
+  // the gain-weighted error of the base with the m lowest bits of every
+  // coordinate missing, m = 0 ... R (base_error[R]: no refinement packet).
+  std::vector<IntVec3> base_residual;
+  std::vector<double> base_error;
   double step0 = 0;            // diagonal * 2^-precision
   // Step of the tangential components over the normal one's (1 with global
   // frames, whose components are x, y, z).
   double tangent_step_scale = 1;
-  double base_distortion = 0;  // gain-weighted error of the decoded base
+  // Gain-weighted error of the fully refined base (base_error[0]).
+  double base_distortion = 0;
   // The true squared error of the mesh a decoder shows before any packet,
   // its tangential part (off the encoded surface's vertex normals) weighed
   // by 1 / tangent_step_scale^2 as the packets' reductions are.
@@ -32,6 +40,14 @@ struct PreparedStream {
 
 Result<PreparedStream> PrepareStream(const SemiRegularMesh& input,
                                      const EncodeOptions& options);
+
+// The largest R (at most kMaxBaseRefinementPlanes) whose coarse base code
+// plus R refinement packets (and their 5 bytes of index each) take at most
+// 2 % more bytes than the whole base coded in the header: R from which on
+// the dropped bits are noise that no prediction removes. Positions and
+// faces as EncodeBaseMesh takes them.
+Result<uint32_t> ChooseBaseRefinementPlanes(const std::vector<Vec3>& positions,
+                                            const std::vector<Face>& faces, double step);
 
 // The quantised coefficients of one (subband, component).
 struct QuantizedComponent {

@@ -12,8 +12,10 @@
 namespace meshwave {
 namespace {
 
-// Encodes a mesh in transmission order and decodes it back.
-void ExpectRoundTrip(const TriMesh& mesh, double step) {
+// Encodes a mesh in transmission order and decodes it back: with R
+// refinement planes, after each plane every coordinate is within half the
+// cells it can still be in, and after the last exactly where R = 0 puts it.
+void ExpectRoundTrip(const TriMesh& mesh, double step, uint32_t planes = 0) {
   auto chosen = ChooseTransmissionOrder(static_cast<uint32_t>(mesh.positions.size()), mesh.faces);
   ASSERT_TRUE(chosen.ok()) << chosen.status().ToString();
   const BaseMeshOrder& order = *chosen;
@@ -21,14 +23,30 @@ void ExpectRoundTrip(const TriMesh& mesh, double step) {
   for (size_t v = 0; v < positions.size(); ++v) {
     positions[order.new_of_old[v]] = mesh.positions[v];
   }
-  auto coded = EncodeBaseMesh(positions, order.faces, step);
+  auto coded = EncodeBaseMesh(positions, order.faces, step, planes);
   ASSERT_TRUE(coded.ok()) << coded.status().ToString();
-  auto decoded = DecodeBaseMesh(*coded, 1u << 24);
+  auto decoded = DecodeBaseMesh(coded->header, 1u << 24);
   ASSERT_TRUE(decoded.ok()) << decoded.status().ToString();
   EXPECT_EQ(decoded->faces, order.faces);
+  EXPECT_EQ(decoded->missing_planes, static_cast<int>(planes));
+  for (int m = static_cast<int>(planes);; --m) {
+    const double cells = std::ldexp(1.0, m);
+    for (size_t v = 0; v < positions.size(); ++v) {
+      EXPECT_LE((decoded->positions[v] - positions[v]).cwiseAbs().maxCoeff(),
+                0.5 * step * cells * (1 + 1e-9))
+          << "vertex " << v << " with " << m << " planes missing";
+    }
+    if (m == 0) break;
+    ASSERT_TRUE(RefineBase(coded->header, m - 1,
+                           EncodeBaseRefinementPlane(coded->residual, m - 1), *decoded)
+                    .ok());
+  }
+  auto whole = EncodeBaseMesh(positions, order.faces, step, 0);
+  ASSERT_TRUE(whole.ok());
+  auto exact = DecodeBaseMesh(whole->header, 1u << 24);
+  ASSERT_TRUE(exact.ok());
   for (size_t v = 0; v < positions.size(); ++v) {
-    EXPECT_LE((decoded->positions[v] - positions[v]).cwiseAbs().maxCoeff(),
-              0.5 * step * (1 + 1e-9));
+    EXPECT_EQ(decoded->positions[v], exact->positions[v]) << "vertex " << v;
   }
 }
 
@@ -36,6 +54,48 @@ TEST(BaseMeshCodecTest, RoundTripsSmallMeshes) {
   ExpectRoundTrip(testing::Icosahedron(), 1e-3);
   ExpectRoundTrip(testing::OpenPatch(), 1e-4);
   ExpectRoundTrip(testing::Torus(5, 7), 1e-2);
+}
+
+TEST(BaseMeshCodecTest, RefinesPlaneByPlaneToTheWholeBase) {
+  ExpectRoundTrip(testing::Icosahedron(), 1e-3, 1);
+  ExpectRoundTrip(testing::OpenPatch(), 1e-4, 6);
+  ExpectRoundTrip(testing::Torus(5, 7), 1e-5, 20);
+}
+
+TEST(BaseMeshCodecTest, RefinementPacketsAreThreeBitsPerVertexInTurn) {
+  const TriMesh ico = testing::Icosahedron();
+  const BaseMeshOrder order = *ChooseTransmissionOrder(12, ico.faces);
+  std::vector<Vec3> positions(12);
+  for (size_t v = 0; v < 12; ++v) positions[order.new_of_old[v]] = ico.positions[v];
+  auto coded = EncodeBaseMesh(positions, order.faces, 1e-4, 5);
+  ASSERT_TRUE(coded.ok());
+  const std::string plane4 = EncodeBaseRefinementPlane(coded->residual, 4);
+  EXPECT_EQ(plane4.size(), 5u);  // 36 bits
+  EXPECT_EQ(BaseRefinementBytes(12), 5u);
+  // Bit 3 v + a is bit 4 of the residual of vertex v, coordinate a.
+  for (size_t v = 0; v < 12; ++v) {
+    for (int a = 0; a < 3; ++a) {
+      const size_t k = 3 * v + static_cast<size_t>(a);
+      EXPECT_EQ((static_cast<uint8_t>(plane4[k / 8]) >> (k % 8)) & 1,
+                (coded->residual[v][a] >> 4) & 1);
+    }
+  }
+  auto decoded = DecodeBaseMesh(coded->header, 1u << 24);
+  ASSERT_TRUE(decoded.ok());
+  EXPECT_EQ(RefineBase(coded->header, 3, plane4, *decoded).code(), StatusCode::kInvalidArgument);
+  EXPECT_EQ(RefineBase(coded->header, 4, plane4.substr(1), *decoded).code(),
+            StatusCode::kParseError);
+  EXPECT_EQ(decoded->missing_planes, 5);
+  ASSERT_TRUE(RefineBase(coded->header, 4, plane4, *decoded).ok());
+  EXPECT_EQ(decoded->missing_planes, 4);
+  const std::vector<Vec3> refined = decoded->positions;
+  ForgetBaseRefinement(coded->header, *decoded);
+  EXPECT_EQ(decoded->missing_planes, 5);
+  EXPECT_NE(decoded->positions, refined);
+  StreamHeader::BaseMesh bad = coded->header;
+  bad.refinement_planes = 21;
+  EXPECT_EQ(DecodeBaseMesh(bad, 1u << 24).status().code(), StatusCode::kParseError);
+  EXPECT_FALSE(EncodeBaseMesh(positions, order.faces, 1e-4, 21).ok());
 }
 
 TEST(BaseMeshCodecTest, RoundTripsSampleMeshCompactly) {
@@ -51,9 +111,9 @@ TEST(BaseMeshCodecTest, RoundTripsSampleMeshCompactly) {
   ASSERT_TRUE(coded.ok());
   // 16-bit positions and connectivity: well below the 3 x 16 + 3 x 2 x 12
   // = 120 bits per vertex of a plain fixed-width code (measured: 62.8).
-  const double bits_per_vertex = 8.0 * static_cast<double>(coded->coded.size()) /
+  const double bits_per_vertex = 8.0 * static_cast<double>(coded->header.coded.size()) /
                                  static_cast<double>(mesh->positions.size());
-  std::cout << "[base] elephant.off: " << coded->coded.size() << " bytes, "
+  std::cout << "[base] elephant.off: " << coded->header.coded.size() << " bytes, "
             << bits_per_vertex << " bits per vertex\n";
   EXPECT_LT(bits_per_vertex, 0.6 * 120);
 }
@@ -81,7 +141,7 @@ TEST(BaseMeshCodecTest, ConnectivityCostsAFewBitsPerFace) {
   std::vector<Vec3> zeros(mesh->positions.size(), Vec3::Zero());
   auto coded = EncodeBaseMesh(zeros, order->faces, 1.0);
   ASSERT_TRUE(coded.ok());
-  const double bits_per_face = 8.0 * static_cast<double>(coded->coded.size()) /
+  const double bits_per_face = 8.0 * static_cast<double>(coded->header.coded.size()) /
                                static_cast<double>(mesh->faces.size());
   std::cout << "[base] elephant.off connectivity: " << bits_per_face << " bits per face\n";
   EXPECT_LT(bits_per_face, 5.0);
@@ -101,19 +161,19 @@ TEST(BaseMeshCodecTest, RefusesCorruptCountsAndBytes) {
   for (size_t v = 0; v < 12; ++v) positions[order.new_of_old[v]] = ico.positions[v];
   auto coded = EncodeBaseMesh(positions, order.faces, 1e-3);
   ASSERT_TRUE(coded.ok());
-  StreamHeader::BaseMesh bad = *coded;
+  StreamHeader::BaseMesh bad = coded->header;
   bad.vertex_count = 2000000000;
   EXPECT_FALSE(DecodeBaseMesh(bad, 1u << 24).ok());
-  bad = *coded;
+  bad = coded->header;
   bad.face_count = 1u << 30;
   EXPECT_FALSE(DecodeBaseMesh(bad, 1u << 24).ok());
-  bad = *coded;
+  bad = coded->header;
   bad.step = -1;
   EXPECT_FALSE(DecodeBaseMesh(bad, 1u << 24).ok());
   std::mt19937 rng(2);
   int accepted = 0;
   for (int trial = 0; trial < 500; ++trial) {
-    bad = *coded;
+    bad = coded->header;
     std::string bytes = bad.coded;
     if (bytes.empty()) break;
     bytes[rng() % bytes.size()] ^= static_cast<char>(1 + rng() % 255);
