@@ -53,11 +53,20 @@ Status MeasureEmbedded(const SemiRegularMesh& input, double diagonal,
       AddPoint(mesh, diagonal, stream.header, {}, -1, decoder->Positions(), curve));
   const PacketLayout layout(stream.header);
   auto bitplane = [&](size_t i) { return layout.Bitplane(order[i]); };
+  // The bitplane of the first detail packet after position i (-1: none);
+  // base refinement planes sit between the details' bitplanes.
+  auto next_detail_bitplane = [&](size_t i) {
+    for (size_t k = i + 1; k < order.size(); ++k) {
+      if (!layout.IsBase(order[k])) return bitplane(k);
+    }
+    return -1;
+  };
   for (size_t i = 0; i < order.size(); ++i) {
     MW_RETURN_IF_ERROR(decoder->AddPacket(order[i], stream.packets[order[i]]));
-    // The quality order is bitplane-major: a bitplane is complete where the
-    // next packet belongs to a lower one.
-    const bool complete = i + 1 == order.size() || bitplane(i + 1) != bitplane(i);
+    // The quality order is bitplane-major: the details' bitplane is
+    // complete where the next detail packet belongs to a lower one.
+    const bool complete =
+        !layout.IsBase(order[i]) && next_detail_bitplane(i) != bitplane(i);
     MW_RETURN_IF_ERROR(AddPoint(mesh, diagonal, stream.header,
                                 std::span(order).first(i + 1),
                                 complete ? bitplane(i) : -1, decoder->Positions(),
