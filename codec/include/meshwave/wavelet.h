@@ -108,6 +108,12 @@ class WaveletTransform {
   void Inverse(const Pyramid& pyramid, int max_level,
                std::vector<Vec3>& out) const;
 
+  // The same in place: x holds c^0 in [0, V_0) and each subband d^j (j <
+  // max_level) where level j+1's new vertices go, [V_j, V_{j+1}); it is
+  // resized to V_max_level and ends holding M^max_level. What a decoder
+  // that dequantises straight into x needs: no pyramid to fill and copy.
+  void InverseInPlace(std::vector<Vec3>& x, int max_level = -1) const;
+
   // Applies the prediction of level j+1 from the first V_j positions of
   // `positions` and writes the predicted odd vertices (subdivision with zero
   // detail). `positions` must hold V_{j+1} entries.

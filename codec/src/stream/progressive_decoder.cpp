@@ -292,14 +292,13 @@ std::vector<Vec3> ProgressiveDecoder::Positions(int max_level) const {
   const Impl& m = *impl_;
   const auto& h = *m.hierarchy;
   const int level = (max_level < 0 || max_level > h.levels()) ? h.levels() : max_level;
-  Pyramid p;
-  p.hierarchy = m.hierarchy;
-  p.base = m.base.positions;
-  p.subbands.resize(h.levels());
+  // The base, then each subband dequantised where its level's new vertices
+  // go: the inverse transform works on it in place.
+  std::vector<Vec3> x(h.vertex_count(level), Vec3::Zero());
+  std::copy(m.base.positions.begin(), m.base.positions.end(), x.begin());
   for (int j = 0; j < level; ++j) {
-    auto& band = p.subbands[j];
-    band.assign(h.subband_size(j), Vec3::Zero());
     if (!m.touched[j]) continue;  // every detail is zero yet
+    Vec3* band = x.data() + h.vertex_count(j);
     const Impl::SubbandCoding& coding = m.coding.Get(j);
     const CoefficientOctree& tree = coding.layout.tree;
     for (int c = 0; c < 3; ++c) {
@@ -322,7 +321,8 @@ std::vector<Vec3> ProgressiveDecoder::Positions(int max_level) const {
       }
     }
   }
-  return m.transform->Inverse(p, level);
+  m.transform->InverseInPlace(x, level);
+  return x;
 }
 
 std::vector<Face> ProgressiveDecoder::Faces(int max_level) const {

@@ -118,18 +118,27 @@ void WaveletTransform::Inverse(const Pyramid& pyramid, int max_level,
   x.resize(h.vertex_count(max_level));
   std::copy(pyramid.base.begin(), pyramid.base.end(), x.begin());
   for (int j = 0; j < max_level; ++j) {
+    const std::vector<Vec3>& coded = pyramid.subbands[j];
+    std::copy(coded.begin(), coded.end(), x.begin() + h.vertex_count(j));
+  }
+  InverseInPlace(x, max_level);
+}
+
+void WaveletTransform::InverseInPlace(std::vector<Vec3>& x, int max_level) const {
+  const SemiRegularHierarchy& h = *hierarchy_;
+  if (max_level < 0 || max_level > levels()) max_level = levels();
+  x.resize(h.vertex_count(max_level));
+  for (int j = 0; j < max_level; ++j) {
     const Level& level = levels_->Get(j);
     const uint32_t vj = h.vertex_count(j);
     const uint32_t n = static_cast<uint32_t>(h.subband_size(j));
-    const std::vector<Vec3>& coded = pyramid.subbands[j];
-    // The odd slots hold the detail in xyz until the prediction is added.
+    // The odd slots hold d^j, then the detail in xyz until the prediction
+    // is added. (Each frame reads only the coarse vertices [0, V_j).)
     Vec3* odd = x.data() + vj;
     if (settings_.frames == FrameMode::kLocal) {
       const LevelFrames frames(h, j, std::span<const Vec3>(x.data(), vj),
                                 FaceNormalScratch());
-      for (uint32_t k = 0; k < n; ++k) odd[k] = frames(k).ToGlobal(coded[k]);
-    } else {
-      std::copy(coded.begin(), coded.end(), odd);
+      for (uint32_t k = 0; k < n; ++k) odd[k] = frames(k).ToGlobal(odd[k]);
     }
     if (!level.update.empty()) {
       const auto& edges = h.edges(j);

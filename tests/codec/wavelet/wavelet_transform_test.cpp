@@ -113,6 +113,25 @@ TEST_P(OnFirstUse, GivesEveryLevelAsTheTransformBuiltAllAtOnce) {
   EXPECT_EQ(q.subbands, p.subbands);
 }
 
+TEST_P(OnFirstUse, InPlaceInverseIsTheInverse) {
+  const Case c = GetParam();
+  const SemiRegularMesh sr = Jittered(OpenPatch(), 3, 13);
+  const TransformSettings settings{c.predictor, c.update, c.frames};
+  for (auto when : {WaveletTransform::Stencils::kAllNow, WaveletTransform::Stencils::kOnFirstUse}) {
+    auto t = WaveletTransform::Create(sr.hierarchy, settings, when);
+    ASSERT_TRUE(t.ok());
+    const Pyramid p = t->Forward(sr.positions);
+    for (int level = 0; level <= sr.hierarchy->levels(); ++level) {
+      // The pyramid laid out level by level, with finer subbands after it
+      // that must not be read.
+      std::vector<Vec3> x = p.base;
+      for (const auto& band : p.subbands) x.insert(x.end(), band.begin(), band.end());
+      t->InverseInPlace(x, level);
+      EXPECT_EQ(x, t->Inverse(p, level)) << level;
+    }
+  }
+}
+
 TEST_P(OnFirstUse, TwoThreadsAskingAtOnceGetTheSameLevels) {
   const Case c = GetParam();
   const SemiRegularMesh sr = Jittered(Icosahedron(), 4, 11);
