@@ -25,13 +25,14 @@ struct DecoderOptions {
   // allocated when it claims more: a client bounds its memory with it (a
   // small header can claim 12 levels), the fuzzers their time per input.
   uint64_t max_faces = uint64_t{1} << 27;
-  // Create builds what the base mesh and the coarse levels' meshes need and
-  // returns; the rest of the set-up (the subbands' octrees and coding
-  // state, which packets need, and the finer levels' inverse transform,
-  // which their meshes need) is built on two more threads when `threads`
-  // is 2 or more, else on first use. 0: two where the machine has two
-  // cores or more. A WebAssembly build without threads always uses one.
-  // Results do not depend on it.
+  // Create builds what the base mesh and the first mesh need and returns;
+  // the rest of the set-up (each subband's octree and coding state, which
+  // its packets need, and each finer level's inverse transform, which its
+  // meshes need) is built on first use, only as far as used. When `threads`
+  // is 2 or more, one more thread also builds it ahead of use, finest last,
+  // and gives up what is left when the decoder is destroyed. 0: two where
+  // the machine has two cores or more. A WebAssembly build without threads
+  // always uses one. Results do not depend on it.
   int threads = 0;
 };
 

@@ -85,13 +85,15 @@ struct Pyramid {
 // tight loops. Thread-safe for concurrent const calls.
 class WaveletTransform {
  public:
-  // built_levels: stencils of levels 0 .. built_levels-1 only (-1 or beyond J: all).
-  // The finest level's stencils are about three quarters of the work, so a
-  // decoder builds the coarse levels first to show a mesh sooner. A partial
-  // transform's Inverse stops at M^levels and it cannot run Forward.
+  // When Create builds the stencils: every level's now, or level 0's now
+  // (it checks the base mesh) and each finer level's on its first use, by
+  // whichever call needs it first (once, safe from several threads). The
+  // finest level's stencils are about three quarters of the work: a
+  // decoder that draws a coarser mesh never builds them.
+  enum class Stencils { kAllNow, kOnFirstUse };
   static Result<WaveletTransform> Create(
       std::shared_ptr<const SemiRegularHierarchy> hierarchy,
-      const TransformSettings& settings, int built_levels = -1);
+      const TransformSettings& settings, Stencils when = Stencils::kAllNow);
 
   // positions: the V_J positions of the finest level in canonical order.
   Pyramid Forward(std::span<const Vec3> positions) const;
@@ -106,22 +108,33 @@ class WaveletTransform {
   void Inverse(const Pyramid& pyramid, int max_level,
                std::vector<Vec3>& out) const;
 
+  // The same in place: x holds c^0 in [0, V_0) and each subband d^j (j <
+  // max_level) where level j+1's new vertices go, [V_j, V_{j+1}); it is
+  // resized to V_max_level and ends holding M^max_level. What a decoder
+  // that dequantises straight into x needs: no pyramid to fill and copy.
+  void InverseInPlace(std::vector<Vec3>& x, int max_level = -1) const;
+
   // Applies the prediction of level j+1 from the first V_j positions of
   // `positions` and writes the predicted odd vertices (subdivision with zero
   // detail). `positions` must hold V_{j+1} entries.
   void PredictLevel(int j, std::span<Vec3> positions) const;
 
+  // Builds level j's stencils now unless they are built (j in [0, J)):
+  // for a caller that builds ahead of use on a thread of its own.
+  void PrepareLevel(int j) const;
+
   const SemiRegularHierarchy& hierarchy() const { return *hierarchy_; }
-  // The levels whose stencils were built: J unless Create was asked for fewer.
+  // J.
   int levels() const;
   const TransformSettings& settings() const { return settings_; }
 
-  struct Level;  // stencils and update weights of one level (private)
+  struct Level;       // stencils and update weights of one level (private)
+  class LevelTable;   // every level's, each built once (private)
 
  private:
   std::shared_ptr<const SemiRegularHierarchy> hierarchy_;
   TransformSettings settings_;
-  std::shared_ptr<const std::vector<Level>> levels_;
+  std::shared_ptr<const LevelTable> levels_;
 };
 
 }  // namespace meshwave

@@ -4,9 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
-#include <unordered_map>
 
-#include "core/edge_key.h"
+#include "core/edge_index_table.h"
 #include "meshwave/semiregular.h"
 #include "meshwave/stream_limits.h"
 #include "semiregular/vertex_rings.h"
@@ -48,15 +47,14 @@ Result<std::shared_ptr<const SemiRegularHierarchy>> SemiRegularHierarchy::Build(
   // Level-0 edges: first meeting in face/corner order, lower -> higher index.
   std::vector<Edge> edges;
   std::vector<std::array<uint32_t, 3>> face_edges(base_faces.size());
-  std::unordered_map<uint64_t, uint32_t> index;
-  index.reserve(base_faces.size() * 2);
+  EdgeIndexTable index(base_faces.size() * 3 / 2 + 1);
+  edges.reserve(base_faces.size() * 3 / 2 + 1);  // a closed mesh's count
   for (size_t f = 0; f < base_faces.size(); ++f) {
     for (int i = 0; i < 3; ++i) {
       const uint32_t a = base_faces[f][i], b = base_faces[f][(i + 1) % 3];
-      auto [it, inserted] =
-          index.emplace(EdgeKey(a, b), static_cast<uint32_t>(edges.size()));
+      auto [id, inserted] = index.Emplace(a, b, static_cast<uint32_t>(edges.size()));
       if (inserted) edges.push_back({std::min(a, b), std::max(a, b)});
-      face_edges[f][i] = it->second;
+      face_edges[f][i] = id;
     }
   }
   h->faces_.push_back(std::move(base_faces));

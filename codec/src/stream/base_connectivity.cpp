@@ -5,6 +5,7 @@
 #include <string>
 #include <unordered_map>
 
+#include "core/edge_index_table.h"
 #include "core/edge_key.h"
 #include "entropy/adaptive_golomb.h"
 
@@ -12,6 +13,8 @@ namespace meshwave {
 namespace {
 
 constexpr uint32_t kNone = 0xffffffffu;
+// Faces an untrusted count may reserve edge-table room for before they decode.
+constexpr uint64_t kUntrustedFacesAhead = uint64_t{1} << 16;
 
 struct ConnectivityContexts {
   BinaryContext is_new_first;  // corners of a component's first face
@@ -34,18 +37,20 @@ struct Gate {
 // border of the region coded so far.
 class CodedRegion {
  public:
-  explicit CodedRegion(uint32_t vertex_count) : open_(vertex_count) {}
+  // For a region of about `faces` faces (a closed mesh's edges: 3/2 per face).
+  CodedRegion(uint32_t vertex_count, size_t faces)
+      : uses_(faces * 3 / 2), open_(vertex_count) {}
 
-  uint8_t Uses(uint32_t a, uint32_t b) const {
-    auto it = uses_.find(EdgeKey(a, b));
-    return it == uses_.end() ? 0 : it->second;
+  uint32_t Uses(uint32_t a, uint32_t b) const {
+    const uint32_t* n = uses_.Find(a, b);
+    return n == nullptr ? 0 : *n;
   }
 
   // False when an edge would be in a third face (not a manifold mesh).
   bool Add(const Face& f) {
     for (int c = 0; c < 3; ++c) {
       const uint32_t a = f[c], b = f[(c + 1) % 3];
-      uint8_t& n = uses_[EdgeKey(a, b)];
+      uint32_t& n = uses_.Emplace(a, b, 0).first;
       if (n >= 2) return false;
       if (++n == 1) {
         open_[a].push_back(b);
@@ -76,7 +81,7 @@ class CodedRegion {
     if (it != list.end()) list.erase(it);
   }
 
-  std::unordered_map<uint64_t, uint8_t> uses_;
+  EdgeIndexTable uses_;  // faces coded per edge
   std::vector<std::vector<uint32_t>> open_;
 };
 
@@ -121,7 +126,7 @@ Result<BaseMeshOrder> TraverseBaseMesh(uint32_t vertex_count, const std::vector<
   std::vector<uint32_t> old_of_new;
   old_of_new.reserve(vertex_count);
   std::vector<char> taken(faces.size(), 0);  // coded or waiting behind a gate
-  CodedRegion region(vertex_count);
+  CodedRegion region(vertex_count, faces.size());
   ConnectivityContexts ctx;
   std::vector<std::pair<Gate, uint32_t>> stack;  // gate and the face behind it
   std::vector<uint32_t> candidates;
@@ -215,7 +220,9 @@ Result<std::vector<Face>> DecodeBaseConnectivity(ArithmeticDecoder& dec, uint32_
                                                  uint64_t face_count) {
   std::vector<Face> faces;
   faces.reserve(face_count);
-  CodedRegion region(vertex_count);
+  // The count is the stream's word: the edge table has room for at most
+  // kUntrustedFacesAhead faces ahead and grows with the faces that decode.
+  CodedRegion region(vertex_count, std::min<uint64_t>(face_count, kUntrustedFacesAhead));
   ConnectivityContexts ctx;
   std::vector<Gate> stack;
   std::vector<uint32_t> candidates;

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <limits>
 #include <memory>
-#include <stdexcept>
 #include <string>
 
 #include "bitplane/bitplane_io.h"
@@ -12,6 +11,7 @@
 #include "bitplane/subband_layout.h"
 #include "core/deferred.h"
 #include "core/parallel_for.h"
+#include "core/work_ahead.h"
 #include "meshwave/progression.h"
 #include "meshwave/semiregular.h"
 #include "meshwave/wavelet.h"
@@ -26,11 +26,6 @@ namespace meshwave {
 namespace {
 
 bool SetUpInBackground(int requested) { return ResolveThreads(requested) >= 2; }
-
-// Levels whose inverse transform Create builds itself, so that the first
-// meshes (the viewer draws one level past the finest with detail) come
-// without waiting for the finest levels' stencils, most of the set-up.
-constexpr int kEagerTransformLevels = 2;
 
 }  // namespace
 
@@ -52,7 +47,8 @@ struct ProgressiveDecoder::Impl {
   DecoderOptions options;
   std::shared_ptr<const SemiRegularHierarchy> hierarchy;
   TransformSettings settings;
-  std::unique_ptr<WaveletTransform> coarse;  // levels < kEagerTransformLevels
+  // Each level's stencils built on first use (level 0's by Create).
+  std::unique_ptr<WaveletTransform> transform;
   DecodedBase base;
   bool base_refined = false;  // a base refinement packet moved `base`
   std::vector<char> have;
@@ -67,10 +63,9 @@ struct ProgressiveDecoder::Impl {
   double distortion = 0;
   bool broken = false;
   double diagonal = 0;
-  // Last, so that they are destroyed (their threads joined) before what
-  // their builders read.
   DeferredSequence<SubbandCoding> coding;  // subband by subband, coarsest first
-  Deferred<Result<WaveletTransform>> transform;
+  // Last, so that it stops (its thread joined) before what it builds goes.
+  WorkAhead ahead;
 
   bool parent_contexts() const { return header.coder == StreamCoder::k3xC; }
 
@@ -91,16 +86,16 @@ struct ProgressiveDecoder::Impl {
   // caller needs to wait for that state to be built.
   bool fresh() const { return decoded == 0 && !broken; }
 
-  // The transform that reconstructs M^level: the coarse one while it
-  // suffices (always, when it has every level: `transform` is then never
-  // started), so a first mesh does not wait for the finest stencils.
-  const WaveletTransform& TransformTo(int level) const {
-    if (level <= coarse->levels()) return *coarse;
-    const Result<WaveletTransform>& full = transform.Get();
-    // Every level is the regular subdivision of level 0, which the coarse
-    // transform already checked, so this cannot fail on any input.
-    if (!full.ok()) throw std::logic_error("inverse transform: " + full.status().ToString());
-    return *full;
+  // The set-up ahead of use, in the order a stream in any packet order
+  // needs it: subband j's octree for its packets, then level j + 1's
+  // stencils for the mesh one level past them (level 0's are built).
+  void WorkAheadStep(size_t step) const {
+    const size_t j = step / 2;
+    if (step % 2 == 0) {
+      coding.Get(j);
+    } else if (static_cast<int>(j) + 1 < transform->levels()) {
+      transform->PrepareLevel(static_cast<int>(j) + 1);
+    }
   }
 };
 
@@ -126,31 +121,30 @@ Result<std::unique_ptr<ProgressiveDecoder>> ProgressiveDecoder::Create(
                                      impl->hierarchy));
   impl->diagonal = HeaderDiagonal(header);
   // Level 0's vertex rings are checked here: the finer levels subdivide it.
-  MW_ASSIGN_OR_RETURN(WaveletTransform coarse,
+  MW_ASSIGN_OR_RETURN(WaveletTransform transform,
                       WaveletTransform::Create(impl->hierarchy, impl->settings,
-                                               kEagerTransformLevels));
-  impl->coarse = std::make_unique<WaveletTransform>(std::move(coarse));
+                                               WaveletTransform::Stencils::kOnFirstUse));
+  impl->transform = std::make_unique<WaveletTransform>(std::move(transform));
   impl->packets = std::make_unique<PacketLayout>(header);
   impl->estimates = ReadDistortionIndex(header, PacketChains(header));
   // The octrees (about a quarter of the set-up on igea) and the finer
-  // levels' stencils (about two thirds) are independent of each other. The
-  // octrees come one subband at a time, coarsest first: a packet waits
-  // only for its own subband's (and the coarse subbands' packets come
-  // first in every order).
-  const bool background = SetUpInBackground(options.threads);
+  // levels' stencils (about two thirds) are built on first use, the
+  // octrees one subband at a time, coarsest first (a packet waits only for
+  // its own subband's), the stencils level by level (a mesh waits only for
+  // its levels'). With a second core one thread builds them ahead of use;
+  // whatever a caller needs first it builds itself, so the two share the
+  // work, and what nobody needed is abandoned when the decoder goes.
   Impl* m = impl.get();
   auto layouts = std::make_shared<SubbandLayoutBuilder>(*m->hierarchy, m->base.grid,
                                                         m->header.octree_leaf_size);
-  m->coding.Start(background, static_cast<size_t>(m->hierarchy->levels()),
+  m->coding.Start(/*in_background=*/false, static_cast<size_t>(m->hierarchy->levels()),
                   [m, layouts](size_t j) {
                     Impl::SubbandCoding s{layouts->Next(), {}};
                     Impl::InitStates(m->header, static_cast<int>(j), s);
                     return s;
                   });
-  // (The full transform builds the coarse levels again: a few percent.)
-  if (m->coarse->levels() < m->hierarchy->levels()) {
-    m->transform.Start(background,
-                       [m] { return WaveletTransform::Create(m->hierarchy, m->settings); });
+  if (SetUpInBackground(options.threads)) {
+    m->ahead.Start(2 * m->coding.size(), [m](size_t step) { m->WorkAheadStep(step); });
   }
   std::unique_ptr<ProgressiveDecoder> decoder(new ProgressiveDecoder(std::move(impl)));
   decoder->Reset();
@@ -158,8 +152,10 @@ Result<std::unique_ptr<ProgressiveDecoder>> ProgressiveDecoder::Create(
 }
 
 void ProgressiveDecoder::CompleteSetUp() const {
-  for (size_t j = 0; j < impl_->coding.size(); ++j) impl_->coding.Get(j);
-  impl_->TransformTo(impl_->hierarchy->levels());
+  for (size_t j = 0; j < impl_->coding.size(); ++j) {
+    impl_->coding.Get(j);
+    impl_->transform->PrepareLevel(static_cast<int>(j));
+  }
 }
 
 void ProgressiveDecoder::Reset() {
@@ -319,14 +315,13 @@ std::vector<Vec3> ProgressiveDecoder::Positions(int max_level) const {
   const Impl& m = *impl_;
   const auto& h = *m.hierarchy;
   const int level = (max_level < 0 || max_level > h.levels()) ? h.levels() : max_level;
-  Pyramid p;
-  p.hierarchy = m.hierarchy;
-  p.base = m.base.positions;
-  p.subbands.resize(h.levels());
+  // The base, then each subband dequantised where its level's new vertices
+  // go: the inverse transform works on it in place.
+  std::vector<Vec3> x(h.vertex_count(level), Vec3::Zero());
+  std::copy(m.base.positions.begin(), m.base.positions.end(), x.begin());
   for (int j = 0; j < level; ++j) {
-    auto& band = p.subbands[j];
-    band.assign(h.subband_size(j), Vec3::Zero());
     if (!m.touched[j]) continue;  // every detail is zero yet
+    Vec3* band = x.data() + h.vertex_count(j);
     const Impl::SubbandCoding& coding = m.coding.Get(j);
     const CoefficientOctree& tree = coding.layout.tree;
     for (int c = 0; c < 3; ++c) {
@@ -349,7 +344,8 @@ std::vector<Vec3> ProgressiveDecoder::Positions(int max_level) const {
       }
     }
   }
-  return m.TransformTo(level).Inverse(p, level);
+  m.transform->InverseInPlace(x, level);
+  return x;
 }
 
 std::vector<Face> ProgressiveDecoder::Faces(int max_level) const {

@@ -1,19 +1,13 @@
-#include <stdexcept>
 #include <string>
 
 #include "meshwave/wavelet.h"
 
-#include "semiregular/vertex_rings.h"
 #include "wavelet/local_frames.h"
 #include "wavelet/prediction_stencils.h"
-#include "wavelet/sawt_regions.h"
+#include "wavelet/sawt_plan.h"
+#include "wavelet/transform_levels.h"
 
 namespace meshwave {
-
-struct WaveletTransform::Level {
-  StencilTable stencils;
-  std::vector<std::array<double, 2>> update;  // empty when unlifted
-};
 
 namespace {
 
@@ -28,11 +22,8 @@ std::vector<Vec3>& FaceNormalScratch() {
 
 Result<WaveletTransform> WaveletTransform::Create(
     std::shared_ptr<const SemiRegularHierarchy> hierarchy,
-    const TransformSettings& settings, int built_levels) {
+    const TransformSettings& settings, Stencils when) {
   if (!hierarchy) return InvalidArgument("no hierarchy");
-  const int built = (built_levels < 0 || built_levels > hierarchy->levels())
-                        ? hierarchy->levels()
-                        : built_levels;
   const SawtPlan* plan = settings.sawt.get();
   if (settings.predictor == Predictor::kSawt) {
     if (plan == nullptr) return InvalidArgument("SAWT transform without its filter choices");
@@ -49,34 +40,23 @@ Result<WaveletTransform> WaveletTransform::Create(
       if (r >= plan->regions.count) return InvalidArgument("SAWT region out of range");
     }
   }
-  auto stencils = std::make_shared<std::vector<Level>>();
-  for (int j = 0; j < built; ++j) {
-    auto rings =
-        VertexRings::Build(hierarchy->vertex_count(j), hierarchy->faces(j));
-    if (!rings.ok()) {
-      return rings.status().WithContext("level " + std::to_string(j));
-    }
-    Level level;
-    if (settings.predictor == Predictor::kSawt) {
-      const auto region = SawtOddVertexRegions(*hierarchy, j, plan->regions.face_region);
-      std::vector<SawtFilter> filter(region.size());
-      for (size_t k = 0; k < region.size(); ++k) filter[k] = plan->filters[j][region[k]];
-      level.stencils = BuildSawtStencils(*hierarchy, j, *rings, filter);
-    } else {
-      level.stencils =
-          BuildPredictionStencils(*hierarchy, j, *rings, settings.predictor);
-    }
-    level.update = BuildUpdateWeights(*hierarchy, j, *rings, settings.update);
-    stencils->push_back(std::move(level));
+  auto table = std::make_shared<LevelTable>(hierarchy, settings);
+  // Level 0 now in any case: building its one-rings is the check that the
+  // base is an oriented manifold; the finer levels subdivide it and cannot fail.
+  const int now = when == Stencils::kAllNow ? hierarchy->levels() : 1;
+  for (int j = 0; j < now && j < hierarchy->levels(); ++j) {
+    MW_RETURN_IF_ERROR(table->Build(j));
   }
   WaveletTransform t;
   t.hierarchy_ = std::move(hierarchy);
   t.settings_ = settings;
-  t.levels_ = std::move(stencils);
+  t.levels_ = std::move(table);
   return t;
 }
 
-int WaveletTransform::levels() const { return static_cast<int>(levels_->size()); }
+int WaveletTransform::levels() const { return levels_->size(); }
+
+void WaveletTransform::PrepareLevel(int j) const { levels_->Get(j); }
 
 Pyramid WaveletTransform::Forward(std::span<const Vec3> positions) const {
   Pyramid pyramid;
@@ -88,9 +68,6 @@ void WaveletTransform::Forward(std::span<const Vec3> positions,
                                Pyramid& pyramid) const {
   const SemiRegularHierarchy& h = *hierarchy_;
   const int num_levels = h.levels();
-  if (levels() != num_levels) {
-    throw std::logic_error("WaveletTransform::Forward needs the stencils of every level");
-  }
   // Work in place in `x`: each level's odd slots first receive the detail
   // in xyz, which is then moved to its subband (in the local frame).
   std::vector<Vec3>& x = pyramid.base;
@@ -100,7 +77,7 @@ void WaveletTransform::Forward(std::span<const Vec3> positions,
   pyramid.settings = settings_;
   pyramid.subbands.resize(num_levels);
   for (int j = num_levels - 1; j >= 0; --j) {
-    const Level& level = (*levels_)[j];
+    const Level& level = levels_->Get(j);
     const uint32_t vj = h.vertex_count(j);
     const uint32_t n = static_cast<uint32_t>(h.subband_size(j));
     Vec3* odd = x.data() + vj;
@@ -141,18 +118,27 @@ void WaveletTransform::Inverse(const Pyramid& pyramid, int max_level,
   x.resize(h.vertex_count(max_level));
   std::copy(pyramid.base.begin(), pyramid.base.end(), x.begin());
   for (int j = 0; j < max_level; ++j) {
-    const Level& level = (*levels_)[j];
+    const std::vector<Vec3>& coded = pyramid.subbands[j];
+    std::copy(coded.begin(), coded.end(), x.begin() + h.vertex_count(j));
+  }
+  InverseInPlace(x, max_level);
+}
+
+void WaveletTransform::InverseInPlace(std::vector<Vec3>& x, int max_level) const {
+  const SemiRegularHierarchy& h = *hierarchy_;
+  if (max_level < 0 || max_level > levels()) max_level = levels();
+  x.resize(h.vertex_count(max_level));
+  for (int j = 0; j < max_level; ++j) {
+    const Level& level = levels_->Get(j);
     const uint32_t vj = h.vertex_count(j);
     const uint32_t n = static_cast<uint32_t>(h.subband_size(j));
-    const std::vector<Vec3>& coded = pyramid.subbands[j];
-    // The odd slots hold the detail in xyz until the prediction is added.
+    // The odd slots hold d^j, then the detail in xyz until the prediction
+    // is added. (Each frame reads only the coarse vertices [0, V_j).)
     Vec3* odd = x.data() + vj;
     if (settings_.frames == FrameMode::kLocal) {
       const LevelFrames frames(h, j, std::span<const Vec3>(x.data(), vj),
                                 FaceNormalScratch());
-      for (uint32_t k = 0; k < n; ++k) odd[k] = frames(k).ToGlobal(coded[k]);
-    } else {
-      std::copy(coded.begin(), coded.end(), odd);
+      for (uint32_t k = 0; k < n; ++k) odd[k] = frames(k).ToGlobal(odd[k]);
     }
     if (!level.update.empty()) {
       const auto& edges = h.edges(j);
@@ -168,7 +154,7 @@ void WaveletTransform::Inverse(const Pyramid& pyramid, int max_level,
 }
 
 void WaveletTransform::PredictLevel(int j, std::span<Vec3> positions) const {
-  const Level& level = (*levels_)[j];
+  const Level& level = levels_->Get(j);
   const uint32_t vj = hierarchy_->vertex_count(j);
   const uint32_t n = static_cast<uint32_t>(hierarchy_->subband_size(j));
   for (uint32_t k = 0; k < n; ++k) {

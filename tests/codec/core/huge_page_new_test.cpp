@@ -1,8 +1,10 @@
 // The programs' operator new (codec/src/core/huge_page_new.cpp): blocks of
 // a huge page or more start on a huge-page boundary in a mapping the kernel
-// may back with huge pages; small ones are plain malloc; the new_handler
-// contract holds. Linked into this binary as into the programs.
+// may back with huge pages; blocks from 64 KiB are present when new
+// returns; small ones are plain malloc; the new_handler contract holds. Linked into this binary as into the programs.
 #include <gtest/gtest.h>
+#include <sys/mman.h>
+#include <unistd.h>
 
 #include <cstdint>
 #include <fstream>
@@ -56,6 +58,33 @@ TEST(HugePageNewTest, LargeBlocksStartOnAHugePageInAnEligibleMapping) {
   EXPECT_EQ(reinterpret_cast<std::uintptr_t>(big.data()) % kHugePage, 0u);
   EXPECT_EQ(ThpEligible(big.data()), 1);
   EXPECT_EQ(big.back(), 1);  // usable to its last byte
+}
+
+// Whether this kernel takes MADV_POPULATE_WRITE (Linux 5.14).
+bool KernelPopulates() {
+  const std::size_t page = static_cast<std::size_t>(::sysconf(_SC_PAGESIZE));
+  void* p = ::mmap(nullptr, page, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  if (p == MAP_FAILED) return false;
+  const bool ok = ::madvise(p, page, 23 /* MADV_POPULATE_WRITE */) == 0;
+  ::munmap(p, page);
+  return ok;
+}
+
+TEST(HugePageNewTest, MidSizeBlocksArePresentBeforeTheirFirstTouch) {
+  if (!KernelPopulates()) GTEST_SKIP() << "this kernel has no MADV_POPULATE_WRITE";
+  const std::size_t page = static_cast<std::size_t>(::sysconf(_SC_PAGESIZE));
+  for (std::size_t size : {std::size_t{64} << 10, std::size_t{700} << 10, kHugePage - 8}) {
+    char* block = static_cast<char*>(::operator new(size));
+    // The whole pages inside the block, untouched by this test.
+    const auto begin = (reinterpret_cast<std::uintptr_t>(block) + page - 1) / page * page;
+    const auto end = (reinterpret_cast<std::uintptr_t>(block) + size) / page * page;
+    std::vector<unsigned char> resident((end - begin) / page);
+    ASSERT_EQ(::mincore(reinterpret_cast<void*>(begin), end - begin, resident.data()), 0);
+    std::size_t present = 0;
+    for (unsigned char r : resident) present += r & 1;
+    EXPECT_EQ(present, resident.size()) << size;
+    ::operator delete(block);
+  }
 }
 #endif
 

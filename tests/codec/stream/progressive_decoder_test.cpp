@@ -6,6 +6,8 @@
 #include <map>
 #include <numeric>
 #include <random>
+#include <thread>
+#include <vector>
 
 #include "codec/stream/stream_test_util.h"
 #include "meshwave/container.h"
@@ -116,6 +118,41 @@ TEST_P(CoderTest, ADeferredSetUpAnswersAsACompletedOne) {
     EXPECT_EQ((*lazy)->Positions(), (*fresh)->Positions());
     EXPECT_EQ((*lazy)->DetailLevels(), (*fresh)->DetailLevels());
     EXPECT_EQ((*lazy)->CompleteLevels(), (*fresh)->CompleteLevels());
+  }
+}
+
+TEST_P(CoderTest, MeshesAskedOutOfOrderAndFromTwoThreadsAreTheCompletedOnes) {
+  const Fixture& f = Encoded(GetParam());
+  const int levels = static_cast<int>(f.stream.header.transform.levels);
+  DecoderOptions options;
+  options.threads = 1;
+  auto ready = ProgressiveDecoder::Create(f.stream.header, options);
+  ASSERT_TRUE(ready.ok());
+  (*ready)->CompleteSetUp();
+  const size_t half = f.stream.packets.size() / 2;
+  for (uint32_t id = 0; id < half; ++id) {
+    ASSERT_TRUE((*ready)->AddPacket(id, f.stream.packets[id]).ok()) << id;
+  }
+  std::vector<std::vector<Vec3>> expected;
+  for (int level = 0; level <= levels; ++level) expected.push_back((*ready)->Positions(level));
+  for (int threads : {1, 2}) {
+    options.threads = threads;
+    auto d = ProgressiveDecoder::Create(f.stream.header, options);
+    ASSERT_TRUE(d.ok());
+    for (uint32_t id = 0; id < half; ++id) {
+      ASSERT_TRUE((*d)->AddPacket(id, f.stream.packets[id]).ok()) << id;
+    }
+    // Finest first on one thread, coarsest first on another.
+    std::vector<std::vector<Vec3>> down(levels + 1), up(levels + 1);
+    std::thread other([&] {
+      for (int level = levels; level >= 0; --level) down[level] = (*d)->Positions(level);
+    });
+    for (int level = 0; level <= levels; ++level) up[level] = (*d)->Positions(level);
+    other.join();
+    for (int level = 0; level <= levels; ++level) {
+      EXPECT_EQ(down[level], expected[level]) << threads << " threads, level " << level;
+      EXPECT_EQ(up[level], expected[level]) << threads << " threads, level " << level;
+    }
   }
 }
 

@@ -1,7 +1,8 @@
 #include <gtest/gtest.h>
 
 #include <random>
-#include <stdexcept>
+#include <thread>
+#include <vector>
 
 #include "codec/test_meshes.h"
 #include "codec/wavelet/jittered_mesh_testonly.h"
@@ -80,25 +81,100 @@ TEST(WaveletTransformTest, SchemeReproducesItsOwnSubdivisionWithZeroDetail) {
   }
 }
 
-TEST(WaveletTransformTest, APartialTransformReconstructsItsLevelsAsTheFullOne) {
-  const SemiRegularMesh sr = Jittered(Torus(3, 5), 3, 7);
-  const TransformSettings settings{Predictor::kButterfly, UpdateWeights::kConstant,
-                                   FrameMode::kLocal};
-  auto full = WaveletTransform::Create(sr.hierarchy, settings);
-  auto partial = WaveletTransform::Create(sr.hierarchy, settings, 2);
-  ASSERT_TRUE(full.ok() && partial.ok());
-  EXPECT_EQ(full->levels(), 3);
-  EXPECT_EQ(partial->levels(), 2);
-  const Pyramid p = full->Forward(sr.positions);
-  for (int level = 0; level <= 2; ++level) {
-    EXPECT_EQ(partial->Inverse(p, level), full->Inverse(p, level)) << level;
+// Every level of an on-first-use transform, asked in any order and from
+// several threads, is bit for bit the level of one built all at once.
+class OnFirstUse : public ::testing::TestWithParam<Case> {};
+
+TEST_P(OnFirstUse, GivesEveryLevelAsTheTransformBuiltAllAtOnce) {
+  const Case c = GetParam();
+  const SemiRegularMesh sr = Jittered(Torus(3, 5), 4, 7);
+  const TransformSettings settings{c.predictor, c.update, c.frames};
+  auto all = WaveletTransform::Create(sr.hierarchy, settings);
+  ASSERT_TRUE(all.ok());
+  const Pyramid p = all->Forward(sr.positions);
+  const int levels = sr.hierarchy->levels();
+  std::vector<std::vector<Vec3>> expected;
+  for (int level = 0; level <= levels; ++level) expected.push_back(all->Inverse(p, level));
+  // In order, finest first, and from the middle out.
+  for (const std::vector<int>& order :
+       {std::vector<int>{0, 1, 2, 3, 4}, {4, 3, 2, 1, 0}, {2, 4, 0, 3, 1}}) {
+    auto lazy = WaveletTransform::Create(sr.hierarchy, settings,
+                                         WaveletTransform::Stencils::kOnFirstUse);
+    ASSERT_TRUE(lazy.ok());
+    EXPECT_EQ(lazy->levels(), levels);
+    for (int level : order) EXPECT_EQ(lazy->Inverse(p, level), expected[level]) << level;
   }
-  // Past its levels it stops at M^2, and it cannot analyse a mesh.
-  EXPECT_EQ(partial->Inverse(p, 3), full->Inverse(p, 2));
-  EXPECT_EQ(partial->Inverse(p).size(), sr.hierarchy->vertex_count(2));
-  EXPECT_THROW(partial->Forward(sr.positions), std::logic_error);
-  EXPECT_EQ(WaveletTransform::Create(sr.hierarchy, settings, 9)->levels(), 3);
+  // Forward builds what it needs too, and analyses as the other.
+  auto lazy = WaveletTransform::Create(sr.hierarchy, settings,
+                                       WaveletTransform::Stencils::kOnFirstUse);
+  ASSERT_TRUE(lazy.ok());
+  const Pyramid q = lazy->Forward(sr.positions);
+  EXPECT_EQ(q.base, p.base);
+  EXPECT_EQ(q.subbands, p.subbands);
 }
+
+TEST_P(OnFirstUse, InPlaceInverseIsTheInverse) {
+  const Case c = GetParam();
+  const SemiRegularMesh sr = Jittered(OpenPatch(), 3, 13);
+  const TransformSettings settings{c.predictor, c.update, c.frames};
+  for (auto when : {WaveletTransform::Stencils::kAllNow, WaveletTransform::Stencils::kOnFirstUse}) {
+    auto t = WaveletTransform::Create(sr.hierarchy, settings, when);
+    ASSERT_TRUE(t.ok());
+    const Pyramid p = t->Forward(sr.positions);
+    for (int level = 0; level <= sr.hierarchy->levels(); ++level) {
+      // The pyramid laid out level by level, with finer subbands after it
+      // that must not be read.
+      std::vector<Vec3> x = p.base;
+      for (const auto& band : p.subbands) x.insert(x.end(), band.begin(), band.end());
+      t->InverseInPlace(x, level);
+      EXPECT_EQ(x, t->Inverse(p, level)) << level;
+    }
+  }
+}
+
+TEST_P(OnFirstUse, TwoThreadsAskingAtOnceGetTheSameLevels) {
+  const Case c = GetParam();
+  const SemiRegularMesh sr = Jittered(Icosahedron(), 4, 11);
+  const TransformSettings settings{c.predictor, c.update, c.frames};
+  auto all = WaveletTransform::Create(sr.hierarchy, settings);
+  ASSERT_TRUE(all.ok());
+  const Pyramid p = all->Forward(sr.positions);
+  const std::vector<Vec3> finest = all->Inverse(p);
+  const std::vector<Vec3> coarse = all->Inverse(p, 2);
+  for (int round = 0; round < 8; ++round) {
+    auto lazy = WaveletTransform::Create(sr.hierarchy, settings,
+                                         WaveletTransform::Stencils::kOnFirstUse);
+    ASSERT_TRUE(lazy.ok());
+    std::vector<Vec3> a, b, c3;
+    // One thread builds ahead level by level while two draw meshes.
+    std::thread ahead([&] {
+      for (int j = 0; j < lazy->levels(); ++j) lazy->PrepareLevel(j);
+    });
+    std::thread fine([&] { a = lazy->Inverse(p); });
+    std::thread mid([&] { c3 = lazy->Inverse(p, 2); });
+    b = lazy->Inverse(p, round % 5);
+    ahead.join();
+    fine.join();
+    mid.join();
+    EXPECT_EQ(a, finest);
+    EXPECT_EQ(c3, coarse);
+    EXPECT_EQ(b, all->Inverse(p, round % 5));
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    SomeTransforms, OnFirstUse,
+    ::testing::Values(
+        Case{Predictor::kButterfly, UpdateWeights::kConstant, FrameMode::kLocal},
+        Case{Predictor::kButterfly, UpdateWeights::kValence, FrameMode::kGlobal},
+        Case{Predictor::kLoop, UpdateWeights::kNone, FrameMode::kLocal},
+        Case{Predictor::kLinear, UpdateWeights::kConstant, FrameMode::kLocal}),
+    [](const ::testing::TestParamInfo<Case>& param_info) {
+      const Case& c = param_info.param;
+      return std::string(PredictorName(c.predictor)) + "_" +
+             UpdateWeightsName(c.update) + "_" +
+             (c.frames == FrameMode::kLocal ? "local" : "global");
+    });
 
 TEST(WaveletTransformTest, UnliftedCoarseLevelsAreSubsamples) {
   const SemiRegularMesh sr = Jittered(Icosahedron(), 3, 5);
