@@ -50,7 +50,6 @@ struct ProgressiveDecoder::Impl {
   // Each level's stencils built on first use (level 0's by Create).
   std::unique_ptr<WaveletTransform> transform;
   DecodedBase base;
-  bool base_refined = false;  // a base refinement packet moved `base`
   std::vector<char> have;
   // Subbands a packet has decoded into since the last Reset: the others
   // hold their initial state, which nobody needs to wait for.
@@ -167,8 +166,10 @@ void ProgressiveDecoder::Reset() {
       if (m.touched[j]) Impl::InitStates(m.header, static_cast<int>(j), m.coding.Get(j));
     }
   }
-  if (m.base_refined) ForgetBaseRefinement(m.header.base, m.base);
-  m.base_refined = false;
+  // A base refinement packet moved the base: back to the header's.
+  if (m.base.missing_planes != static_cast<int>(m.header.base.refinement_planes)) {
+    ForgetBaseRefinement(m.header.base, m.base);
+  }
   m.touched.assign(m.coding.size(), 0);
   m.have.assign(m.header.packets.length.size(), 0);
   m.chain_now = m.estimates.chain_start;
@@ -237,7 +238,6 @@ Status ProgressiveDecoder::AddPacket(uint32_t id, std::string_view payload) {
       m.broken = true;
       return s.WithContext(what());
     }
-    m.base_refined = true;
     Impl::Record(m, id, payload.size());
     return Status::Ok();
   }
