@@ -136,7 +136,7 @@ Result<std::unique_ptr<ProgressiveDecoder>> ProgressiveDecoder::Create(
   Impl* m = impl.get();
   auto layouts = std::make_shared<SubbandLayoutBuilder>(*m->hierarchy, m->base.grid,
                                                         m->header.octree_leaf_size);
-  m->coding.Start(/*in_background=*/false, static_cast<size_t>(m->hierarchy->levels()),
+  m->coding.Start(static_cast<size_t>(m->hierarchy->levels()),
                   [m, layouts](size_t j) {
                     Impl::SubbandCoding s{layouts->Next(), {}};
                     Impl::InitStates(m->header, static_cast<int>(j), s);
