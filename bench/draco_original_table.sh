@@ -32,6 +32,8 @@
 #                          "none": the default stream only, much faster)
 #   FIDELITY_QP=12         the Draco point whose PSNR (+0.5 dB) it is
 #   MAX_VERTEX_RATIO=16    encode --fidelity's density limit
+#   ENCODE_ARGS="..."      more `meshwave encode` options for both streams
+#                          (e.g. "--predictor loop"), to measure a change
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-$root/build}
@@ -80,12 +82,14 @@ for mesh in $MESHES; do
   aim=${dpsnr[${FIDELITY_QP:-12}]:-$best}
   fidelity=${FIDELITY:-$(printf '%.1f' "$(echo "$aim + 0.5" | bc -l)")}
   echo "$name: encoding (default, then --fidelity $fidelity)" >&2
-  "$cli" encode "$mesh" "$tmp/def.mwv" > /dev/null 2>&1
+  # shellcheck disable=SC2086 # ENCODE_ARGS is a list of options
+  "$cli" encode "$mesh" "$tmp/def.mwv" ${ENCODE_ARGS:-} > /dev/null 2>&1
   streams="def fid"
   if [[ ${FIDELITY:-} == none ]]; then
     streams=def
   else
-    "$cli" encode "$mesh" "$tmp/fid.mwv" --fidelity "$fidelity" --max-vertex-ratio "$ratio_limit" \
+    # shellcheck disable=SC2086
+    "$cli" encode "$mesh" "$tmp/fid.mwv" ${ENCODE_ARGS:-} --fidelity "$fidelity" --max-vertex-ratio "$ratio_limit" \
       > "$tmp/fid.out" 2>&1
   fi
   for s in $streams; do

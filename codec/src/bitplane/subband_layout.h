@@ -23,6 +23,13 @@ struct SubbandLayout {
   // Morton position i -> the Morton position, in subband j - 1's octree, of
   // the parent of coefficient tree.At(i). Empty for d^0.
   std::vector<uint32_t> parent_position;
+  // Morton position i -> the Morton positions of its same-subband
+  // neighbours, kNeighbours per position: the other edges of the (one or
+  // two) faces beside coefficient tree.At(i)'s edge, i itself where there
+  // are fewer (a coefficient is insignificant while its own significance is
+  // coded, so it counts as no neighbour).
+  static constexpr int kNeighbours = 4;
+  std::vector<uint32_t> neighbour_position;
 };
 
 // `values` (indexed by coefficient) rearranged into `tree`'s Morton order.
@@ -58,7 +65,24 @@ class SubbandLayoutBuilder {
         positions[k][a] = vertices_[edges[k][0]][a] + vertices_[edges[k][1]][a];
       }
     }
-    SubbandLayout layout{CoefficientOctree(positions, leaf_size_), {}};
+    SubbandLayout layout{CoefficientOctree(positions, leaf_size_), {}, {}};
+    std::vector<uint32_t> position_of(layout.tree.size());
+    for (uint32_t i = 0; i < position_of.size(); ++i) position_of[layout.tree.At(i)] = i;
+    layout.neighbour_position.resize(size_t{SubbandLayout::kNeighbours} * layout.tree.size());
+    const auto& edge_faces = h_->edge_faces(j);
+    const auto& face_edges = h_->face_edges(j);
+    for (uint32_t i = 0; i < layout.tree.size(); ++i) {
+      const uint32_t k = layout.tree.At(i);
+      uint32_t* out = &layout.neighbour_position[size_t{SubbandLayout::kNeighbours} * i];
+      int n = 0;
+      for (uint32_t f : edge_faces[k]) {
+        if (f == SemiRegularHierarchy::kNone) continue;
+        for (uint32_t e : face_edges[f]) {
+          if (e != k && n < SubbandLayout::kNeighbours) out[n++] = position_of[e];
+        }
+      }
+      for (; n < SubbandLayout::kNeighbours; ++n) out[n] = i;
+    }
     if (j > 0) {
       layout.parent_position.resize(h_->subband_size(j));
       for (uint32_t i = 0; i < layout.parent_position.size(); ++i) {
@@ -66,8 +90,7 @@ class SubbandLayoutBuilder {
       }
     }
     if (next_ < h_->levels()) {
-      position_of_.resize(layout.tree.size());
-      for (uint32_t i = 0; i < position_of_.size(); ++i) position_of_[layout.tree.At(i)] = i;
+      position_of_ = std::move(position_of);
       // Level j + 1's vertices: level j's at twice the scale, then the midpoints.
       for (IntVec3& v : vertices_) {
         for (int64_t& x : v) x *= 2;

@@ -27,7 +27,8 @@
 //   Bits(count): `count` bypass symbols, most significant bit first.
 //
 // Context state: p = 16-bit estimate of P(bit = 0), n = symbols seen, capped.
-//   Init (every packet): p = 32768, n = 0.
+//   Init (every packet): p = 32768, n = 0, unless the layer above names
+//   another start for a context (3xC's neighbour contexts, FORMAT.md 5.3).
 //   Update: r = 65535 / (min(n, 30) + 2)               (integer division)
 //           bit 0: p += ((65536 - p) * r) >> 16
 //           bit 1: p -= (p * r) >> 16
@@ -127,6 +128,11 @@ inline constexpr std::array<uint16_t, kAdaptCountLimit + 1> kAdaptRate = [] {
 // contexts in this default state; encoder and decoder update them alike.
 class BinaryContext {
  public:
+  constexpr BinaryContext() = default;
+  // A context that starts as if it had seen `count` (<= kAdaptCountLimit)
+  // symbols with P(bit == 0) = p0 / 2^16, p0 in [2, 65535].
+  constexpr BinaryContext(uint16_t p0, uint8_t count) : p_(p0), count_(count) {}
+
   // P(bit == 0) in units of 2^-kProbBits, always in [1, 2^kProbBits - 1].
   uint32_t probability() const { return p_ >> 1; }
 

@@ -119,9 +119,12 @@ Result<EncodedStream> EncodeMesh(const SemiRegularMesh& input,
       for (int c = 0; c < 3; ++c) {
         const QuantizedComponent& q = quantized[j][c];
         if (b > q.top) continue;
-        ParentView parent;
-        if (options.coder == CoderKind::k3xC && j > 0) {
-          parent = {layout.parent_position, q0_ordered[j - 1][c], negative_ordered[j - 1][c]};
+        ContextSources parent;
+        if (options.coder == CoderKind::k3xC) {
+          if (j > 0) {
+            parent = {layout.parent_position, q0_ordered[j - 1][c], negative_ordered[j - 1][c], {}};
+          }
+          parent.neighbour_position = layout.neighbour_position;
         }
         EncoderIo io(enc, q0_ordered[j][c], negative_ordered[j][c]);
         CodeBitplane(layout.tree, state[c], b, parent, contexts, io);

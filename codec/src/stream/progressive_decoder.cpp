@@ -252,11 +252,12 @@ Status ProgressiveDecoder::AddPacket(uint32_t id, std::string_view payload) {
   for (int c = 0; c < 3; ++c) {
     ComponentState& s = coding.states[c];
     if (b > s.top) continue;
-    ParentView parent;
+    ContextSources parent;
     if (up_coding != nullptr) {
       const ComponentState& up = up_coding->states[c];
-      parent = {layout.parent_position, up.mag, up.negative};
+      parent = {layout.parent_position, up.mag, up.negative, {}};
     }
+    if (m.parent_contexts()) parent.neighbour_position = layout.neighbour_position;
     CodeBitplane(layout.tree, s, b, parent, contexts, io);
   }
   if (io.decoder().overrun()) {

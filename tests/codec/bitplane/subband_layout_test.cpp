@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
+#include <set>
 #include <vector>
 
 #include "codec/test_meshes.h"
@@ -80,6 +82,63 @@ TEST(SubbandLayoutTest, InMortonOrderPermutesByTheTree) {
   const std::vector<uint32_t> ordered = InMortonOrder<uint32_t>(tree, values);
   ASSERT_EQ(ordered.size(), values.size());
   for (uint32_t i = 0; i < ordered.size(); ++i) EXPECT_EQ(ordered[i], values[tree.At(i)]);
+}
+
+// Neighbours (3xC's nctx, docs/FORMAT.md 5.3): the other two edges of each
+// face beside a coefficient's edge, as Morton positions of the same
+// subband, the position itself filling the slots of a missing face. On an
+// open patch, so that boundary edges (one face) are covered too.
+TEST(SubbandLayoutTest, NeighboursAreTheOtherEdgesOfTheFacesBesideEachEdge) {
+  const TriMesh patch = testing::OpenPatch();
+  auto built = SemiRegularHierarchy::Build(static_cast<uint32_t>(patch.positions.size()),
+                                           patch.faces, 3);
+  ASSERT_TRUE(built.ok()) << built.status().ToString();
+  const SemiRegularHierarchy& h = **built;
+  std::vector<IntVec3> grid;
+  for (const Vec3& p : patch.positions) {
+    grid.push_back({static_cast<int64_t>(p.x() * 997), static_cast<int64_t>(p.y() * 1009),
+                    static_cast<int64_t>(p.z() * 1013)});
+  }
+  const auto layouts = BuildSubbandLayouts(h, grid, 4);
+  int boundary = 0, interior = 0;
+  for (int j = 0; j < h.levels(); ++j) {
+    const SubbandLayout& layout = layouts[j];
+    const uint32_t n = static_cast<uint32_t>(layout.tree.size());
+    ASSERT_EQ(layout.neighbour_position.size(), size_t{SubbandLayout::kNeighbours} * n);
+    std::vector<uint32_t> position_of(n);
+    for (uint32_t i = 0; i < n; ++i) position_of[layout.tree.At(i)] = i;
+    for (uint32_t i = 0; i < n; ++i) {
+      const uint32_t k = layout.tree.At(i);
+      // Expected, from the definition.
+      std::multiset<uint32_t> want;
+      int faces = 0;
+      for (uint32_t f = 0; f < h.faces(j).size(); ++f) {
+        const auto& fe = h.face_edges(j)[f];
+        if (std::find(fe.begin(), fe.end(), k) == fe.end()) continue;
+        ++faces;
+        for (uint32_t e : fe) {
+          if (e != k) want.insert(position_of[e]);
+        }
+      }
+      ASSERT_GE(faces, 1);
+      (faces == 1 ? boundary : interior) += 1;
+      std::multiset<uint32_t> got;
+      int self = 0;
+      for (int s = 0; s < SubbandLayout::kNeighbours; ++s) {
+        const uint32_t nb = layout.neighbour_position[SubbandLayout::kNeighbours * i + s];
+        ASSERT_LT(nb, n);
+        if (nb == i) {
+          ++self;
+        } else {
+          got.insert(nb);
+        }
+      }
+      EXPECT_EQ(got, want) << "level " << j << " position " << i;
+      EXPECT_EQ(self, SubbandLayout::kNeighbours - 2 * faces) << "level " << j << " position " << i;
+    }
+  }
+  EXPECT_GT(boundary, 0);
+  EXPECT_GT(interior, 0);
 }
 
 }  // namespace

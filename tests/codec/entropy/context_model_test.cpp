@@ -24,6 +24,19 @@ TEST(BinaryContextTest, FirstUpdatesFollowTheFormulaOfTheFormat) {
   EXPECT_EQ(ctx.probability(), (49151u - 16383u) >> 1);
 }
 
+// A context given a start (3xC's neighbour contexts, FORMAT.md 5.3) holds
+// its estimate and adapts at the rate of the symbols it counts as seen.
+TEST(BinaryContextTest, AStartedContextAdaptsAsIfItHadSeenItsCount) {
+  BinaryContext ctx(52429, 2);
+  EXPECT_EQ(ctx.probability(), 52429u >> 1);
+  // r(2) = 65535 / 4 = 16383: p -= (52429 * 16383) >> 16 = 13106.
+  ctx.Update(1);
+  EXPECT_EQ(ctx.probability(), (52429u - 13106u) >> 1);
+  // r(3) = 65535 / 5 = 13107: p += ((65536 - 39323) * 13107) >> 16 = 5242.
+  ctx.Update(0);
+  EXPECT_EQ(ctx.probability(), (39323u + 5242u) >> 1);
+}
+
 TEST(BinaryContextTest, ProbabilityStaysInsideTheCoderRange) {
   for (int bit = 0; bit <= 1; ++bit) {
     BinaryContext ctx;

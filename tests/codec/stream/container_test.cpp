@@ -113,8 +113,9 @@ TEST(ContainerTest, RejectsBadMagicVersionTrailingBytes) {
   EXPECT_NE(ParseContainer(trailing).status().message().find("after the last packet"),
             std::string::npos);
   // The old base code, the version before the SAWT field, the one before the
-  // compact packet index, the one before the base refinement, and a future one.
-  for (uint32_t version : {1u, 2u, 3u, 4u, 6u}) {
+  // compact packet index, the one before the base refinement, the one before
+  // 3xC's neighbour contexts, and a future one.
+  for (uint32_t version : {1u, 2u, 3u, 4u, 5u, 7u}) {
     EncodedStream other = Stream();
     proto::StreamHeader p;
     ASSERT_TRUE(p.ParseFromString(other.header.bytes_without_present));
