@@ -23,6 +23,7 @@
 #include "server_process_testonly.h"
 #include "stream.pb.h"
 #include "sha256.h"
+#include "stream/stream_format.h"
 #include "test_data.h"
 
 namespace meshwave::testing {
@@ -618,6 +619,49 @@ TEST_F(ServerHttpTest, BadRequestsGetJsonErrorsAndServerStaysUp) {
   const HttpReply health = HttpGet(port_, "/healthz");
   EXPECT_EQ(health.status, 200u);
   EXPECT_EQ(HttpGet(port_, "/v1/meshes").status, 200u);
+}
+
+// A catalog an older build wrote (docs/DEPLOY.md, "Upgrading across a
+// stream format version"): the row and the file are intact, but this build
+// reads another format version. That is the server's condition, not the
+// client's: 500, naming both versions, and the other meshes still served.
+TEST_F(ServerHttpTest, AContainerOfAnotherFormatVersionAnswers500NamingBothVersions) {
+  const std::string id = ids_.at("holes_copy");
+  auto catalog = server::Catalog::Open(catalog_.string());
+  ASSERT_TRUE(catalog.ok()) << catalog.status().ToString();
+  auto found = (*catalog)->Find(id);
+  ASSERT_TRUE(found.ok() && *found);
+  server::CatalogEntry entry = **found;
+  const auto path = (*catalog)->ContainerPath(entry);
+  const std::string original = ReadBytes(path);  // the views below point into it
+  auto parsed = ParseContainer(original);
+  ASSERT_TRUE(parsed.ok()) << parsed.status().ToString();
+  proto::StreamHeader header;
+  ASSERT_TRUE(header.ParseFromString(parsed->header.bytes_without_present));
+  const uint32_t older = kFormatVersion - 1;
+  header.set_format_version(older);
+  std::string bytes = SerializeContainerHead(header.SerializeAsString(), parsed->ids);
+  for (std::string_view payload : parsed->payloads) bytes += payload;
+  {
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    out << bytes;
+  }
+  ASSERT_TRUE((*catalog)->Remove(id).ok());
+  entry.sha256 = Sha256Hex(bytes);
+  ASSERT_TRUE((*catalog)->Insert(entry).ok());
+
+  for (const std::string& target : {"/v1/meshes/" + id + "/stream?budget=5000",
+                                    "/v1/meshes/" + id + "/container"}) {
+    const HttpReply r = HttpGet(port_, target);
+    EXPECT_EQ(r.status, 500u) << target;
+    EXPECT_TRUE(IsJsonError(r)) << r.body;
+    EXPECT_NE(r.body.find("format version " + std::to_string(older) +
+                          " (this build reads version " + std::to_string(kFormatVersion) + ")"),
+              std::string::npos)
+        << r.body;
+  }
+  EXPECT_EQ(HttpGet(port_, "/v1/meshes/" + ids_.at("holes") + "/stream?budget=5000").status,
+            200u);
 }
 
 TEST_F(ServerHttpTest, MetricsCountRequests) {

@@ -34,6 +34,9 @@ struct ComponentState {
   uint32_t lsc_size = 0;
   std::vector<uint32_t> mag;  // known bits of Q0 (lower bits zero)
   std::vector<uint8_t> negative;
+  // Per position, how many of its neighbours are significant (3xC's nctx
+  // before the cap; kept up to date only with neighbour contexts).
+  std::vector<uint8_t> significant_neighbours;
 
   void Init(const CoefficientOctree& tree, int top_bitplane) {
     top = top_bitplane;
@@ -43,6 +46,7 @@ struct ComponentState {
     lsc_size = 0;
     mag.assign(tree.size(), 0);
     negative.assign(tree.size(), 0);
+    significant_neighbours.assign(tree.size(), 0);
     if (top < 0 || tree.size() == 0) {
       lnc.clear();
       lsc.clear();
@@ -115,24 +119,8 @@ struct ContextSources {
     return negative[parent_position[i]] ? 2 : 1;
   }
   // Same-subband neighbours (SubbandLayout::neighbour_position); empty: no
-  // neighbour contexts. Read from the coder's own known magnitudes.
+  // neighbour contexts.
   std::span<const uint32_t> neighbour_position;
-
-  // How many of i's neighbours are significant at b as far as both sides
-  // know (bits above b, and b itself where already coded), capped at 2.
-  template <bool kHas>
-  int NeighbourClass(const uint32_t* known_mag, uint32_t i, int b) const {
-    if constexpr (!kHas) {
-      return 0;
-    } else {
-      const uint32_t* nb = &neighbour_position[size_t{4} * i];
-      const int count = static_cast<int>((known_mag[nb[0]] >> b) != 0) +
-                        static_cast<int>((known_mag[nb[1]] >> b) != 0) +
-                        static_cast<int>((known_mag[nb[2]] >> b) != 0) +
-                        static_cast<int>((known_mag[nb[3]] >> b) != 0);
-      return std::min(count, 2);
-    }
-  }
 };
 
 // Io provides: int SigCoef(i, b, ctx), int SigNode(node, b, ctx),
@@ -149,17 +137,38 @@ namespace bitplane_internal {
 struct PassState {
   uint32_t* mag;
   uint8_t* negative;
+  uint8_t* significant_neighbours;
   uint32_t* lnc;
   uint32_t* lsc;
   uint32_t lnc_size;
   uint32_t lsc_size;
 };
 
+// 3xC's nctx of position i: its significant neighbours, capped at 2. The
+// counters go up as neighbours become significant (BecomeSignificant): a
+// coefficient known to be significant has a known bit at or above the
+// bitplane being coded, so a counter is the number of n with M(n) >> b != 0
+// (FORMAT.md 5.3), read with one load per symbol instead of four.
+template <bool kNeighbours>
+inline int NeighbourClass(const PassState& p, uint32_t i) {
+  if constexpr (!kNeighbours) {
+    return 0;
+  } else {
+    return std::min<int>(p.significant_neighbours[i], 2);
+  }
+}
+
 // Position i became significant at bitplane b: its sign, then the LSC.
-template <bool kParents, class Io>
+template <bool kParents, bool kNeighbours, class Io>
 inline void BecomeSignificant(uint32_t i, int b, int state, const ContextSources& parent,
                               ComponentContexts& ctx, PassState& p, Io& io) {
   p.mag[i] |= 1u << b;
+  if constexpr (kNeighbours) {
+    // A missing neighbour's slot names i itself: i's own counter is never
+    // read again (it is significant now).
+    const uint32_t* nb = &parent.neighbour_position[size_t{4} * i];
+    for (int n = 0; n < 4; ++n) ++p.significant_neighbours[nb[n]];
+  }
   const int sign_context = parent.SignContext<kParents>(i, state);
   p.negative[i] = static_cast<uint8_t>(io.Sign(i, ctx.sign[sign_context]));
   p.lsc[p.lsc_size++] = i;
@@ -174,9 +183,9 @@ Io NonSignificancePass(int b, const ContextSources parent, ComponentContexts& ct
   for (uint32_t n = 0; n < local.lnc_size; ++n) {
     const uint32_t i = local.lnc[n];
     const int state = parent.State<kParents>(i, b);
-    const int near = parent.NeighbourClass<kNeighbours>(local.mag, i, b);
+    const int near = NeighbourClass<kNeighbours>(local, i);
     if (io.SigCoef(i, b, ctx.sig[1][state][near])) {
-      BecomeSignificant<kParents>(i, b, state, parent, ctx, local, io);
+      BecomeSignificant<kParents, kNeighbours>(i, b, state, parent, ctx, local, io);
     } else {
       local.lnc[kept++] = i;
     }
@@ -215,9 +224,9 @@ Io SignificancePass(const CoefficientOctree& tree, int b, int top, const Context
         }
         for (uint32_t i = child.begin; i < child.end; ++i) {
           const int state = parent.State<kParents>(i, b);
-          const int near = parent.NeighbourClass<kNeighbours>(local.mag, i, b);
+          const int near = NeighbourClass<kNeighbours>(local, i);
           if (io.SigCoef(i, b, ctx.sig[0][state][near])) {
-            BecomeSignificant<kParents>(i, b, state, parent, ctx, local, io);
+            BecomeSignificant<kParents, kNeighbours>(i, b, state, parent, ctx, local, io);
           } else {
             local.lnc[local.lnc_size++] = i;
           }
@@ -245,8 +254,8 @@ Io RefinementPass(int b, uint32_t count, BinaryContext& ctx, const PassState& p,
 template <bool kParents, bool kNeighbours, class Io>
 void CodeBitplane(const CoefficientOctree& tree, ComponentState& s, int b,
                   const ContextSources& parent, ComponentContexts& ctx, Io& io) {
-  PassState p{s.mag.data(), s.negative.data(), s.lnc.data(), s.lsc.data(), s.lnc_size,
-              s.lsc_size};
+  PassState p{s.mag.data(), s.negative.data(), s.significant_neighbours.data(),
+              s.lnc.data(), s.lsc.data(), s.lnc_size, s.lsc_size};
   // Coefficients significant in this bitplane are appended to the LSC; the
   // refinement pass reads only the ones before them.
   const uint32_t refine_count = p.lsc_size;
