@@ -49,7 +49,7 @@ void ForEachCodedSawtChoice(const SemiRegularHierarchy& h, const SawtRegions& re
   for (int j = h.levels() - 1; j >= 0; --j) {
     std::vector<char> used(regions.count, 0);
     for (uint32_t k = 0; k < h.subband_size(j); ++k) {
-      used[regions.face_region[SawtBaseFaceOf(h, j, k)]] = 1;
+      used[regions.face_region[BaseFaceOf(h, j, k)]] = 1;
     }
     for (uint32_t r = 0; r < regions.count; ++r) {
       if (used[r]) visit(j, r);

@@ -92,7 +92,7 @@ class RegionTraversal {
 std::vector<uint32_t> SawtOddVertexRegions(const SemiRegularHierarchy& h, int j,
                                            const std::vector<uint32_t>& face_region) {
   std::vector<uint32_t> out(h.subband_size(j));
-  for (uint32_t k = 0; k < out.size(); ++k) out[k] = face_region[SawtBaseFaceOf(h, j, k)];
+  for (uint32_t k = 0; k < out.size(); ++k) out[k] = face_region[BaseFaceOf(h, j, k)];
   return out;
 }
 
@@ -101,7 +101,7 @@ SawtRegions BuildSawtRegions(const SemiRegularHierarchy& h,
   // Odd vertices (all levels) per base face: what a cell "holds".
   std::vector<uint64_t> held(h.faces(0).size(), 0);
   for (int j = 0; j < h.levels(); ++j) {
-    for (uint32_t k = 0; k < h.subband_size(j); ++k) ++held[SawtBaseFaceOf(h, j, k)];
+    for (uint32_t k = 0; k < h.subband_size(j); ++k) ++held[BaseFaceOf(h, j, k)];
   }
   std::vector<uint8_t> flags;
   const std::function<bool(int, std::span<const uint32_t>)> decide =

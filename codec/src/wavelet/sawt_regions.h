@@ -16,6 +16,7 @@
 
 #include "bitplane/coefficient_octree.h"
 #include "meshwave/semiregular.h"
+#include "semiregular/base_face_of.h"
 #include "wavelet/sawt_plan.h"
 
 namespace meshwave {
@@ -23,16 +24,6 @@ namespace meshwave {
 inline constexpr uint32_t kDefaultSawtAlpha = 400;  // Satti et al. 2011, Fig. 4
 // Octree depth at which cells stop splitting whatever they hold.
 inline constexpr int kSawtMaxDepth = 20;
-
-// The base face that odd vertex k of level j (the midpoint of edge k of
-// M^j) lies in: face f of M^j descends from base face f >> 2j.
-inline uint32_t SawtBaseFaceOf(const SemiRegularHierarchy& h, int j, uint32_t k) {
-  const auto& ef = h.edge_faces(j)[k];
-  const uint32_t a = ef[0] >> (2 * j);
-  if (ef[1] == SemiRegularHierarchy::kNone) return a;
-  const uint32_t b = ef[1] >> (2 * j);
-  return a < b ? a : b;
-}
 
 // Region of every odd vertex of level j.
 std::vector<uint32_t> SawtOddVertexRegions(const SemiRegularHierarchy& h, int j,

@@ -1,0 +1,153 @@
+// Region parsing and weighting (meshwave/region.h).
+#include "meshwave/region.h"
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <numbers>
+#include <system_error>
+
+namespace meshwave {
+namespace {
+
+// Splits `text` at commas into exactly N non-empty fields.
+template <size_t N>
+Result<std::array<std::string_view, N>> Fields(std::string_view text, const char* what) {
+  std::array<std::string_view, N> out;
+  size_t start = 0;
+  for (size_t k = 0; k < N; ++k) {
+    const size_t comma = text.find(',', start);
+    const bool last = k + 1 == N;
+    if (last != (comma == std::string_view::npos)) {
+      return InvalidArgument(std::string(what) + " needs exactly " + std::to_string(N) +
+                             " comma-separated numbers");
+    }
+    out[k] = text.substr(start, last ? std::string_view::npos : comma - start);
+    if (out[k].empty()) return InvalidArgument(std::string(what) + ": an empty number");
+    start = comma + 1;
+  }
+  return out;
+}
+
+Result<double> Number(std::string_view token, const char* what) {
+  double v = 0;
+  const char* end = token.data() + token.size();
+  // from_chars takes no leading '+' and no spaces; both are refused here.
+  auto [ptr, ec] = std::from_chars(token.data(), end, v);
+  if (ec != std::errc() || ptr != end || !std::isfinite(v)) {
+    return InvalidArgument(std::string(what) + ": \"" + std::string(token.substr(0, 32)) +
+                           "\" is not a finite number");
+  }
+  if (std::abs(v) > kMaxRegionCoordinate) {
+    return InvalidArgument(std::string(what) + ": " + std::string(token.substr(0, 32)) +
+                           " is out of range");
+  }
+  return v;
+}
+
+Result<uint32_t> Pixels(std::string_view token, const char* what) {
+  uint32_t v = 0;
+  const char* end = token.data() + token.size();
+  auto [ptr, ec] = std::from_chars(token.data(), end, v);
+  if (ec != std::errc() || ptr != end || v < 1 || v > kMaxScreenPixels) {
+    return InvalidArgument(std::string(what) + " must be a whole number of pixels in [1, " +
+                           std::to_string(kMaxScreenPixels) + "]");
+  }
+  return v;
+}
+
+std::string Shortest(double v) {
+  char buffer[32];
+  auto [ptr, ec] = std::to_chars(buffer, buffer + sizeof(buffer), v);
+  return ec == std::errc() ? std::string(buffer, ptr) : std::string("0");
+}
+
+}  // namespace
+
+Result<Region> ParseSphereRegion(std::string_view text) {
+  MW_ASSIGN_OR_RETURN(auto f, Fields<4>(text, "region"));
+  SphereRegion s;
+  for (int a = 0; a < 3; ++a) {
+    MW_ASSIGN_OR_RETURN(s.centre[a], Number(f[static_cast<size_t>(a)], "region centre"));
+  }
+  MW_ASSIGN_OR_RETURN(s.radius, Number(f[3], "region radius"));
+  if (!(s.radius > 0)) return InvalidArgument("region radius must be > 0");
+  return Region{s, std::nullopt};
+}
+
+Result<Region> ParseViewRegion(std::string_view text) {
+  MW_ASSIGN_OR_RETURN(auto f, Fields<9>(text, "view"));
+  ViewRegion v;
+  for (int a = 0; a < 3; ++a) {
+    MW_ASSIGN_OR_RETURN(v.eye[a], Number(f[static_cast<size_t>(a)], "view eye"));
+    MW_ASSIGN_OR_RETURN(v.direction[a], Number(f[static_cast<size_t>(a) + 3], "view direction"));
+  }
+  const double length = v.direction.norm();
+  if (!(length > 0) || !std::isfinite(length)) {
+    return InvalidArgument("view direction must not be zero");
+  }
+  v.direction /= length;
+  MW_ASSIGN_OR_RETURN(v.fov_degrees, Number(f[6], "view field of view"));
+  if (!(v.fov_degrees > 0 && v.fov_degrees < 180)) {
+    return InvalidArgument("view field of view must be in (0, 180) degrees");
+  }
+  MW_ASSIGN_OR_RETURN(v.width, Pixels(f[7], "view width"));
+  MW_ASSIGN_OR_RETURN(v.height, Pixels(f[8], "view height"));
+  return Region{v, std::nullopt};
+}
+
+Result<double> ParseScreenError(std::string_view text) {
+  MW_ASSIGN_OR_RETURN(double px, Number(text, "screen error"));
+  if (!(px > 0 && px <= kMaxScreenPixels)) {
+    return InvalidArgument("screen error must be in (0, " + std::to_string(kMaxScreenPixels) +
+                           "] pixels");
+  }
+  return px;
+}
+
+std::string FormatRegionShape(const Region& region) {
+  std::string out;
+  const auto add = [&out](const std::string& field) {
+    if (!out.empty()) out += ',';
+    out += field;
+  };
+  if (const auto* s = std::get_if<SphereRegion>(&region.shape)) {
+    for (int a = 0; a < 3; ++a) add(Shortest(s->centre[a]));
+    add(Shortest(s->radius));
+  } else {
+    const auto& v = std::get<ViewRegion>(region.shape);
+    for (int a = 0; a < 3; ++a) add(Shortest(v.eye[a]));
+    for (int a = 0; a < 3; ++a) add(Shortest(v.direction[a]));
+    add(Shortest(v.fov_degrees));
+    add(std::to_string(v.width));
+    add(std::to_string(v.height));
+  }
+  return out;
+}
+
+double RegionWeight(const Region& region, const Vec3& centre, double radius) {
+  radius = std::max(radius, 0.0);
+  if (const auto* s = std::get_if<SphereRegion>(&region.shape)) {
+    const double gap = (centre - s->centre).norm() - s->radius - radius;
+    if (gap <= 0) return 1;
+    const double g = gap / s->radius;
+    return 1 / (1 + g * g);
+  }
+  const auto& v = std::get<ViewRegion>(region.shape);
+  const Vec3 to = centre - v.eye;
+  const double distance = to.norm();
+  if (distance <= radius) return 1;
+  const double half = v.fov_degrees * std::numbers::pi / 360;
+  const double tan_half = std::tan(half);
+  const double aspect = static_cast<double>(v.width) / static_cast<double>(v.height);
+  // The cone through the screen's corners, widened by the ball's angular
+  // radius.
+  const double cone = std::atan(tan_half * std::sqrt(1 + aspect * aspect));
+  const double angle = std::acos(std::clamp(to.dot(v.direction) / distance, -1.0, 1.0));
+  const double angular_radius = std::asin(std::min(1.0, radius / distance));
+  if (angle - angular_radius > cone) return 0;
+  return std::min(1.0, radius / (distance * tan_half));
+}
+
+}  // namespace meshwave

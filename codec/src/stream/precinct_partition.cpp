@@ -1,0 +1,88 @@
+#include "stream/precinct_partition.h"
+
+#include <algorithm>
+#include <utility>
+
+#include "semiregular/base_face_of.h"
+
+namespace meshwave {
+namespace {
+
+// Coefficients of subband j per base face.
+std::vector<uint32_t> CoefficientsPerFace(const SemiRegularHierarchy& h, int j) {
+  std::vector<uint32_t> held(h.faces(0).size(), 0);
+  const uint32_t n = static_cast<uint32_t>(h.subband_size(j));
+  for (uint32_t k = 0; k < n; ++k) ++held[BaseFaceOf(h, j, k)];
+  return held;
+}
+
+// Cuts face_order[begin, end) into runs of >= `least` coefficients,
+// appending each run's end to `bounds`.
+void CutRuns(const std::vector<uint32_t>& face_order, const std::vector<uint32_t>& held,
+             uint32_t begin, uint32_t end, uint64_t least, std::vector<uint32_t>& bounds) {
+  const size_t first_cut = bounds.size();
+  uint64_t run = 0;
+  for (uint32_t i = begin; i < end; ++i) {
+    run += held[face_order[i]];
+    if (run >= least && i + 1 < end) {
+      bounds.push_back(i + 1);
+      run = 0;
+    }
+  }
+  // The remainder (face_order[last cut, end)) joins the run before it when
+  // under half a run.
+  if (bounds.size() > first_cut && 2 * run < least) bounds.pop_back();
+  bounds.push_back(end);
+}
+
+}  // namespace
+
+std::vector<uint32_t> PrecinctPartition::FacePrecincts(int j) const {
+  std::vector<uint32_t> out(face_order.size());
+  const auto& b = bounds[static_cast<size_t>(j)];
+  for (uint32_t p = 0; p + 1 < b.size(); ++p) {
+    for (uint32_t i = b[p]; i < b[p + 1]; ++i) out[face_order[i]] = p;
+  }
+  return out;
+}
+
+PrecinctPartition PartitionIntoPrecincts(const SemiRegularHierarchy& h,
+                                         std::span<const IntVec3> base_grid,
+                                         uint32_t min_coefficients) {
+  PrecinctPartition out;
+  const auto& faces = h.faces(0);
+  // 3 x each centroid: exact integers, the order the decoder derives too.
+  std::vector<IntVec3> centroids(faces.size());
+  for (size_t f = 0; f < faces.size(); ++f) {
+    for (int a = 0; a < 3; ++a) {
+      centroids[f][a] = base_grid[faces[f][0]][a] + base_grid[faces[f][1]][a] +
+                        base_grid[faces[f][2]][a];
+    }
+  }
+  const CoefficientOctree order(centroids, 1);
+  out.face_order.resize(faces.size());
+  for (uint32_t i = 0; i < out.face_order.size(); ++i) out.face_order[i] = order.At(i);
+  const uint64_t least = std::max<uint32_t>(min_coefficients, 1);
+  const uint32_t face_count = static_cast<uint32_t>(faces.size());
+  std::vector<uint32_t> above = {0, face_count};
+  for (int j = 0; j < h.levels(); ++j) {
+    const std::vector<uint32_t> held = CoefficientsPerFace(h, j);
+    std::vector<uint32_t> bounds = {0};
+    for (size_t p = 0; p + 1 < above.size(); ++p) {
+      CutRuns(out.face_order, held, above[p], above[p + 1], least, bounds);
+    }
+    out.bounds.push_back(bounds);
+    above = std::move(bounds);
+  }
+  return out;
+}
+
+std::vector<uint32_t> CoefficientPrecincts(const SemiRegularHierarchy& h,
+                                           const PrecinctPartition& partition, int j) {
+  const std::vector<uint32_t> of_face = partition.FacePrecincts(j);
+  std::vector<uint32_t> out(h.subband_size(j));
+  for (uint32_t k = 0; k < out.size(); ++k) out[k] = of_face[BaseFaceOf(h, j, k)];
+  return out;
+}
+
+}  // namespace meshwave

@@ -1,0 +1,117 @@
+#include "meshwave/region.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <vector>
+
+namespace meshwave {
+namespace {
+
+TEST(RegionTest, ParsesASphere) {
+  auto r = ParseSphereRegion("1.5,-2,3e-1,0.25");
+  ASSERT_TRUE(r.ok()) << r.status().ToString();
+  const auto& s = std::get<SphereRegion>(r->shape);
+  EXPECT_EQ(s.centre, Vec3(1.5, -2, 0.3));
+  EXPECT_EQ(s.radius, 0.25);
+  EXPECT_FALSE(r->screen_error_px.has_value());
+}
+
+TEST(RegionTest, ParsesAViewWithItsDirectionMadeUnit) {
+  auto r = ParseViewRegion("0,0,5,0,0,-2,45,1920,1080");
+  ASSERT_TRUE(r.ok()) << r.status().ToString();
+  const auto& v = std::get<ViewRegion>(r->shape);
+  EXPECT_EQ(v.eye, Vec3(0, 0, 5));
+  EXPECT_EQ(v.direction, Vec3(0, 0, -1));
+  EXPECT_EQ(v.fov_degrees, 45);
+  EXPECT_EQ(v.width, 1920u);
+  EXPECT_EQ(v.height, 1080u);
+}
+
+TEST(RegionTest, RefusesWhatIsNotARegionWithAMessageNamingIt) {
+  const std::vector<std::pair<std::string, std::string>> spheres = {
+      {"", "exactly 4"},          {"1,2,3", "exactly 4"},    {"1,2,3,4,5", "exactly 4"},
+      {"1,,3,4", "empty"},        {"1,2,3,0", "> 0"},        {"1,2,3,-1", "> 0"},
+      {"1,2,nan,1", "finite"},    {"1,2,inf,1", "finite"},   {"1, 2,3,1", "finite"},
+      {"+1,2,3,1", "finite"},     {"1,2,3,1,", "exactly 4"}, {"0x10,2,3,1", "finite"},
+      {"1e400,2,3,1", "finite"},  {"2e15,0,0,1", "range"},   {"a,b,c,d", "finite"},
+  };
+  for (const auto& [text, why] : spheres) {
+    auto r = ParseSphereRegion(text);
+    ASSERT_FALSE(r.ok()) << text;
+    EXPECT_EQ(r.status().code(), StatusCode::kInvalidArgument) << text;
+    EXPECT_NE(r.status().message().find(why), std::string::npos)
+        << text << ": " << r.status().message();
+  }
+  const std::vector<std::pair<std::string, std::string>> views = {
+      {"0,0,5,0,0,-1,45,640", "exactly 9"},     {"0,0,5,0,0,0,45,640,480", "zero"},
+      {"0,0,5,0,0,-1,0,640,480", "(0, 180)"},   {"0,0,5,0,0,-1,180,640,480", "(0, 180)"},
+      {"0,0,5,0,0,-1,45,0,480", "pixels"},      {"0,0,5,0,0,-1,45,640,16385", "pixels"},
+      {"0,0,5,0,0,-1,45,640.5,480", "pixels"},  {"0,0,5,0,0,-1,45,-640,480", "pixels"},
+  };
+  for (const auto& [text, why] : views) {
+    auto r = ParseViewRegion(text);
+    ASSERT_FALSE(r.ok()) << text;
+    EXPECT_NE(r.status().message().find(why), std::string::npos)
+        << text << ": " << r.status().message();
+  }
+  for (const char* text : {"0", "-1", "16385", "nan", "", "1px"}) {
+    EXPECT_FALSE(ParseScreenError(text).ok()) << text;
+  }
+  EXPECT_EQ(*ParseScreenError("0.5"), 0.5);
+}
+
+TEST(RegionTest, TheTextFormReadsBackToTheSameRegion) {
+  for (const char* text : {"0.1,-0.2,1e-7,0.3333333333333333", "1,2,3,4"}) {
+    const Region r = *ParseSphereRegion(text);
+    const Region again = *ParseSphereRegion(FormatRegionShape(r));
+    EXPECT_EQ(std::get<SphereRegion>(again.shape).centre, std::get<SphereRegion>(r.shape).centre);
+    EXPECT_EQ(std::get<SphereRegion>(again.shape).radius, std::get<SphereRegion>(r.shape).radius);
+  }
+  const Region v = *ParseViewRegion("0.5,1,-3,0.3,0.1,1,50.5,800,600");
+  const Region again = *ParseViewRegion(FormatRegionShape(v));
+  const auto& a = std::get<ViewRegion>(v.shape);
+  const auto& b = std::get<ViewRegion>(again.shape);
+  EXPECT_EQ(a.eye, b.eye);
+  EXPECT_NEAR((a.direction - b.direction).norm(), 0, 1e-15);  // renormalised
+  EXPECT_EQ(a.fov_degrees, b.fov_degrees);
+  EXPECT_EQ(a.width, b.width);
+  EXPECT_EQ(a.height, b.height);
+}
+
+TEST(RegionTest, ASphereWeighsWhatMeetsItOneAndTheRestLessWithDistance) {
+  const Region r = *ParseSphereRegion("0,0,0,1");
+  EXPECT_EQ(RegionWeight(r, Vec3(0.5, 0, 0), 0.1), 1);
+  EXPECT_EQ(RegionWeight(r, Vec3(1.5, 0, 0), 0.6), 1);  // the ball reaches in
+  double previous = 1;
+  for (double x : {1.6, 2.0, 3.0, 10.0, 100.0}) {
+    const double w = RegionWeight(r, Vec3(x, 0, 0), 0.5);
+    EXPECT_LT(w, previous) << x;
+    EXPECT_GT(w, 0) << x;
+    previous = w;
+  }
+  // Gap of one sphere radius: 1 / (1 + 1).
+  EXPECT_DOUBLE_EQ(RegionWeight(r, Vec3(2.5, 0, 0), 0.5), 0.5);
+}
+
+TEST(RegionTest, AViewWeighsByProjectedSizeAndNothingOutsideIt) {
+  // Looking down -z from z = 10, 90 degrees vertically, a square screen.
+  const Region r = *ParseViewRegion("0,0,10,0,0,-1,90,100,100");
+  // tan(45) = 1: projected radius over half height = r / d.
+  EXPECT_NEAR(RegionWeight(r, Vec3(0, 0, 0), 1), 0.1, 1e-12);
+  EXPECT_NEAR(RegionWeight(r, Vec3(0, 0, 5), 1), 0.2, 1e-12);  // nearer: larger
+  EXPECT_EQ(RegionWeight(r, Vec3(0, 0, 20), 1), 0);           // behind the camera
+  EXPECT_EQ(RegionWeight(r, Vec3(100, 0, 0), 1), 0);          // far to the side
+  EXPECT_EQ(RegionWeight(r, Vec3(0, 0, 10.5), 1), 1);         // the eye is inside
+  // Beyond the screen's corner cone (half angle atan(sqrt 2) = 54.7 degrees)
+  // only by less than its angular radius: still seen.
+  const double x = 10 * std::tan(56 * std::numbers::pi / 180);
+  EXPECT_EQ(RegionWeight(r, Vec3(x, 0, 0), 0.01), 0);
+  EXPECT_GT(RegionWeight(r, Vec3(x, 0, 0), 2), 0);
+  EXPECT_EQ(RegionWeight(r, Vec3(0, 0, 0), 1e9), 1);  // capped
+}
+
+}  // namespace
+}  // namespace meshwave
