@@ -1,5 +1,5 @@
 // The three passes of one bitplane of one (subband, component) — SIM's octree
-// set partitioning with 3xC's optional parent contexts (Denis et al. 2010).
+// set partitioning with 3xC's parent (Denis et al. 2010) and neighbour contexts.
 // Written once as a template over the symbol I/O so that the encoder
 // (which knows every coefficient) and the decoder (which learns them from
 // the stream) run the very same steps and keep identical state.
@@ -160,32 +160,32 @@ inline int NeighbourClass(const PassState& p, uint32_t i) {
 
 // Position i became significant at bitplane b: its sign, then the LSC.
 template <bool kParents, bool kNeighbours, class Io>
-inline void BecomeSignificant(uint32_t i, int b, int state, const ContextSources& parent,
+inline void BecomeSignificant(uint32_t i, int b, int state, const ContextSources& sources,
                               ComponentContexts& ctx, PassState& p, Io& io) {
   p.mag[i] |= 1u << b;
   if constexpr (kNeighbours) {
     // A missing neighbour's slot names i itself: i's own counter is never
     // read again (it is significant now).
-    const uint32_t* nb = &parent.neighbour_position[size_t{4} * i];
+    const uint32_t* nb = &sources.neighbour_position[size_t{4} * i];
     for (int n = 0; n < 4; ++n) ++p.significant_neighbours[nb[n]];
   }
-  const int sign_context = parent.SignContext<kParents>(i, state);
+  const int sign_context = sources.SignContext<kParents>(i, state);
   p.negative[i] = static_cast<uint8_t>(io.Sign(i, ctx.sign[sign_context]));
   p.lsc[p.lsc_size++] = i;
 }
 
 // 1. Non-significance pass: coefficients already seen one by one.
 template <bool kParents, bool kNeighbours, class Io>
-Io NonSignificancePass(int b, const ContextSources parent, ComponentContexts& ctx, PassState& p,
+Io NonSignificancePass(int b, const ContextSources sources, ComponentContexts& ctx, PassState& p,
                        Io io) {
   PassState local = p;
   uint32_t kept = 0;
   for (uint32_t n = 0; n < local.lnc_size; ++n) {
     const uint32_t i = local.lnc[n];
-    const int state = parent.State<kParents>(i, b);
+    const int state = sources.State<kParents>(i, b);
     const int near = NeighbourClass<kNeighbours>(local, i);
     if (io.SigCoef(i, b, ctx.sig[1][state][near])) {
-      BecomeSignificant<kParents, kNeighbours>(i, b, state, parent, ctx, local, io);
+      BecomeSignificant<kParents, kNeighbours>(i, b, state, sources, ctx, local, io);
     } else {
       local.lnc[kept++] = i;
     }
@@ -199,7 +199,7 @@ Io NonSignificancePass(int b, const ContextSources parent, ComponentContexts& ct
 // children are visited in this same pass. Cells that stay insignificant are
 // compacted in place (children go to depth d + 1, never to d).
 template <bool kParents, bool kNeighbours, class Io>
-Io SignificancePass(const CoefficientOctree& tree, int b, int top, const ContextSources parent,
+Io SignificancePass(const CoefficientOctree& tree, int b, int top, const ContextSources sources,
                     ComponentContexts& ctx, std::vector<std::vector<OctreeNode>>& lin,
                     PassState& p, Io io) {
   PassState local = p;
@@ -223,10 +223,10 @@ Io SignificancePass(const CoefficientOctree& tree, int b, int top, const Context
           continue;
         }
         for (uint32_t i = child.begin; i < child.end; ++i) {
-          const int state = parent.State<kParents>(i, b);
+          const int state = sources.State<kParents>(i, b);
           const int near = NeighbourClass<kNeighbours>(local, i);
           if (io.SigCoef(i, b, ctx.sig[0][state][near])) {
-            BecomeSignificant<kParents, kNeighbours>(i, b, state, parent, ctx, local, io);
+            BecomeSignificant<kParents, kNeighbours>(i, b, state, sources, ctx, local, io);
           } else {
             local.lnc[local.lnc_size++] = i;
           }
@@ -253,14 +253,14 @@ Io RefinementPass(int b, uint32_t count, BinaryContext& ctx, const PassState& p,
 
 template <bool kParents, bool kNeighbours, class Io>
 void CodeBitplane(const CoefficientOctree& tree, ComponentState& s, int b,
-                  const ContextSources& parent, ComponentContexts& ctx, Io& io) {
+                  const ContextSources& sources, ComponentContexts& ctx, Io& io) {
   PassState p{s.mag.data(), s.negative.data(), s.significant_neighbours.data(),
               s.lnc.data(), s.lsc.data(), s.lnc_size, s.lsc_size};
   // Coefficients significant in this bitplane are appended to the LSC; the
   // refinement pass reads only the ones before them.
   const uint32_t refine_count = p.lsc_size;
-  io = NonSignificancePass<kParents, kNeighbours>(b, parent, ctx, p, io);
-  io = SignificancePass<kParents, kNeighbours>(tree, b, s.top, parent, ctx, s.lin, p, io);
+  io = NonSignificancePass<kParents, kNeighbours>(b, sources, ctx, p, io);
+  io = SignificancePass<kParents, kNeighbours>(tree, b, s.top, sources, ctx, s.lin, p, io);
   io = RefinementPass(b, refine_count, ctx.refine, p, io);
   s.lnc_size = p.lnc_size;
   s.lsc_size = p.lsc_size;
@@ -271,13 +271,13 @@ void CodeBitplane(const CoefficientOctree& tree, ComponentState& s, int b,
 
 template <class Io>
 void CodeBitplane(const CoefficientOctree& tree, ComponentState& s, int b,
-                  const ContextSources& parent, ComponentContexts& ctx, Io& io) {
-  if (parent.neighbour_position.empty()) {
-    bitplane_internal::CodeBitplane<false, false>(tree, s, b, parent, ctx, io);
-  } else if (parent.parent_position.empty()) {
-    bitplane_internal::CodeBitplane<false, true>(tree, s, b, parent, ctx, io);
+                  const ContextSources& sources, ComponentContexts& ctx, Io& io) {
+  if (sources.neighbour_position.empty()) {
+    bitplane_internal::CodeBitplane<false, false>(tree, s, b, sources, ctx, io);
+  } else if (sources.parent_position.empty()) {
+    bitplane_internal::CodeBitplane<false, true>(tree, s, b, sources, ctx, io);
   } else {
-    bitplane_internal::CodeBitplane<true, true>(tree, s, b, parent, ctx, io);
+    bitplane_internal::CodeBitplane<true, true>(tree, s, b, sources, ctx, io);
   }
 }
 

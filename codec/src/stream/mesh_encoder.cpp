@@ -119,15 +119,15 @@ Result<EncodedStream> EncodeMesh(const SemiRegularMesh& input,
       for (int c = 0; c < 3; ++c) {
         const QuantizedComponent& q = quantized[j][c];
         if (b > q.top) continue;
-        ContextSources parent;
+        ContextSources sources;
         if (options.coder == CoderKind::k3xC) {
           if (j > 0) {
-            parent = {layout.parent_position, q0_ordered[j - 1][c], negative_ordered[j - 1][c], {}};
+            sources = {layout.parent_position, q0_ordered[j - 1][c], negative_ordered[j - 1][c], {}};
           }
-          parent.neighbour_position = layout.neighbour_position;
+          sources.neighbour_position = layout.neighbour_position;
         }
         EncoderIo io(enc, q0_ordered[j][c], negative_ordered[j][c]);
-        CodeBitplane(layout.tree, state[c], b, parent, contexts, io);
+        CodeBitplane(layout.tree, state[c], b, sources, contexts, io);
         // Every significant coefficient's reconstruction changed.
         for (uint32_t s : state[c].significant()) {
           const uint32_t mag = state[c].mag[s];

@@ -252,13 +252,14 @@ Status ProgressiveDecoder::AddPacket(uint32_t id, std::string_view payload) {
   for (int c = 0; c < 3; ++c) {
     ComponentState& s = coding.states[c];
     if (b > s.top) continue;
-    ContextSources parent;
+    ContextSources sources;
     if (up_coding != nullptr) {
       const ComponentState& up = up_coding->states[c];
-      parent = {layout.parent_position, up.mag, up.negative, {}};
+      sources = {layout.parent_position, up.mag, up.negative, {}};
     }
-    if (m.parent_contexts()) parent.neighbour_position = layout.neighbour_position;
-    CodeBitplane(layout.tree, s, b, parent, contexts, io);
+    // 3xC: the neighbour contexts too.
+    if (m.parent_contexts()) sources.neighbour_position = layout.neighbour_position;
+    CodeBitplane(layout.tree, s, b, sources, contexts, io);
   }
   if (io.decoder().overrun()) {
     m.broken = true;
