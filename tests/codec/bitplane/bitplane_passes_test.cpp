@@ -10,6 +10,7 @@
 
 #include "bitplane/bitplane_io.h"
 #include "bitplane/subband_layout.h"
+#include "codec/hierarchy_on_grid_testonly.h"
 #include "codec/test_meshes.h"
 
 namespace meshwave {
@@ -28,19 +29,11 @@ struct SmoothSubband {
 };
 
 SmoothSubband MakeSmoothSubband() {
-  const TriMesh ico = testing::Icosahedron();
-  auto built = SemiRegularHierarchy::Build(static_cast<uint32_t>(ico.positions.size()),
-                                           ico.faces, 4);
-  EXPECT_TRUE(built.ok());
-  std::vector<IntVec3> grid;
-  for (const Vec3& p : ico.positions) {
-    grid.push_back({static_cast<int64_t>(std::lround(p.x() * 1000)),
-                    static_cast<int64_t>(std::lround(p.y() * 1000)),
-                    static_cast<int64_t>(std::lround(p.z() * 1000))});
-  }
+  const testing::HierarchyOnGrid ico =
+      testing::BuildHierarchyOnGrid(testing::Icosahedron(), 4, Vec3::Constant(1000));
   const int j = 3;
-  auto layouts = BuildSubbandLayouts(**built, grid, 32);
-  const auto positions = ReferencePositions(**built, grid)[j];
+  auto layouts = BuildSubbandLayouts(*ico.h, ico.grid, 32);
+  const auto positions = ReferencePositions(*ico.h, ico.grid)[j];
   SmoothSubband s{std::move(layouts[j]), {}, {}, -1};
   const double scale = 1000.0 * std::ldexp(1.0, j + 1);
   std::vector<uint32_t> q0(positions.size());

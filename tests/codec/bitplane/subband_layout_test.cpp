@@ -7,6 +7,7 @@
 #include <set>
 #include <vector>
 
+#include "codec/hierarchy_on_grid_testonly.h"
 #include "codec/test_meshes.h"
 
 namespace meshwave {
@@ -14,22 +15,10 @@ namespace {
 
 // A three-level hierarchy over the icosahedron with scattered integer base
 // positions, so the octrees' Morton orders differ from coefficient order.
-struct LayoutFixture {
-  std::shared_ptr<const SemiRegularHierarchy> h;
-  std::vector<IntVec3> grid;
-};
+using LayoutFixture = testing::HierarchyOnGrid;
 
 LayoutFixture MakeLayoutFixture() {
-  const TriMesh ico = testing::Icosahedron();
-  auto built = SemiRegularHierarchy::Build(static_cast<uint32_t>(ico.positions.size()),
-                                           ico.faces, 3);
-  EXPECT_TRUE(built.ok());
-  LayoutFixture f{*built, {}};
-  for (const Vec3& p : ico.positions) {
-    f.grid.push_back({static_cast<int64_t>(p.x() * 1000), static_cast<int64_t>(p.y() * 1000),
-                      static_cast<int64_t>(p.z() * 1000)});
-  }
-  return f;
+  return testing::BuildHierarchyOnGrid(testing::Icosahedron(), 3, Vec3::Constant(1000));
 }
 
 TEST(SubbandLayoutTest, ParentPositionNamesTheParentInTheParentsMortonOrder) {
@@ -89,17 +78,11 @@ TEST(SubbandLayoutTest, InMortonOrderPermutesByTheTree) {
 // subband, the position itself filling the slots of a missing face. On an
 // open patch, so that boundary edges (one face) are covered too.
 TEST(SubbandLayoutTest, NeighboursAreTheOtherEdgesOfTheFacesBesideEachEdge) {
-  const TriMesh patch = testing::OpenPatch();
-  auto built = SemiRegularHierarchy::Build(static_cast<uint32_t>(patch.positions.size()),
-                                           patch.faces, 3);
-  ASSERT_TRUE(built.ok()) << built.status().ToString();
-  const SemiRegularHierarchy& h = **built;
-  std::vector<IntVec3> grid;
-  for (const Vec3& p : patch.positions) {
-    grid.push_back({static_cast<int64_t>(p.x() * 997), static_cast<int64_t>(p.y() * 1009),
-                    static_cast<int64_t>(p.z() * 1013)});
-  }
-  const auto layouts = BuildSubbandLayouts(h, grid, 4);
+  const testing::HierarchyOnGrid patch =
+      testing::BuildHierarchyOnGrid(testing::OpenPatch(), 3, Vec3(997, 1009, 1013));
+  ASSERT_TRUE(patch.h);
+  const SemiRegularHierarchy& h = *patch.h;
+  const auto layouts = BuildSubbandLayouts(h, patch.grid, 4);
   int boundary = 0, interior = 0;
   for (int j = 0; j < h.levels(); ++j) {
     const SubbandLayout& layout = layouts[j];

@@ -9,6 +9,7 @@
 #include <set>
 #include <vector>
 
+#include "codec/hierarchy_on_grid_testonly.h"
 #include "codec/test_meshes.h"
 #include "semiregular/base_face_of.h"
 
@@ -17,22 +18,10 @@ namespace {
 
 // A torus of 24 x 16 quads (768 base faces) subdivided 4 times: enough
 // coefficients per subband for many precincts, none on a boundary.
-struct TorusFixture {
-  std::shared_ptr<const SemiRegularHierarchy> h;
-  std::vector<IntVec3> grid;
-};
+using TorusFixture = testing::HierarchyOnGrid;
 
 TorusFixture MakeTorus() {
-  const TriMesh torus = testing::Torus(24, 16);
-  auto built = SemiRegularHierarchy::Build(static_cast<uint32_t>(torus.positions.size()),
-                                           torus.faces, 4);
-  EXPECT_TRUE(built.ok()) << built.status().ToString();
-  TorusFixture f{*built, {}};
-  for (const Vec3& p : torus.positions) {
-    f.grid.push_back({std::llround(p.x() * 4096), std::llround(p.y() * 4096),
-                      std::llround(p.z() * 4096)});
-  }
-  return f;
+  return testing::BuildHierarchyOnGrid(testing::Torus(24, 16), 4, Vec3::Constant(4096));
 }
 
 std::vector<uint64_t> CoefficientsPerPrecinct(const SemiRegularHierarchy& h,
