@@ -9,5 +9,5 @@ asan_suites=(core_test mesh_test entropy_test stream_test wavelet_test metrics_t
              reliability_test child_process_test)
 fuzz_targets=(ply_reader_fuzz obj_reader_fuzz off_reader_fuzz container_fuzz packet_fuzz
               decoder_order_fuzz stream_header_fuzz http_request_fuzz ws_message_fuzz
-              stream_splitter_fuzz ws_server_message_fuzz local_state_fuzz)
+              stream_splitter_fuzz ws_server_message_fuzz local_state_fuzz region_fuzz)
 tsan_suites=(core_test stream_test server_http_test server_ws_test reliability_test)

@@ -28,7 +28,7 @@ struct SphereRegion {
 // `fov_degrees`.
 struct ViewRegion {
   Vec3 eye = Vec3::Zero();
-  Vec3 direction = Vec3::UnitZ();  // unit length once parsed
+  Vec3 direction = Vec3::UnitZ();  // not zero; any length
   double fov_degrees = 60;         // in (0, 180)
   uint32_t width = 1;              // pixels, [1, kMaxScreenPixels]
   uint32_t height = 1;
@@ -48,8 +48,9 @@ struct Region {
 
 // "x,y,z,r": a sphere. Finite numbers, r > 0; no spaces.
 Result<Region> ParseSphereRegion(std::string_view text);
-// "ex,ey,ez,dx,dy,dz,fov,width,height": a view; the direction need not be
-// unit length but not zero; fov in degrees, in (0, 180); width and height
+// "ex,ey,ez,dx,dy,dz,fov,width,height": a view; the direction is kept as
+// given (not normalised, so that its text form reads back exactly), any
+// length but zero; fov in degrees, in (0, 180); width and height
 // whole numbers of pixels in [1, kMaxScreenPixels].
 Result<Region> ParseViewRegion(std::string_view text);
 // A screen-space error in pixels: a finite number > 0, at most

@@ -87,7 +87,6 @@ Result<Region> ParseViewRegion(std::string_view text) {
   if (!(length > 0) || !std::isfinite(length)) {
     return InvalidArgument("view direction must not be zero");
   }
-  v.direction /= length;
   MW_ASSIGN_OR_RETURN(v.fov_degrees, Number(f[6], "view field of view"));
   if (!(v.fov_degrees > 0 && v.fov_degrees < 180)) {
     return InvalidArgument("view field of view must be in (0, 180) degrees");
@@ -144,7 +143,8 @@ double RegionWeight(const Region& region, const Vec3& centre, double radius) {
   // The cone through the screen's corners, widened by the ball's angular
   // radius.
   const double cone = std::atan(tan_half * std::sqrt(1 + aspect * aspect));
-  const double angle = std::acos(std::clamp(to.dot(v.direction) / distance, -1.0, 1.0));
+  const double along = to.dot(v.direction) / (v.direction.norm() * distance);
+  const double angle = std::acos(std::clamp(along, -1.0, 1.0));
   const double angular_radius = std::asin(std::min(1.0, radius / distance));
   if (angle - angular_radius > cone) return 0;
   return std::min(1.0, radius / (distance * tan_half));
