@@ -21,6 +21,7 @@ namespace meshwave {
 struct SphereRegion {
   Vec3 centre = Vec3::Zero();
   double radius = 0;  // > 0
+  bool operator==(const SphereRegion&) const = default;
 };
 
 // What a perspective camera at `eye` looking along `direction` sees on a
@@ -32,6 +33,7 @@ struct ViewRegion {
   double fov_degrees = 60;         // in (0, 180)
   uint32_t width = 1;              // pixels, [1, kMaxScreenPixels]
   uint32_t height = 1;
+  bool operator==(const ViewRegion&) const = default;
 };
 
 inline constexpr uint32_t kMaxScreenPixels = 16384;
@@ -44,6 +46,7 @@ struct Region {
   // Pixels of projected error below which a part of the view is fine
   // (views only).
   std::optional<double> screen_error_px;
+  bool operator==(const Region&) const = default;
 };
 
 // "x,y,z,r": a sphere. Finite numbers, r > 0; no spaces.
