@@ -8,6 +8,8 @@
 #include <numbers>
 #include <system_error>
 
+#include "mesh/text_scanner.h"  // Quoted: untrusted text in a message
+
 namespace meshwave {
 namespace {
 
@@ -36,12 +38,10 @@ Result<double> Number(std::string_view token, const char* what) {
   // from_chars takes no leading '+' and no spaces; both are refused here.
   auto [ptr, ec] = std::from_chars(token.data(), end, v);
   if (ec != std::errc() || ptr != end || !std::isfinite(v)) {
-    return InvalidArgument(std::string(what) + ": \"" + std::string(token.substr(0, 32)) +
-                           "\" is not a finite number");
+    return InvalidArgument(std::string(what) + ": " + Quoted(token) + " is not a finite number");
   }
   if (std::abs(v) > kMaxRegionCoordinate) {
-    return InvalidArgument(std::string(what) + ": " + std::string(token.substr(0, 32)) +
-                           " is out of range");
+    return InvalidArgument(std::string(what) + ": " + Quoted(token) + " is out of range");
   }
   return v;
 }

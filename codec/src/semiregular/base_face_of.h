@@ -5,6 +5,7 @@
 #define MESHWAVE_SEMIREGULAR_BASE_FACE_OF_H_
 
 #include <cstdint>
+#include <vector>
 
 #include "meshwave/semiregular.h"
 
@@ -19,6 +20,14 @@ inline uint32_t BaseFaceOf(const SemiRegularHierarchy& h, int j, uint32_t k) {
   if (ef[1] == SemiRegularHierarchy::kNone) return a;
   const uint32_t b = ef[1] >> (2 * j);
   return a < b ? a : b;
+}
+
+// How many coefficients of d^j each base face holds, added to `held`
+// (one entry per base face).
+template <class Count>
+void AddCoefficientsPerBaseFace(const SemiRegularHierarchy& h, int j, std::vector<Count>& held) {
+  const uint32_t n = static_cast<uint32_t>(h.subband_size(j));
+  for (uint32_t k = 0; k < n; ++k) ++held[BaseFaceOf(h, j, k)];
 }
 
 }  // namespace meshwave

@@ -8,14 +8,6 @@
 namespace meshwave {
 namespace {
 
-// Coefficients of subband j per base face.
-std::vector<uint32_t> CoefficientsPerFace(const SemiRegularHierarchy& h, int j) {
-  std::vector<uint32_t> held(h.faces(0).size(), 0);
-  const uint32_t n = static_cast<uint32_t>(h.subband_size(j));
-  for (uint32_t k = 0; k < n; ++k) ++held[BaseFaceOf(h, j, k)];
-  return held;
-}
-
 // Cuts face_order[begin, end) into runs of >= `least` coefficients,
 // appending each run's end to `bounds`.
 void CutRuns(const std::vector<uint32_t>& face_order, const std::vector<uint32_t>& held,
@@ -66,7 +58,8 @@ PrecinctPartition PartitionIntoPrecincts(const SemiRegularHierarchy& h,
   const uint32_t face_count = static_cast<uint32_t>(faces.size());
   std::vector<uint32_t> above = {0, face_count};
   for (int j = 0; j < h.levels(); ++j) {
-    const std::vector<uint32_t> held = CoefficientsPerFace(h, j);
+    std::vector<uint32_t> held(faces.size(), 0);
+    AddCoefficientsPerBaseFace(h, j, held);
     std::vector<uint32_t> bounds = {0};
     for (size_t p = 0; p + 1 < above.size(); ++p) {
       CutRuns(out.face_order, held, above[p], above[p + 1], least, bounds);

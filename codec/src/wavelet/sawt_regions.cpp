@@ -100,9 +100,7 @@ SawtRegions BuildSawtRegions(const SemiRegularHierarchy& h,
                              std::span<const IntVec3> base_grid, uint32_t alpha) {
   // Odd vertices (all levels) per base face: what a cell "holds".
   std::vector<uint64_t> held(h.faces(0).size(), 0);
-  for (int j = 0; j < h.levels(); ++j) {
-    for (uint32_t k = 0; k < h.subband_size(j); ++k) ++held[BaseFaceOf(h, j, k)];
-  }
+  for (int j = 0; j < h.levels(); ++j) AddCoefficientsPerBaseFace(h, j, held);
   std::vector<uint8_t> flags;
   const std::function<bool(int, std::span<const uint32_t>)> decide =
       [&](int, std::span<const uint32_t> faces) {
