@@ -12,13 +12,16 @@ protoc. The seeds made from the octahedron for those two targets are kept
 The fixtures themselves, after a .mwv format change (a build of the new
 format in build/):
   build/tools/meshwave/meshwave encode --precision 12 --base-refinement 3 \
+    --precinct-size 8 --split-bytes 2 \
     tests/fuzz/data/tetrahedron_sr2.obj tests/fuzz/data/tetrahedron_sr2.mwv
 (a tetrahedron subdivided twice by midpoints, each vertex i moved radially
 by 15 % * sin(3.1 i + 0.7) so that the details are not zero), and
   build/tools/meshwave/meshwave subdivide tests/fuzz/data/octahedron.off \
     /tmp/oct3.ply --levels 3 --scheme midpoint
-  build/tools/meshwave/meshwave encode --base-refinement 2 /tmp/oct3.ply \
-    tests/fuzz/data/octahedron_sr3.mwv
+  build/tools/meshwave/meshwave encode --base-refinement 2 --precinct-size 16 \
+    --split-bytes 2 /tmp/oct3.ply tests/fuzz/data/octahedron_sr3.mwv
+(tiny precincts, so that both have split packets: 2 and 3 precincts in
+the tetrahedron's subband 1, 3 and 8 in the octahedron's subbands 1 and 2)
 
 Usage: python3 tests/fuzz/make_seeds.py [SHARED_MESHES_DIR]
 """

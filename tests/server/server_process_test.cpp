@@ -16,6 +16,7 @@
 
 #include "catalog.h"
 #include "catalog_api.pb.h"
+#include "e2e/cli_runner.h"
 #include "http_client_testonly.h"
 #include "meshwave/container.h"
 #include "server_process_testonly.h"

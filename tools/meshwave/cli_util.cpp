@@ -137,11 +137,24 @@ void AddQuantizerOption(CLI::App* cmd, QuantizerArgs& args) {
                   "header")
       ->check(CLI::Range(-1, 20))
       ->capture_default_str();
+  cmd->add_option("--precinct-size", args.precinct_size,
+                  "Precincts, so that a region can be streamed first: base faces grouped "
+                  "into runs of at least this many coefficients per subband, each coded on "
+                  "its own; 0: none (a region request then gets the uniform order)")
+      ->check(CLI::Range(0u, 1u << 30))
+      ->capture_default_str();
+  cmd->add_option("--split-bytes", args.split_bytes,
+                  "A packet is split into one codeword per precinct where its precincts "
+                  "would average at least this many bytes")
+      ->check(CLI::Range(1u, 1u << 20))
+      ->capture_default_str();
 }
 
 Status ApplyQuantizerOption(const QuantizerArgs& args, EncodeOptions& options) {
   options.tangent_step_scale = args.tangent_step;
   options.base_refinement_planes = args.base_refinement;
+  options.precinct_coefficients = args.precinct_size;
+  options.split_bytes_per_precinct = args.split_bytes;
   const std::string& quantizer = args.quantizer;
   // Codes of quant/deadzone_quantizer.h.
   if (quantizer == "saq") options.deadzone = 0;

@@ -42,12 +42,15 @@ Status ApplyTransformOptions(const std::string& predictor,
 // --quantizer saq|ueq|z1.5|z2.5|auto: the deadzone of every (subband,
 // component), or `auto`, chosen per (subband, component) from the fitted
 // Laplacian mixture (Satti et al. 2011).
-// --quantizer (the deadzone), --tangent-step (EncodeOptions::tangent_step_scale)
-// and --base-refinement (EncodeOptions::base_refinement_planes).
+// --quantizer (the deadzone), --tangent-step (EncodeOptions::tangent_step_scale),
+// --base-refinement (EncodeOptions::base_refinement_planes), and the
+// precincts: --precinct-size and --split-bytes.
 struct QuantizerArgs {
   std::string quantizer = "saq";
   double tangent_step = EncodeOptions{}.tangent_step_scale;
   int base_refinement = EncodeOptions{}.base_refinement_planes;
+  uint32_t precinct_size = EncodeOptions{}.precinct_coefficients;
+  uint32_t split_bytes = EncodeOptions{}.split_bytes_per_precinct;
 };
 void AddQuantizerOption(CLI::App* cmd, QuantizerArgs& args);
 Status ApplyQuantizerOption(const QuantizerArgs& args, EncodeOptions& options);

@@ -27,6 +27,14 @@ struct EncodeOptions {
   // Cells of at most this many coefficients are coded one by one. 32 beat
   // 2 and 8 at every rate on the four meshes of docs/RD_RESULTS.md.
   uint32_t octree_leaf_size = 32;
+  // Precincts (docs/FORMAT.md 2.2): base faces grouped into runs of at
+  // least this many coefficients per subband, each coded on its own so that
+  // a region can be sent first; 0: one precinct per subband.
+  uint32_t precinct_coefficients = 2048;
+  // A packet is split into one codeword per precinct where its precincts
+  // would average at least this many bytes: below, the parts' lengths and
+  // flushes cost more than sending the region's share alone saves.
+  uint32_t split_bytes_per_precinct = 48;
   // With local frames, the tangential components' step is this many times
   // the normal one's, and their error counts 1 / scale^2 in the packet
   // order: a vertex that slides along the surface barely moves the surface,

@@ -56,6 +56,20 @@ class ProgressiveDecoder {
   // decoder is then unusable, as its state is half-updated).
   Status AddPacket(uint32_t id, std::string_view payload);
 
+  // Split packets (docs/FORMAT.md 2.2) also travel precinct by precinct:
+  // how many parts packet `id` has (0: not split), whether part `part` is
+  // held (a whole packet holds all of its parts), and whether the parts it
+  // depends on are: the same precinct's part (or the whole packet) one
+  // bitplane up, and with 3xC the parent precinct's at the same bitplane.
+  uint32_t PartCount(uint32_t id) const;
+  bool HasPart(uint32_t id, uint32_t part) const;
+  bool PartDependenciesMet(uint32_t id, uint32_t part) const;
+  // Decodes one part of a split packet. Errors as AddPacket's, except that
+  // a part has no check of its own (the index checks whole packets): the
+  // transport's integrity is its check. AddPacket on a packet some of whose
+  // parts are held decodes only the others.
+  Status AddPacketPart(uint32_t id, uint32_t part, std::string_view payload);
+
   // Forgets every packet: the decoder is as Create left it (the base mesh
   // only), usable again after a corrupt packet broke it, without rebuilding
   // the hierarchy and transform (most of Create's time).

@@ -61,6 +61,8 @@ struct StreamHeader {
     std::string check;
     std::vector<float> chain_distortion;
     std::string distortion_step;
+    uint32_t precinct_coefficients = 0;
+    std::vector<uint32_t> split_planes;
   };
 
   uint32_t format_version = 0;

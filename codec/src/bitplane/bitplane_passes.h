@@ -44,8 +44,10 @@ struct ComponentState {
     lin.clear();
     lnc_size = 0;
     lsc_size = 0;
-    mag.assign(tree.size(), 0);
-    negative.assign(tree.size(), 0);
+    // One more than the positions: the zero an out-of-precinct parent
+    // position reads (SubbandLayout::parent_position).
+    mag.assign(tree.size() + 1, 0);
+    negative.assign(tree.size() + 1, 0);
     significant_neighbours.assign(tree.size(), 0);
     if (top < 0 || tree.size() == 0) {
       lnc.clear();

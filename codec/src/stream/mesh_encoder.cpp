@@ -1,5 +1,6 @@
 // EncodeMesh: transform, quantise, and code every (subband, bitplane)
 // packet. See docs/FORMAT.md for what each step writes.
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -15,6 +16,8 @@
 #include "stream/base_refinement.h"
 #include "stream/distortion_index_writer.h"
 #include "stream/packet_index.h"
+#include "stream/packet_parts.h"
+#include "stream/precinct_partition.h"
 #include "stream/stream_format.h"
 #include "stream/stream_format_writer.h"
 #include "stream/stream_preparation.h"
@@ -57,8 +60,12 @@ Result<EncodedStream> EncodeMesh(const SemiRegularMesh& input,
   model.chain_start.assign(static_cast<size_t>(levels) + 1, 0.0);
   const std::vector<double>& base_error = prepared.base_error;
   model.chain_start[static_cast<size_t>(levels)] = base_error.back() - base_error.front();
-  const auto layouts =
-      BuildSubbandLayouts(h, base.grid, options.octree_leaf_size);
+  const PrecinctPartition partition =
+      PartitionIntoPrecincts(h, base.grid, options.precinct_coefficients);
+  const auto layouts = BuildSubbandLayouts(h, base.grid, options.octree_leaf_size,
+                                           partition.FacePrecinctsPerSubband(),
+                                           partition.ParentsPerSubband());
+  header.mutable_packets()->set_precinct_coefficients(options.precinct_coefficients);
 
   // Quantise every (subband, component): a task per subband (its three
   // components in order, so the energy of its chain sums as it always
@@ -83,64 +90,104 @@ Result<EncodedStream> EncodeMesh(const SemiRegularMesh& input,
   }
 
   // The coder names coefficients by Morton position: q0 and signs in each
-  // subband's octree order.
-  std::vector<std::array<std::vector<uint32_t>, 3>> q0_ordered(levels);
-  std::vector<std::array<std::vector<uint8_t>, 3>> negative_ordered(levels);
+  // precinct's octree order.
+  using PerPrecinct = std::vector<std::array<std::vector<uint32_t>, 3>>;
+  using SignsPerPrecinct = std::vector<std::array<std::vector<uint8_t>, 3>>;
+  std::vector<PerPrecinct> q0_ordered(levels);
+  std::vector<SignsPerPrecinct> negative_ordered(levels);
   ParallelTasks(static_cast<size_t>(levels), options.threads, [&](size_t i) {
     const int j = finest_first(i);
-    for (int c = 0; c < 3; ++c) {
-      q0_ordered[j][c] = InMortonOrder<uint32_t>(layouts[j].tree, quantized[j][c].q0);
-      negative_ordered[j][c] = InMortonOrder<uint8_t>(layouts[j].tree, quantized[j][c].negative);
+    const size_t count = layouts[j].size();
+    q0_ordered[j].resize(count);
+    negative_ordered[j].resize(count);
+    for (size_t p = 0; p < count; ++p) {
+      for (int c = 0; c < 3; ++c) {
+        q0_ordered[j][p][c] = InMortonOrder<uint32_t>(layouts[j][p], quantized[j][c].q0);
+        negative_ordered[j][p][c] = InMortonOrder<uint8_t>(layouts[j][p], quantized[j][c].negative);
+      }
     }
   });
 
-  // Code the packets, subband by subband, bitplanes from the top down.
-  // Subbands share nothing but read-only inputs (3xC reads the parent
-  // subband's q0 and signs), so each is coded by its own task; the packets
-  // enter the index in (subband, bitplane) order afterwards.
+  // Code the packets of subband j, bitplanes from the top down; packets
+  // (j, b) with b < split hold one codeword per precinct (FORMAT.md 2.2),
+  // the others one codeword for all, precinct after precinct.
   struct CodedPacket {
     std::string payload;
     double reduction = 0;
   };
-  std::vector<std::vector<CodedPacket>> coded(levels);
-  ParallelTasks(static_cast<size_t>(levels), options.threads, [&](size_t i) {
-    const int j = finest_first(i);
-    const SubbandLayout& layout = layouts[j];
-    std::array<ComponentState, 3> state;
+  auto code_subband = [&](int j, uint32_t split) {
+    const std::vector<SubbandLayout>& precincts = layouts[j];
+    std::vector<std::array<ComponentState, 3>> state(precincts.size());
     int top = -1;
-    for (int c = 0; c < 3; ++c) {
-      state[c].Init(layout.tree, quantized[j][c].top);
-      top = std::max(top, quantized[j][c].top);
+    for (int c = 0; c < 3; ++c) top = std::max(top, quantized[j][c].top);
+    for (size_t p = 0; p < precincts.size(); ++p) {
+      for (int c = 0; c < 3; ++c) state[p][c].Init(precincts[p].tree, quantized[j][c].top);
     }
+    std::vector<CodedPacket> packets;
     for (int b = top; b >= 0; --b) {
+      const bool split_here = static_cast<uint32_t>(b) < split;
       ArithmeticEncoder enc;
-      ComponentContexts contexts;  // shared by the packet's three components
+      ComponentContexts contexts;  // shared by the codeword's components
+      std::vector<std::string> parts;
       double reduction = 0;
-      for (int c = 0; c < 3; ++c) {
-        const QuantizedComponent& q = quantized[j][c];
-        if (b > q.top) continue;
-        ContextSources sources;
-        if (options.coder == CoderKind::k3xC) {
-          if (j > 0) {
-            sources = {layout.parent_position, q0_ordered[j - 1][c], negative_ordered[j - 1][c], {}};
+      for (size_t p = 0; p < precincts.size(); ++p) {
+        const SubbandLayout& layout = precincts[p];
+        for (int c = 0; c < 3; ++c) {
+          const QuantizedComponent& q = quantized[j][c];
+          if (b > q.top) continue;
+          ContextSources sources;
+          if (options.coder == CoderKind::k3xC) {
+            if (j > 0) {
+              const uint32_t up = layout.parent_precinct;
+              sources = {layout.parent_position, q0_ordered[j - 1][up][c],
+                         negative_ordered[j - 1][up][c], {}};
+            }
+            sources.neighbour_position = layout.neighbour_position;
           }
-          sources.neighbour_position = layout.neighbour_position;
+          EncoderIo io(enc, q0_ordered[j][p][c], negative_ordered[j][p][c]);
+          CodeBitplane(layout.tree, state[p][c], b, sources, contexts, io);
+          // Every significant coefficient's reconstruction changed.
+          for (uint32_t s : state[p][c].significant()) {
+            const uint32_t mag = state[p][c].mag[s];
+            const uint32_t before = mag & ~(1u << b);
+            const uint32_t k = layout.coefficient[s];
+            reduction += q.weight * gains.subband[j] *
+                         (q.SquaredError(k, before, b + 1) - q.SquaredError(k, mag, b));
+          }
         }
-        EncoderIo io(enc, q0_ordered[j][c], negative_ordered[j][c]);
-        CodeBitplane(layout.tree, state[c], b, sources, contexts, io);
-        // Every significant coefficient's reconstruction changed.
-        for (uint32_t s : state[c].significant()) {
-          const uint32_t mag = state[c].mag[s];
-          const uint32_t before = mag & ~(1u << b);
-          const uint32_t k = layout.tree.At(s);
-          reduction += q.weight * gains.subband[j] *
-                       (q.SquaredError(k, before, b + 1) - q.SquaredError(k, mag, b));
+        if (split_here) {
+          parts.push_back(enc.Finish());
+          contexts = ComponentContexts{};
         }
       }
-      coded[j].push_back({enc.Finish(), reduction});
+      packets.push_back({split_here ? JoinPacketParts(parts) : enc.Finish(), reduction});
     }
+    return packets;
+  };
+  // Subbands share nothing but read-only inputs (3xC reads the parent
+  // subband's q0 and signs), so each is coded by its own task; the packets
+  // enter the index in (subband, bitplane) order afterwards. A subband of
+  // several precincts is coded unsplit first: its packets' sizes say which
+  // bitplanes are worth splitting (the low ones, where the bytes are).
+  std::vector<std::vector<CodedPacket>> coded(levels);
+  std::vector<uint32_t> split_planes(static_cast<size_t>(levels), 0);
+  ParallelTasks(static_cast<size_t>(levels), options.threads, [&](size_t i) {
+    const int j = finest_first(i);
+    coded[j] = code_subband(j, 0);
+    const uint64_t precincts = layouts[j].size();
+    if (precincts < 2) return;
+    uint32_t split = 0;
+    for (auto packet = coded[j].rbegin(); packet != coded[j].rend(); ++packet, ++split) {
+      if (packet->payload.size() < uint64_t{options.split_bytes_per_precinct} * precincts) break;
+    }
+    if (split > 0) coded[j] = code_subband(j, split);
+    split_planes[static_cast<size_t>(j)] = split;
   });
   proto::PacketIndex& index = *header.mutable_packets();
+  // Absent when nothing is split: a stream without precincts pays nothing.
+  if (std::any_of(split_planes.begin(), split_planes.end(), [](uint32_t s) { return s > 0; })) {
+    for (uint32_t split : split_planes) index.add_split_planes(split);
+  }
   for (int j = 0; j < levels; ++j) {
     for (CodedPacket& packet : coded[j]) {
       AddCodedPacket(packet.payload, static_cast<uint32_t>(j), packet.reduction, index, model);

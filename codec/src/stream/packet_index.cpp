@@ -36,6 +36,7 @@ PacketLayout::PacketLayout(const StreamHeader& h) {
     count_ += top + 1;
   }
   detail_count_ = count_;
+  split_planes_ = h.packets.split_planes;
   // Clamped for headers not validated yet (ValidateStreamHeader refuses more).
   base_planes_ = static_cast<int>(
       std::min<uint32_t>(h.base.refinement_planes, kMaxBaseRefinementPlanes));

@@ -51,6 +51,13 @@ class PacketLayout {
   // Id of the base refinement packet of `plane`, -1 when it does not exist.
   int BaseId(int plane) const;
   int Top(int j) const { return top_[static_cast<size_t>(j)]; }
+  // Whether detail packet `id` holds one codeword per precinct behind a
+  // table of their lengths (PacketIndex.split_planes).
+  bool IsSplit(uint32_t id) const {
+    if (id >= static_cast<uint32_t>(detail_count_)) return false;
+    const size_t j = static_cast<size_t>(subband_[id]);
+    return j < split_planes_.size() && static_cast<uint32_t>(Bitplane(id)) < split_planes_[j];
+  }
   int levels() const { return static_cast<int>(top_.size()); }
   int count() const { return count_; }
   int detail_count() const { return detail_count_; }
@@ -79,6 +86,7 @@ class PacketLayout {
   std::vector<int> first_;  // id of (j, top_j)
   std::vector<int> top_;
   std::vector<int> subband_;
+  std::vector<uint32_t> split_planes_;  // per subband, as in the header
   int detail_count_ = 0;
   int base_planes_ = 0;
   int count_ = 0;

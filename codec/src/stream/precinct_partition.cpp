@@ -38,11 +38,40 @@ std::vector<uint32_t> PrecinctPartition::FacePrecincts(int j) const {
   return out;
 }
 
+uint32_t PrecinctPartition::Parent(int j, uint32_t p) const {
+  const auto& above = bounds[static_cast<size_t>(j) - 1];
+  const uint32_t first_face = bounds[static_cast<size_t>(j)][p];
+  // The last run of j - 1 starting at or before the precinct's first face.
+  return static_cast<uint32_t>(std::upper_bound(above.begin(), above.end(), first_face) -
+                               above.begin() - 1);
+}
+
+std::vector<std::vector<uint32_t>> PrecinctPartition::FacePrecinctsPerSubband() const {
+  std::vector<std::vector<uint32_t>> out;
+  for (int j = 0; j < levels(); ++j) out.push_back(FacePrecincts(j));
+  return out;
+}
+
+std::vector<std::vector<uint32_t>> PrecinctPartition::ParentsPerSubband() const {
+  std::vector<std::vector<uint32_t>> out(bounds.size());
+  for (int j = 1; j < levels(); ++j) {
+    for (uint32_t p = 0; p < count(j); ++p) out[static_cast<size_t>(j)].push_back(Parent(j, p));
+  }
+  return out;
+}
+
 PrecinctPartition PartitionIntoPrecincts(const SemiRegularHierarchy& h,
                                          std::span<const IntVec3> base_grid,
                                          uint32_t min_coefficients) {
   PrecinctPartition out;
   const auto& faces = h.faces(0);
+  if (min_coefficients == 0) {
+    out.face_order.reserve(faces.size());
+    for (uint32_t f = 0; f < faces.size(); ++f) out.face_order.push_back(f);
+    const std::vector<uint32_t> whole = {0, static_cast<uint32_t>(faces.size())};
+    for (int j = 0; j < h.levels(); ++j) out.bounds.push_back(whole);
+    return out;
+  }
   // 3 x each centroid: exact integers, the order the decoder derives too.
   std::vector<IntVec3> centroids(faces.size());
   for (size_t f = 0; f < faces.size(); ++f) {
@@ -54,7 +83,7 @@ PrecinctPartition PartitionIntoPrecincts(const SemiRegularHierarchy& h,
   const CoefficientOctree order(centroids, 1);
   out.face_order.resize(faces.size());
   for (uint32_t i = 0; i < out.face_order.size(); ++i) out.face_order[i] = order.At(i);
-  const uint64_t least = std::max<uint32_t>(min_coefficients, 1);
+  const uint64_t least = min_coefficients;
   const uint32_t face_count = static_cast<uint32_t>(faces.size());
   std::vector<uint32_t> above = {0, face_count};
   for (int j = 0; j < h.levels(); ++j) {

@@ -36,11 +36,19 @@ struct PrecinctPartition {
   }
   // The precinct of every base face in subband j.
   std::vector<uint32_t> FacePrecincts(int j) const;
+  // The precinct of subband j - 1 that precinct p of subband j lies in
+  // (j >= 1; the runs nest).
+  uint32_t Parent(int j, uint32_t p) const;
+  // FacePrecincts and Parent of every subband, as SubbandLayoutBuilder
+  // takes them (parents[0] is empty).
+  std::vector<std::vector<uint32_t>> FacePrecinctsPerSubband() const;
+  std::vector<std::vector<uint32_t>> ParentsPerSubband() const;
 };
 
 // Runs of at least `min_coefficients` coefficients of each subband (a
 // subband, or a coarser precinct, holding fewer stays whole); a last run
-// under half of that joins the one before it.
+// under half of that joins the one before it. 0: one precinct per subband
+// (as streams before version 7, and streams encoded without precincts).
 PrecinctPartition PartitionIntoPrecincts(const SemiRegularHierarchy& h,
                                          std::span<const IntVec3> base_grid,
                                          uint32_t min_coefficients);

@@ -46,6 +46,27 @@ Status ValidateStreamHeader(const StreamHeader& h) {
                       std::to_string(kMaxBaseRefinementPlanes) + ")");
   }
   const auto& index = h.packets;
+  if (index.precinct_coefficients > (1u << 30)) {
+    return ParseError("header: precinct size out of range");
+  }
+  if (!index.split_planes.empty()) {
+    if (index.split_planes.size() != levels) {
+      return ParseError("header: " + std::to_string(index.split_planes.size()) +
+                        " split plane counts for " + std::to_string(levels) + " subbands");
+    }
+    for (uint32_t j = 0; j < levels; ++j) {
+      int top = -1;
+      for (int c = 0; c < 3; ++c) top = std::max(top, h.quantizer(static_cast<int>(j), c).top_bitplane);
+      const uint32_t split = index.split_planes[j];
+      if (split > static_cast<uint32_t>(top + 1) || (split > 0 && index.precinct_coefficients == 0)) {
+        return ParseError("header: subband " + std::to_string(j) + " splits " +
+                          std::to_string(split) + " bitplanes" +
+                          (split > 0 && index.precinct_coefficients == 0
+                               ? " without precincts"
+                               : " of " + std::to_string(top + 1)));
+      }
+    }
+  }
   const PacketLayout map(h);
   // One chain per subband and the base refinement's.
   MW_RETURN_IF_ERROR(ValidateCompactIndex(h, map.count(), static_cast<int>(levels) + 1));

@@ -19,6 +19,8 @@
 #include "stream/base_mesh_codec.h"
 #include "stream/decoder_setup.h"
 #include "stream/packet_index.h"
+#include "stream/packet_parts.h"
+#include "stream/precinct_partition.h"
 #include "stream/sawt_field.h"
 #include "stream/stream_format.h"
 
@@ -30,16 +32,19 @@ bool SetUpInBackground(int requested) { return ResolveThreads(requested) >= 2; }
 }  // namespace
 
 struct ProgressiveDecoder::Impl {
-  // What the packets of subband j decode into: its octree and the coding
-  // state of its three components.
+  // What the packets of subband j decode into: per precinct, its octree
+  // and the coding state of its three components.
   struct SubbandCoding {
-    SubbandLayout layout;
-    std::array<ComponentState, 3> states;
+    std::vector<SubbandLayout> precincts;
+    std::vector<std::array<ComponentState, 3>> states;
   };
 
   static void InitStates(const StreamHeader& header, int j, SubbandCoding& s) {
-    for (int c = 0; c < 3; ++c) {  // Init reuses the lists' memory
-      s.states[c].Init(s.layout.tree, header.quantizer(j, c).top_bitplane);
+    s.states.resize(s.precincts.size());
+    for (size_t p = 0; p < s.precincts.size(); ++p) {
+      for (int c = 0; c < 3; ++c) {  // Init reuses the lists' memory
+        s.states[p][c].Init(s.precincts[p].tree, header.quantizer(j, c).top_bitplane);
+      }
     }
   }
 
@@ -51,6 +56,13 @@ struct ProgressiveDecoder::Impl {
   std::unique_ptr<WaveletTransform> transform;
   DecodedBase base;
   std::vector<char> have;
+  // Precincts: per subband their count and each one's parent precinct.
+  std::vector<std::vector<uint32_t>> precinct_parent;
+  // Parts held of split packets partly held (empty for the others), and
+  // their payload bytes.
+  std::vector<std::vector<char>> have_part;
+  std::vector<uint64_t> part_bytes;
+  std::vector<std::vector<uint32_t>> chain_packets;  // per chain, in order
   // Subbands a packet has decoded into since the last Reset: the others
   // hold their initial state, which nobody needs to wait for.
   std::vector<char> touched;
@@ -68,18 +80,97 @@ struct ProgressiveDecoder::Impl {
 
   bool parent_contexts() const { return header.coder == StreamCoder::k3xC; }
 
-  // Packet `id` decoded: it is held, and its chain's estimate moves.
-  static void Record(Impl& m, uint32_t id, size_t bytes) {
-    m.have[id] = 1;
-    ++m.decoded;
+  uint32_t PartCount(uint32_t id) const {
+    if (!packets->IsSplit(id)) return 0;
+    return static_cast<uint32_t>(precinct_parent[static_cast<size_t>(packets->Subband(id))].size());
+  }
+  bool HasPart(uint32_t id, uint32_t part) const {
+    return have[id] || (!have_part[id].empty() && have_part[id][part]);
+  }
+  // Whether precinct p's share of packet `id` is held: its part, or the
+  // whole packet where it is not split.
+  bool HasShare(uint32_t id, uint32_t p) const {
+    return packets->IsSplit(id) ? HasPart(id, p) : have[id] != 0;
+  }
+  // The first dependency of part `part` of packet `id` not held, -1 if none.
+  int64_t MissingForPart(uint32_t id, uint32_t part) const {
+    const int j = packets->Subband(id);
+    const int b = packets->Bitplane(id);
+    if (int up = packets->Id(j, b + 1); up >= 0 && !HasShare(static_cast<uint32_t>(up), part)) {
+      return up;
+    }
+    if (parent_contexts() && j > 0) {
+      const uint32_t parent = precinct_parent[static_cast<size_t>(j)][part];
+      if (int above = packets->Id(j - 1, b);
+          above >= 0 && !HasShare(static_cast<uint32_t>(above), parent)) {
+        return above;
+      }
+    }
+    return -1;
+  }
+
+  // Payload bytes of packet `id` decoded (whole, or some of its parts):
+  // its chain's estimate moves. A chain's whole packets arrive in bitplane
+  // order (its dependencies); a part counts for its share of the packet's
+  // bytes. Summing the chains in a fixed order makes the estimate
+  // independent of the order of arrival.
+  static void Record(Impl& m, uint32_t id, size_t bytes, bool whole) {
+    if (whole) {
+      m.have[id] = 1;
+      ++m.decoded;
+      m.have_part[id].clear();
+      m.part_bytes[id] = 0;
+    } else {
+      m.part_bytes[id] += bytes;
+    }
     m.bytes += bytes;
-    // A chain's packets arrive in bitplane order (its dependencies), so the
-    // packet just added is the chain's last; summing the chains in a fixed
-    // order makes the estimate independent of the order of arrival.
     if (id < m.estimates.chain.size() && m.estimates.chain[id] < m.chain_now.size()) {
-      m.chain_now[m.estimates.chain[id]] = m.estimates.after[id];
+      const uint32_t chain = m.estimates.chain[id];
+      double term = m.estimates.chain_start[chain];
+      for (uint32_t q : m.chain_packets[chain]) {
+        if (m.have[q]) {
+          term = m.estimates.after[q];
+        } else if (m.part_bytes[q] > 0 && m.header.packets.length[q] > 0) {
+          term -= m.estimates.reduction[q] * static_cast<double>(m.part_bytes[q]) /
+                  static_cast<double>(m.header.packets.length[q]);
+        }
+      }
+      m.chain_now[chain] = term;
     }
     m.distortion = m.estimates.Estimate(m.chain_now);
+  }
+
+  // Decodes precinct p's share of bitplane b of subband j from `io` with
+  // `contexts`.
+  void DecodePrecinct(int j, uint32_t p, int b, ComponentContexts& contexts, DecoderIo& io) {
+    SubbandCoding& subband = coding.Get(static_cast<size_t>(j));
+    const SubbandLayout& layout = subband.precincts[p];
+    // Built before subband j (the sequence's order): no wait, one lock.
+    const SubbandCoding* up_coding =
+        parent_contexts() && j > 0 ? &coding.Get(static_cast<size_t>(j) - 1) : nullptr;
+    for (int c = 0; c < 3; ++c) {
+      ComponentState& s = subband.states[p][c];
+      if (b > s.top) continue;
+      ContextSources sources;
+      if (up_coding != nullptr) {
+        const ComponentState& up = up_coding->states[layout.parent_precinct][c];
+        sources = {layout.parent_position, up.mag, up.negative, {}};
+      }
+      // 3xC: the neighbour contexts too.
+      if (parent_contexts()) sources.neighbour_position = layout.neighbour_position;
+      CodeBitplane(layout.tree, s, b, sources, contexts, io);
+    }
+  }
+  // One codeword holding precinct `p`'s share alone (a split packet's part).
+  Status DecodePart(int j, uint32_t p, int b, std::string_view part) {
+    DecoderIo io(part);
+    ComponentContexts contexts;
+    DecodePrecinct(j, p, b, contexts, io);
+    if (io.decoder().overrun()) {
+      broken = true;
+      return ParseError("part " + std::to_string(p) + ": payload ends before its symbols (corrupt stream)");
+    }
+    return Status::Ok();
   }
   // No packet has touched the coding state: every detail is zero, and no
   // caller needs to wait for that state to be built.
@@ -134,8 +225,19 @@ Result<std::unique_ptr<ProgressiveDecoder>> ProgressiveDecoder::Create(
   // whatever a caller needs first it builds itself, so the two share the
   // work, and what nobody needed is abandoned when the decoder goes.
   Impl* m = impl.get();
-  auto layouts = std::make_shared<SubbandLayoutBuilder>(*m->hierarchy, m->base.grid,
-                                                        m->header.octree_leaf_size);
+  const PrecinctPartition partition = PartitionIntoPrecincts(
+      *m->hierarchy, m->base.grid, m->header.packets.precinct_coefficients);
+  m->precinct_parent = partition.ParentsPerSubband();
+  if (partition.levels() > 0) m->precinct_parent[0].assign(partition.count(0), 0);
+  m->chain_packets.assign(m->estimates.chain_start.size(), {});
+  for (uint32_t id = 0; id < m->estimates.chain.size(); ++id) {
+    if (m->estimates.chain[id] < m->chain_packets.size()) {
+      m->chain_packets[m->estimates.chain[id]].push_back(id);
+    }
+  }
+  auto layouts = std::make_shared<SubbandLayoutBuilder>(
+      *m->hierarchy, m->base.grid, m->header.octree_leaf_size,
+      partition.FacePrecinctsPerSubband(), partition.ParentsPerSubband());
   m->coding.Start(static_cast<size_t>(m->hierarchy->levels()),
                   [m, layouts](size_t j) {
                     Impl::SubbandCoding s{layouts->Next(), {}};
@@ -172,6 +274,8 @@ void ProgressiveDecoder::Reset() {
   }
   m.touched.assign(m.coding.size(), 0);
   m.have.assign(m.header.packets.length.size(), 0);
+  m.have_part.assign(m.have.size(), {});
+  m.part_bytes.assign(m.have.size(), 0);
   m.chain_now = m.estimates.chain_start;
   m.distortion = m.estimates.start();
   m.decoded = 0;
@@ -238,34 +342,85 @@ Status ProgressiveDecoder::AddPacket(uint32_t id, std::string_view payload) {
       m.broken = true;
       return s.WithContext(what());
     }
-    Impl::Record(m, id, payload.size());
+    Impl::Record(m, id, payload.size(), true);
     return Status::Ok();
   }
-  m.touched[j] = 1;  // before decoding: a corrupt packet leaves its state changed
-  Impl::SubbandCoding& coding = m.coding.Get(j);
-  DecoderIo io(payload);
-  const SubbandLayout& layout = coding.layout;
-  // Built before subband j (the sequence's order): no wait, one lock.
-  const Impl::SubbandCoding* up_coding =
-      m.parent_contexts() && j > 0 ? &m.coding.Get(j - 1) : nullptr;
-  ComponentContexts contexts;  // shared by the packet's three components
-  for (int c = 0; c < 3; ++c) {
-    ComponentState& s = coding.states[c];
-    if (b > s.top) continue;
-    ContextSources sources;
-    if (up_coding != nullptr) {
-      const ComponentState& up = up_coding->states[c];
-      sources = {layout.parent_position, up.mag, up.negative, {}};
+  const uint32_t precincts = static_cast<uint32_t>(m.precinct_parent[static_cast<size_t>(j)].size());
+  if (m.packets->IsSplit(id)) {
+    auto split = SplitPacketParts(payload, precincts);
+    if (!split.ok()) return split.status().WithContext(what());
+    const std::vector<std::string_view>& parts = *split;
+    m.touched[j] = 1;  // before decoding: a corrupt packet leaves its state changed
+    for (uint32_t p = 0; p < precincts; ++p) {
+      if (m.HasPart(id, p)) continue;  // sent alone before
+      if (Status s = m.DecodePart(j, p, b, parts[p]); !s.ok()) return s.WithContext(what());
     }
-    // 3xC: the neighbour contexts too.
-    if (m.parent_contexts()) sources.neighbour_position = layout.neighbour_position;
-    CodeBitplane(layout.tree, s, b, sources, contexts, io);
+  } else {
+    m.touched[j] = 1;
+    DecoderIo io(payload);
+    ComponentContexts contexts;  // shared by the packet's precincts and components
+    for (uint32_t p = 0; p < precincts; ++p) m.DecodePrecinct(j, p, b, contexts, io);
+    if (io.decoder().overrun()) {
+      m.broken = true;
+      return ParseError(what() + ": payload ends before its symbols (corrupt stream)");
+    }
   }
-  if (io.decoder().overrun()) {
-    m.broken = true;
-    return ParseError(what() + ": payload ends before its symbols (corrupt stream)");
+  // The bytes of parts held before were counted then.
+  Impl::Record(m, id, payload.size() - std::min<uint64_t>(m.part_bytes[id], payload.size()), true);
+  return Status::Ok();
+}
+
+uint32_t ProgressiveDecoder::PartCount(uint32_t id) const {
+  return id < impl_->have.size() ? impl_->PartCount(id) : 0;
+}
+
+bool ProgressiveDecoder::HasPart(uint32_t id, uint32_t part) const {
+  return part < PartCount(id) && impl_->HasPart(id, part);
+}
+
+bool ProgressiveDecoder::PartDependenciesMet(uint32_t id, uint32_t part) const {
+  return part < PartCount(id) && impl_->MissingForPart(id, part) < 0;
+}
+
+Status ProgressiveDecoder::AddPacketPart(uint32_t id, uint32_t part, std::string_view payload) {
+  Impl& m = *impl_;
+  if (m.broken) {
+    return Status(StatusCode::kInvalidArgument,
+                  "decoder is unusable after an earlier corrupt packet");
   }
-  Impl::Record(m, id, payload.size());
+  if (id >= m.have.size()) {
+    return InvalidArgument("packet " + std::to_string(id) + " is not in the index of " +
+                           std::to_string(m.have.size()) + " packets");
+  }
+  const uint32_t count = m.PartCount(id);
+  const int j = m.packets->Subband(id);
+  const int b = m.packets->Bitplane(id);
+  auto name = [&](uint32_t q) {
+    return "packet " + std::to_string(q) + " (subband " + std::to_string(m.packets->Subband(q)) +
+           ", bitplane " + std::to_string(m.packets->Bitplane(q)) + ")";
+  };
+  if (count == 0) return InvalidArgument(name(id) + " is not split into precinct parts");
+  const std::string what = "part " + std::to_string(part) + " of " + name(id);
+  if (part >= count) {
+    return InvalidArgument(what + ": the packet has " + std::to_string(count) + " parts");
+  }
+  if (m.HasPart(id, part)) return InvalidArgument(what + " was already added");
+  if (int64_t missing = m.MissingForPart(id, part); missing >= 0) {
+    return InvalidArgument(what + " needs its share of " + name(static_cast<uint32_t>(missing)) +
+                           " first");
+  }
+  if (payload.size() > m.header.packets.length[id]) {
+    return ParseError(what + ": " + std::to_string(payload.size()) +
+                      " bytes, more than the whole packet's " +
+                      std::to_string(m.header.packets.length[id]));
+  }
+  m.touched[j] = 1;
+  if (Status s = m.DecodePart(j, part, b, payload); !s.ok()) return s.WithContext(name(id));
+  if (m.have_part[id].empty()) m.have_part[id].assign(count, 0);
+  m.have_part[id][part] = 1;
+  const bool whole = std::all_of(m.have_part[id].begin(), m.have_part[id].end(),
+                                 [](char h) { return h != 0; });
+  Impl::Record(m, id, payload.size(), whole);
   return Status::Ok();
 }
 
@@ -283,8 +438,10 @@ int ProgressiveDecoder::CompleteLevels() const {
       if (!m.touched[j]) {
         all = all && top < 0;
       } else {
-        const ComponentState& s = m.coding.Get(j).states[c];
-        all = all && (s.top < 0 || s.known_from() <= s.top);
+        for (const auto& states : m.coding.Get(j).states) {
+          const ComponentState& s = states[c];
+          all = all && (s.top < 0 || s.known_from() <= s.top);
+        }
       }
     }
     if (!all) break;
@@ -297,12 +454,14 @@ int ProgressiveDecoder::DetailLevels() const {
   const Impl& m = *impl_;
   for (int j = static_cast<int>(m.touched.size()) - 1; j >= 0; --j) {
     if (!m.touched[j]) continue;  // no detail, and no waiting for its state
-    for (const ComponentState& s : m.coding.Get(j).states) {
-      const int n = s.known_from();
-      if (n > s.top) continue;
-      // Nonzero exactly as Positions dequantises it.
-      for (uint32_t i : s.significant()) {
-        if ((s.mag[i] >> n) != 0) return j + 1;
+    for (const auto& states : m.coding.Get(j).states) {
+      for (const ComponentState& s : states) {
+        const int n = s.known_from();
+        if (n > s.top) continue;
+        // Nonzero exactly as Positions dequantises it.
+        for (uint32_t i : s.significant()) {
+          if ((s.mag[i] >> n) != 0) return j + 1;
+        }
       }
     }
   }
@@ -325,24 +484,26 @@ std::vector<Vec3> ProgressiveDecoder::Positions(int max_level) const {
     if (!m.touched[j]) continue;  // every detail is zero yet
     Vec3* band = x.data() + h.vertex_count(j);
     const Impl::SubbandCoding& coding = m.coding.Get(j);
-    const CoefficientOctree& tree = coding.layout.tree;
-    for (int c = 0; c < 3; ++c) {
-      const ComponentState& s = coding.states[c];
-      const StreamHeader::Quantizer& q = m.header.quantizer(j, c);
-      const int n = s.known_from();
-      if (n > s.top) continue;
-      const double xi0 = DeadzoneXi(static_cast<int>(q.deadzone));
-      // Dequantize(s.mag[i] >> n, n, s.negative[i], q.step, xi0, gamma)
-      // with its two ldexp calls, the same for every k, taken out of the
-      // loop (the same operations in the same order: bit-identical).
-      const double scale = std::ldexp(q.step, n);
-      const double xi_n = std::ldexp(xi0, -n);
-      const double gamma = m.options.gamma;
-      for (uint32_t i : s.significant()) {
-        const uint32_t v = s.mag[i] >> n;
-        if (v == 0) continue;  // band is zero already
-        const double r = (static_cast<double>(v) + gamma - xi_n) * scale;
-        band[tree.At(i)][c] = s.negative[i] ? -r : r;
+    for (size_t p = 0; p < coding.precincts.size(); ++p) {
+      for (int c = 0; c < 3; ++c) {
+        const uint32_t* coefficient = coding.precincts[p].coefficient.data();
+        const ComponentState& s = coding.states[p][c];
+        const StreamHeader::Quantizer& q = m.header.quantizer(j, c);
+        const int n = s.known_from();
+        if (n > s.top) continue;
+        const double xi0 = DeadzoneXi(static_cast<int>(q.deadzone));
+        // Dequantize(s.mag[i] >> n, n, s.negative[i], q.step, xi0, gamma)
+        // with its two ldexp calls, the same for every k, taken out of the
+        // loop (the same operations in the same order: bit-identical).
+        const double scale = std::ldexp(q.step, n);
+        const double xi_n = std::ldexp(xi0, -n);
+        const double gamma = m.options.gamma;
+        for (uint32_t i : s.significant()) {
+          const uint32_t v = s.mag[i] >> n;
+          if (v == 0) continue;  // band is zero already
+          const double r = (static_cast<double>(v) + gamma - xi_n) * scale;
+          band[coefficient[i]][c] = s.negative[i] ? -r : r;
+        }
       }
     }
   }

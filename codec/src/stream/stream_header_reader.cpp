@@ -301,6 +301,8 @@ Field ReadIndex(uint32_t number, uint32_t wire, WireReader& r, StreamHeader::Pac
     case 6: return ReadBytes(wire, r, p.check);
     case 7: return ReadRepeatedFixed<float>(wire, r, p.chain_distortion);
     case 8: return ReadBytes(wire, r, p.distortion_step);
+    case 9: return ReadVarint32(wire, r, p.precinct_coefficients);
+    case 10: return ReadRepeatedU32(wire, r, p.split_planes);
     default: return Field::kUnknown;
   }
 }

@@ -34,7 +34,7 @@ SmoothSubband MakeSmoothSubband() {
   const int j = 3;
   auto layouts = BuildSubbandLayouts(*ico.h, ico.grid, 32);
   const auto positions = ReferencePositions(*ico.h, ico.grid)[j];
-  SmoothSubband s{std::move(layouts[j]), {}, {}, -1};
+  SmoothSubband s{std::move(layouts[j][0]), {}, {}, -1};
   const double scale = 1000.0 * std::ldexp(1.0, j + 1);
   std::vector<uint32_t> q0(positions.size());
   std::vector<uint8_t> negative(positions.size());
@@ -46,8 +46,8 @@ SmoothSubband MakeSmoothSubband() {
     q0[k] = static_cast<uint32_t>(std::max(0.0, 300 * field - 40));
     negative[k] = q0[k] != 0 && (rng() & 1);
   }
-  s.q0 = InMortonOrder<uint32_t>(s.layout.tree, q0);
-  s.negative = InMortonOrder<uint8_t>(s.layout.tree, negative);
+  s.q0 = InMortonOrder<uint32_t>(s.layout, q0);
+  s.negative = InMortonOrder<uint8_t>(s.layout, negative);
   uint32_t largest = 0;
   for (uint32_t v : q0) largest = std::max(largest, v);
   s.top = std::bit_width(largest) - 1;
@@ -82,7 +82,7 @@ size_t CodeAndDecodeEveryBitplane(const SmoothSubband& s, bool neighbours) {
     EXPECT_FALSE(io.decoder().overrun()) << "bitplane " << b;
   }
   EXPECT_EQ(dec_state.mag, s.q0);
-  for (size_t i = 0; i < s.q0.size(); ++i) {
+  for (size_t i = 0; i < s.layout.size(); ++i) {
     if (s.q0[i] != 0) {
       EXPECT_EQ(dec_state.negative[i], s.negative[i]) << i;
     }

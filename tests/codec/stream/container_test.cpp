@@ -114,8 +114,8 @@ TEST(ContainerTest, RejectsBadMagicVersionTrailingBytes) {
             std::string::npos);
   // The old base code, the version before the SAWT field, the one before the
   // compact packet index, the one before the base refinement, the one before
-  // 3xC's neighbour contexts, and a future one.
-  for (uint32_t version : {1u, 2u, 3u, 4u, 5u, 7u}) {
+  // 3xC's neighbour contexts, the one before precincts, and a future one.
+  for (uint32_t version : {1u, 2u, 3u, 4u, 5u, 6u, 8u}) {
     EncodedStream other = Stream();
     proto::StreamHeader p;
     ASSERT_TRUE(p.ParseFromString(other.header.bytes_without_present));

@@ -152,5 +152,36 @@ TEST(PrecinctPartitionTest, ASmallMeshIsOnePrecinct) {
   for (int j = 0; j < 4; ++j) EXPECT_EQ(p.count(j), 1u);
 }
 
+// Parent(j, p): the precinct of subband j - 1 whose faces include p's.
+TEST(PrecinctPartitionTest, AParentIsThePrecinctAboveHoldingTheFaces) {
+  const TorusFixture f = MakeTorus();
+  const PrecinctPartition p = PartitionIntoPrecincts(*f.h, f.grid, 500);
+  const auto parents = p.ParentsPerSubband();
+  ASSERT_EQ(parents.size(), 4u);
+  EXPECT_TRUE(parents[0].empty());
+  int several = 0;
+  for (int j = 1; j < 4; ++j) {
+    const std::vector<uint32_t> above = p.FacePrecincts(j - 1);
+    ASSERT_EQ(parents[j].size(), p.count(j));
+    for (uint32_t q = 0; q < p.count(j); ++q) {
+      for (uint32_t i = p.bounds[j][q]; i < p.bounds[j][q + 1]; ++i) {
+        EXPECT_EQ(above[p.face_order[i]], parents[j][q]) << "j " << j << " precinct " << q;
+      }
+    }
+    several += p.count(j - 1) > 1;
+  }
+  EXPECT_GE(several, 2);  // not only the trivial parent 0
+}
+
+TEST(PrecinctPartitionTest, ZeroMeansOnePrecinctPerSubband) {
+  const TorusFixture f = MakeTorus();
+  const PrecinctPartition p = PartitionIntoPrecincts(*f.h, f.grid, 0);
+  ASSERT_EQ(p.levels(), 4);
+  for (int j = 0; j < 4; ++j) {
+    EXPECT_EQ(p.count(j), 1u);
+    for (uint32_t q : p.FacePrecincts(j)) EXPECT_EQ(q, 0u);
+  }
+}
+
 }  // namespace
 }  // namespace meshwave

@@ -80,6 +80,10 @@ inline std::string HeaderDifference(const StreamHeader& r, const proto::StreamHe
     return "packets.chain_distortion";
   }
   if (r.packets.distortion_step != x.distortion_step()) return "packets.distortion_step";
+  if (r.packets.precinct_coefficients != x.precinct_coefficients()) {
+    return "packets.precinct_coefficients";
+  }
+  if (!SameInts(r.packets.split_planes, x.split_planes())) return "packets.split_planes";
   if (!SameBits(r.base_distortion, p.base_distortion())) return "base_distortion";
   if (!SameInts(r.present, p.present())) return "present";
   return "";

@@ -206,7 +206,7 @@ TEST(StreamHeaderTest, ProtoHasTheFieldsTheReaderKnows) {
   EXPECT_EQ(numbers(proto::SawtChoices::descriptor()), (V{1, 2, 3, 4}));
   EXPECT_EQ(numbers(proto::BaseMesh::descriptor()), (V{1, 2, 3, 4, 6, 7}));
   EXPECT_EQ(numbers(proto::Quantizer::descriptor()), (V{1, 2, 3}));
-  EXPECT_EQ(numbers(proto::PacketIndex::descriptor()), (V{3, 6, 7, 8}));
+  EXPECT_EQ(numbers(proto::PacketIndex::descriptor()), (V{3, 6, 7, 8, 9, 10}));
 }
 
 TEST(StreamHeaderTest, RefusalSaysWhat) {
