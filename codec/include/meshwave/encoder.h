@@ -29,8 +29,11 @@ struct EncodeOptions {
   uint32_t octree_leaf_size = 32;
   // Precincts (docs/FORMAT.md 2.2): base faces grouped into runs of at
   // least this many coefficients per subband, each coded on its own so that
-  // a region can be sent first; 0: one precinct per subband.
-  uint32_t precinct_coefficients = 2048;
+  // a region can be sent first; 0: one precinct per subband. What they cost
+  // grows with their number (fresh contexts, borders): 2,048 cost up to
+  // 0.5 dB at equal bytes at high rates, 4,096 at most 0.26 dB
+  // (docs/RD_RESULTS.md, "Precincts").
+  uint32_t precinct_coefficients = 4096;
   // A packet is split into one codeword per precinct where its precincts
   // would average at least this many bytes: below, the parts' lengths and
   // flushes cost more than sending the region's share alone saves.
