@@ -124,6 +124,10 @@ Result<EncodedStream> EncodeMesh(const SemiRegularMesh& input,
       for (int c = 0; c < 3; ++c) state[p][c].Init(precincts[p].tree, quantized[j][c].top);
     }
     std::vector<CodedPacket> packets;
+    // Each precinct's contexts after its share of the bitplane above: a
+    // part starts from them (FORMAT.md 5.3), what a part learnt one
+    // bitplane up is not learnt again.
+    std::vector<ComponentContexts> carried(precincts.size());
     for (int b = top; b >= 0; --b) {
       const bool split_here = static_cast<uint32_t>(b) < split;
       ArithmeticEncoder enc;
@@ -132,6 +136,7 @@ Result<EncodedStream> EncodeMesh(const SemiRegularMesh& input,
       double reduction = 0;
       for (size_t p = 0; p < precincts.size(); ++p) {
         const SubbandLayout& layout = precincts[p];
+        if (split_here) contexts = carried[p];
         for (int c = 0; c < 3; ++c) {
           const QuantizedComponent& q = quantized[j][c];
           if (b > q.top) continue;
@@ -157,9 +162,10 @@ Result<EncodedStream> EncodeMesh(const SemiRegularMesh& input,
         }
         if (split_here) {
           parts.push_back(enc.Finish());
-          contexts = ComponentContexts{};
+          carried[p] = contexts;
         }
       }
+      if (!split_here) std::fill(carried.begin(), carried.end(), contexts);
       packets.push_back({split_here ? JoinPacketParts(parts) : enc.Finish(), reduction});
     }
     return packets;

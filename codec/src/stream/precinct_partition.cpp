@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <utility>
 
+#include "core/hilbert_order.h"
 #include "semiregular/base_face_of.h"
 
 namespace meshwave {
@@ -80,9 +81,7 @@ PrecinctPartition PartitionIntoPrecincts(const SemiRegularHierarchy& h,
                         base_grid[faces[f][2]][a];
     }
   }
-  const CoefficientOctree order(centroids, 1);
-  out.face_order.resize(faces.size());
-  for (uint32_t i = 0; i < out.face_order.size(); ++i) out.face_order[i] = order.At(i);
+  out.face_order = HilbertOrder(centroids);
   const uint64_t least = min_coefficients;
   const uint32_t face_count = static_cast<uint32_t>(faces.size());
   std::vector<uint32_t> above = {0, face_count};

@@ -4,9 +4,9 @@
 // coefficient descends from one base face (semiregular/base_face_of.h),
 // so a group of base faces and their subtrees is a spatial unit.
 //
-// The partition is derived, not transmitted: base faces in the Morton order
-// of their centroids on the integer grid of the header's base mesh (as the
-// SAWT regions and the coefficient octrees use it), cut into runs that hold
+// The partition is derived, not transmitted: base faces in the Hilbert order
+// (core/hilbert_order.h) of their centroids on the integer grid of the
+// header's base mesh, cut into runs that hold
 // at least `min_coefficients` coefficients of the subband. Runs nest: each
 // subband's precincts split the coarser subband's, so that a precinct's
 // parent coefficients lie in one precinct of the subband above (those on
@@ -24,7 +24,7 @@
 namespace meshwave {
 
 struct PrecinctPartition {
-  // Base faces in the Morton order of their centroids.
+  // Base faces in the Hilbert order of their centroids.
   std::vector<uint32_t> face_order;
   // bounds[j]: precinct p of subband j holds the base faces
   // face_order[bounds[j][p], bounds[j][p + 1]).

@@ -37,10 +37,14 @@ struct ProgressiveDecoder::Impl {
   struct SubbandCoding {
     std::vector<SubbandLayout> precincts;
     std::vector<std::array<ComponentState, 3>> states;
+    // Each precinct's contexts after its share of the last bitplane
+    // decoded: where its next part's contexts start (FORMAT.md 5.3).
+    std::vector<ComponentContexts> carried;
   };
 
   static void InitStates(const StreamHeader& header, int j, SubbandCoding& s) {
     s.states.resize(s.precincts.size());
+    s.carried.assign(s.precincts.size(), ComponentContexts{});
     for (size_t p = 0; p < s.precincts.size(); ++p) {
       for (int c = 0; c < 3; ++c) {  // Init reuses the lists' memory
         s.states[p][c].Init(s.precincts[p].tree, header.quantizer(j, c).top_bitplane);
@@ -164,7 +168,7 @@ struct ProgressiveDecoder::Impl {
   // One codeword holding precinct `p`'s share alone (a split packet's part).
   Status DecodePart(int j, uint32_t p, int b, std::string_view part) {
     DecoderIo io(part);
-    ComponentContexts contexts;
+    ComponentContexts& contexts = coding.Get(static_cast<size_t>(j)).carried[p];
     DecodePrecinct(j, p, b, contexts, io);
     if (io.decoder().overrun()) {
       broken = true;
@@ -240,7 +244,7 @@ Result<std::unique_ptr<ProgressiveDecoder>> ProgressiveDecoder::Create(
       partition.FacePrecinctsPerSubband(), partition.ParentsPerSubband());
   m->coding.Start(static_cast<size_t>(m->hierarchy->levels()),
                   [m, layouts](size_t j) {
-                    Impl::SubbandCoding s{layouts->Next(), {}};
+                    Impl::SubbandCoding s{layouts->Next(), {}, {}};
                     Impl::InitStates(m->header, static_cast<int>(j), s);
                     return s;
                   });
@@ -360,6 +364,8 @@ Status ProgressiveDecoder::AddPacket(uint32_t id, std::string_view payload) {
     DecoderIo io(payload);
     ComponentContexts contexts;  // shared by the packet's precincts and components
     for (uint32_t p = 0; p < precincts; ++p) m.DecodePrecinct(j, p, b, contexts, io);
+    auto& carried = m.coding.Get(j).carried;
+    std::fill(carried.begin(), carried.end(), contexts);
     if (io.decoder().overrun()) {
       m.broken = true;
       return ParseError(what() + ": payload ends before its symbols (corrupt stream)");

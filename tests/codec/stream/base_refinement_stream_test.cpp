@@ -20,6 +20,8 @@
 namespace meshwave {
 namespace {
 
+using testing::DecoderOf;
+
 using testing::Psnr;
 
 constexpr int kPlanes = 6;
@@ -70,12 +72,6 @@ const Streams& BaseStreams() {
     return out;
   }();
   return s;
-}
-
-std::unique_ptr<ProgressiveDecoder> DecoderOf(const EncodedStream& s) {
-  auto d = ProgressiveDecoder::Create(s.header);
-  EXPECT_TRUE(d.ok()) << d.status().ToString();
-  return std::move(d).value();
 }
 
 TEST(BaseRefinementStreamTest, PacketsFollowTheDetailsPlanesDescending) {

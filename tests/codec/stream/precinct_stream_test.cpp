@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "codec/stream/precinct_stream_testonly.h"
 #include "codec/stream/stream_test_util.h"
 #include "meshwave/progression.h"
 #include "meshwave/progressive_decoder.h"
@@ -19,39 +20,10 @@
 namespace meshwave {
 namespace {
 
-// A bumpy sphere over 320 base faces, three levels finer (7,680
-// coefficients in the finest subband): small precincts give the finest
-// subband tens of them.
-SemiRegularMesh FineBaseSphere() {
-  TriMesh coarse = Subdivide(testing::Icosahedron(), 2, SubdivisionScheme::kButterfly)->Finest();
-  for (Vec3& p : coarse.positions) p.normalize();
-  auto sr = Subdivide(coarse, 3, SubdivisionScheme::kButterfly);
-  std::mt19937 rng(5);
-  std::normal_distribution<double> noise(0, 2e-3);
-  for (Vec3& p : sr->positions) {
-    p.normalize();
-    p *= 1 + 0.05 * std::sin(5 * p.x()) * std::cos(3 * p.y()) + noise(rng);
-  }
-  return *sr;
-}
+using testing::DecoderOf;
 
-const EncodedStream& Precincted() {
-  static const EncodedStream s = [] {
-    EncodeOptions options = testing::EqualStepOptions();
-    options.precinct_coefficients = 256;
-    options.split_bytes_per_precinct = 8;
-    auto encoded = EncodeMesh(FineBaseSphere(), options);
-    EXPECT_TRUE(encoded.ok()) << encoded.status().ToString();
-    return *std::move(encoded);
-  }();
-  return s;
-}
-
-std::unique_ptr<ProgressiveDecoder> DecoderOf(const EncodedStream& s) {
-  auto d = ProgressiveDecoder::Create(s.header);
-  EXPECT_TRUE(d.ok()) << d.status().ToString();
-  return std::move(d).value();
-}
+using testing::FineBaseSphere;
+using testing::Precincted;
 
 std::vector<Vec3> FullDecode(const EncodedStream& s) {
   auto d = DecoderOf(s);

@@ -3,11 +3,15 @@
 #ifndef MESHWAVE_TESTS_CODEC_STREAM_STREAM_TEST_UTIL_H_
 #define MESHWAVE_TESTS_CODEC_STREAM_STREAM_TEST_UTIL_H_
 
+#include <gtest/gtest.h>
+
 #include <cmath>
+#include <memory>
 #include <random>
 
 #include "codec/test_meshes.h"
 #include "meshwave/encoder.h"
+#include "meshwave/progressive_decoder.h"
 #include "meshwave/semiregular.h"
 
 namespace meshwave::testing {
@@ -34,6 +38,13 @@ inline EncodeOptions EqualStepOptions() {
   EncodeOptions options;
   options.tangent_step_scale = 1;
   return options;
+}
+
+// A decoder of `s`'s header (a test failure when it cannot be made).
+inline std::unique_ptr<ProgressiveDecoder> DecoderOf(const EncodedStream& s) {
+  auto d = ProgressiveDecoder::Create(s.header);
+  EXPECT_TRUE(d.ok()) << d.status().ToString();
+  return std::move(d).value();
 }
 
 inline double Psnr(const std::vector<Vec3>& a, const std::vector<Vec3>& b,

@@ -1,0 +1,269 @@
+#include "meshwave/region_order.h"
+
+#include <algorithm>
+#include <limits>
+#include <queue>
+#include <utility>
+#include <variant>
+
+#include "meshwave/semiregular.h"
+#include "semiregular/base_face_of.h"
+#include "stream/decoder_setup.h"
+#include "stream/packet_index.h"
+#include "stream/packet_parts.h"
+#include "stream/precinct_partition.h"
+#include "stream/stream_format.h"
+
+namespace meshwave {
+
+Result<StreamPrecincts> StreamPrecincts::Create(const StreamHeader& header) {
+  DecodedBase base;
+  std::shared_ptr<const SemiRegularHierarchy> hierarchy;
+  MW_RETURN_IF_ERROR(SetUpHierarchy(header, kMaxBaseVertices, base, hierarchy).status());
+  const SemiRegularHierarchy& h = *hierarchy;
+  const PrecinctPartition partition =
+      PartitionIntoPrecincts(h, base.grid, header.packets.precinct_coefficients);
+  const auto& faces = h.faces(0);
+  StreamPrecincts out;
+  for (int j = 0; j < h.levels(); ++j) {
+    Subband s;
+    const uint32_t count = partition.count(j);
+    std::vector<double> held(faces.size(), 0);
+    AddCoefficientsPerBaseFace(h, j, held);
+    const double total = std::max<double>(1, static_cast<double>(h.subband_size(j)));
+    for (uint32_t p = 0; p < count; ++p) {
+      s.parent.push_back(j == 0 ? 0 : partition.Parent(j, p));
+      Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
+      Vec3 hi = -lo;
+      double coefficients = 0;
+      const auto& bounds = partition.bounds[static_cast<size_t>(j)];
+      for (uint32_t i = bounds[p]; i < bounds[p + 1]; ++i) {
+        const uint32_t f = partition.face_order[i];
+        coefficients += held[f];
+        for (uint32_t v : faces[f]) {
+          lo = lo.cwiseMin(base.positions[v]);
+          hi = hi.cwiseMax(base.positions[v]);
+        }
+      }
+      const bool empty = bounds[p] == bounds[p + 1];
+      s.centre.push_back(empty ? Vec3::Zero() : Vec3(0.5 * (lo + hi)));
+      s.radius.push_back(empty ? 0.0 : 0.5 * (hi - lo).norm());
+      s.share.push_back(coefficients / total);
+    }
+    out.subbands_.push_back(std::move(s));
+  }
+  return out;
+}
+
+HeldUnits::HeldUnits(const StreamHeader& header, const StreamPrecincts& precincts)
+    : precincts_(&precincts) {
+  const PacketLayout layout(header);
+  const uint32_t n = static_cast<uint32_t>(layout.count());
+  const bool parents = header.coder == StreamCoder::k3xC;
+  for (uint32_t id = 0; id < n; ++id) {
+    const int j = layout.Subband(id);
+    const int b = layout.Bitplane(id);
+    subband_.push_back(j);
+    bitplane_.push_back(b);
+    up_.push_back(j < 0 ? layout.BaseId(b + 1) : layout.Id(j, b + 1));
+    parent_.push_back(j > 0 && parents ? layout.Id(j - 1, b) : -1);
+  }
+  split_planes_ = header.packets.split_planes;
+  whole_.assign(n, 0);
+  parts_.assign(n, {});
+}
+
+uint32_t HeldUnits::PartCount(uint32_t id) const {
+  if (id >= whole_.size() || subband_[id] < 0) return 0;
+  const auto j = static_cast<size_t>(subband_[id]);
+  if (j >= split_planes_.size() || static_cast<uint32_t>(bitplane_[id]) >= split_planes_[j]) {
+    return 0;
+  }
+  return precincts_->count(subband_[id]);
+}
+
+bool HeldUnits::Valid(StreamUnit u) const {
+  return u.id < whole_.size() && (u.whole() || u.part < PartCount(u.id));
+}
+
+bool HeldUnits::HasShare(uint32_t id, uint32_t p) const {
+  return whole_[id] || (!parts_[id].empty() && parts_[id][p]);
+}
+
+bool HeldUnits::Has(StreamUnit u) const {
+  if (!Valid(u)) return false;
+  return u.whole() ? whole_[u.id] != 0 : HasShare(u.id, u.part);
+}
+
+bool HeldUnits::Ready(StreamUnit u) const {
+  if (!Valid(u) || Has(u)) return false;
+  // Packet q held whole, or (for a part) precinct p's share of it.
+  auto has = [&](int q, uint32_t p) {
+    if (q < 0) return true;
+    const auto id = static_cast<uint32_t>(q);
+    if (whole_[id]) return true;
+    return !u.whole() && PartCount(id) > 0 && HasShare(id, p);
+  };
+  const uint32_t p = u.whole() ? 0 : u.part;
+  const uint32_t parent = u.whole() || subband_[u.id] <= 0 ? 0 : precincts_->parent(subband_[u.id], p);
+  return has(up_[u.id], p) && has(parent_[u.id], parent);
+}
+
+void HeldUnits::Add(StreamUnit u) {
+  if (!Valid(u)) return;
+  if (u.whole()) {
+    whole_[u.id] = 1;
+    parts_[u.id].clear();
+    return;
+  }
+  auto& parts = parts_[u.id];
+  if (whole_[u.id]) return;
+  if (parts.empty()) parts.assign(PartCount(u.id), 0);
+  parts[u.part] = 1;
+  if (std::all_of(parts.begin(), parts.end(), [](char c) { return c != 0; })) {
+    whole_[u.id] = 1;
+    parts.clear();
+  }
+}
+
+Result<std::vector<std::string_view>> PacketParts(const HeldUnits& units, uint32_t id,
+                                                  std::string_view payload) {
+  const uint32_t count = units.PartCount(id);
+  if (count == 0) return ParseError("packet " + std::to_string(id) + " is not split");
+  return SplitPacketParts(payload, count);
+}
+
+Result<std::vector<uint32_t>> PartLengths(const HeldUnits& units, uint32_t id,
+                                          std::string_view payload) {
+  const uint32_t count = units.PartCount(id);
+  std::vector<uint32_t> out;
+  if (count == 0) return out;
+  MW_ASSIGN_OR_RETURN(std::vector<std::string_view> parts, SplitPacketParts(payload, count));
+  for (std::string_view part : parts) out.push_back(static_cast<uint32_t>(part.size()));
+  return out;
+}
+
+std::vector<StreamUnit> RegionOrder(const StreamHeader& header, const StreamPrecincts& precincts,
+                                    std::span<const std::vector<uint32_t>> part_lengths,
+                                    const Region& region, const HeldUnits& held, int max_level) {
+  const PacketLayout layout(header);
+  const uint32_t n = static_cast<uint32_t>(layout.count());
+  const DistortionEstimates estimates = ReadDistortionIndex(header, PacketChains(header));
+  const int levels = std::min(layout.levels(), precincts.levels());
+  const int used = (max_level < 0 || max_level > levels) ? levels : max_level;
+  // Weights of every precinct, and per subband their share-weighted sum;
+  // whether a precinct is in the region: it meets the sphere, or the view
+  // sees it. A precinct's parent precinct holds its faces, so it is in the
+  // region too: what a unit in the region needs is in it.
+  const bool sphere = std::holds_alternative<SphereRegion>(region.shape);
+  auto inside = [&](double w) { return sphere ? w >= 1 : w > 0; };
+  std::vector<std::vector<double>> weight(static_cast<size_t>(levels));
+  std::vector<double> subband_weight(static_cast<size_t>(levels), 0);
+  std::vector<char> subband_inside(static_cast<size_t>(levels), 0);
+  for (int j = 0; j < levels; ++j) {
+    for (uint32_t p = 0; p < precincts.count(j); ++p) {
+      const double w = RegionWeight(region, precincts.centre(j, p), precincts.radius(j, p));
+      weight[static_cast<size_t>(j)].push_back(w);
+      subband_weight[static_cast<size_t>(j)] += precincts.share(j, p) * w;
+      subband_inside[static_cast<size_t>(j)] |= inside(w) ? 1 : 0;
+    }
+  }
+  // The candidate units: index first_unit[id] + part.
+  std::vector<StreamUnit> units;
+  std::vector<uint32_t> first_unit(n, 0);
+  std::vector<char> wanted(n, 0);
+  for (uint32_t id = 0; id < n; ++id) {
+    first_unit[id] = static_cast<uint32_t>(units.size());
+    const int j = layout.Subband(id);
+    if (j >= used || (j >= 0 && j >= levels)) continue;
+    wanted[id] = 1;
+    const uint32_t parts = held.PartCount(id);
+    if (parts == 0 || id >= part_lengths.size() || part_lengths[id].size() != parts) {
+      units.push_back({id, StreamUnit::kWholePacket});
+    } else {
+      for (uint32_t p = 0; p < parts; ++p) units.push_back({id, p});
+    }
+  }
+  const size_t count = units.size();
+  std::vector<double> value(count, 0);
+  std::vector<char> in_region(count, 0);  // before every other unit
+  std::vector<uint32_t> pending(count, 0);
+  std::vector<std::vector<uint32_t>> dependants(count);
+  auto units_of = [&](uint32_t id, int jj, const StreamUnit& of, int j) {
+    // The units of packet `id` that `of` (of subband j) needs: its
+    // precinct's part (or the parent precinct's), else all of them.
+    std::vector<uint32_t> out;
+    const uint32_t first = first_unit[id];
+    const uint32_t last = id + 1 < n ? first_unit[id + 1] : static_cast<uint32_t>(count);
+    if (last - first <= 1 || of.whole()) {
+      for (uint32_t k = first; k < last; ++k) out.push_back(k);
+    } else {
+      const uint32_t p = jj == j ? of.part : precincts.parent(j, of.part);
+      out.push_back(first + p);
+    }
+    return out;
+  };
+  for (uint32_t k = 0; k < count; ++k) {
+    const StreamUnit& u = units[k];
+    const uint32_t bytes = u.whole() ? header.packets.length[u.id] : part_lengths[u.id][u.part];
+    double reduction = estimates.reduction[u.id];
+    const int j = layout.Subband(u.id);
+    const int b = layout.Bitplane(u.id);
+    double w = 0;
+    if (j < 0) {
+      w = levels > 0 ? subband_weight[0] : 1;
+      in_region[k] = levels == 0 || subband_inside[0];
+    } else if (u.whole()) {
+      w = subband_weight[static_cast<size_t>(j)];
+      in_region[k] = subband_inside[static_cast<size_t>(j)];
+    } else {
+      uint64_t total = 0;
+      for (uint32_t l : part_lengths[u.id]) total += l;
+      reduction *= total > 0 ? static_cast<double>(bytes) / static_cast<double>(total) : 0;
+      w = weight[static_cast<size_t>(j)][u.part];
+      in_region[k] = inside(w);
+    }
+    // An untrusted header may give negative or NaN reductions: worth 0.
+    const double v = w * reduction / (bytes + 4.0);
+    value[k] = v > 0 ? v : 0;
+    std::vector<std::pair<int, int>> needs;  // (packet, its subband)
+    if (j < 0) {
+      needs.push_back({layout.BaseId(b + 1), -1});
+    } else {
+      needs.push_back({layout.Id(j, b + 1), j});
+      if (header.coder == StreamCoder::k3xC && j > 0) needs.push_back({layout.Id(j - 1, b), j - 1});
+    }
+    for (auto [id, jj] : needs) {
+      if (id < 0 || !wanted[static_cast<uint32_t>(id)]) continue;
+      const auto q = static_cast<uint32_t>(id);
+      for (uint32_t d : units_of(q, jj, u, j)) {
+        if (held.Has(units[d])) continue;
+        ++pending[k];
+        dependants[d].push_back(k);
+      }
+    }
+  }
+  // Kahn's algorithm: the ready units in the region first, among them (and
+  // then among the others) the most valuable (ties: the lower index, so
+  // the order is deterministic).
+  auto less = [&](uint32_t a, uint32_t b) {
+    if (in_region[a] != in_region[b]) return in_region[a] < in_region[b];
+    return value[a] < value[b] || (value[a] == value[b] && a > b);
+  };
+  std::priority_queue<uint32_t, std::vector<uint32_t>, decltype(less)> ready(less);
+  for (uint32_t k = 0; k < count; ++k) {
+    if (!held.Has(units[k]) && pending[k] == 0) ready.push(k);
+  }
+  std::vector<StreamUnit> order;
+  while (!ready.empty()) {
+    const uint32_t k = ready.top();
+    ready.pop();
+    order.push_back(units[k]);
+    for (uint32_t d : dependants[k]) {
+      if (--pending[d] == 0) ready.push(d);
+    }
+  }
+  return order;
+}
+
+}  // namespace meshwave
