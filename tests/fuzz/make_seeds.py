@@ -2,9 +2,9 @@
 """Regenerates tests/fuzz/seeds/ from real files: the test meshes of
 tests/data, the sample meshes of data/ and the shared development meshes
 (cut to their first lines: small seeds fuzz faster), the fixture
-container data/octahedron_sr3.mwv (container_fuzz; 258 vertices, 36
+container data/octahedron_sr3.mwv (container_fuzz; 258 vertices, 38
 packets) and the lighter fixture data/tetrahedron_sr2.mwv of packet_fuzz and
-decoder_order_fuzz (34 vertices, 19 packets: an execution rebuilds a decoder,
+decoder_order_fuzz (34 vertices, 22 packets: an execution rebuilds a decoder,
 so a smaller mesh fuzzes several times faster). Packets are split out with
 protoc. The seeds made from the octahedron for those two targets are kept
 (prefix octahedron_sr3_): any bytes are valid inputs there.
@@ -221,6 +221,16 @@ def client_seeds():
     put("local_state_fuzz", "ws_rd_level1", state(b"ws://localhost:9/v1/meshes/abcdefabcdef", b"rd", 1, count, 9000, tiny))
     put("local_state_fuzz", "cursor_mismatch", state(b"https://h/v1/meshes/0123456789ab", b"resolution", 2, 3, 1, tiny))
 
+def region_seeds():
+    """region_fuzz: byte 0 picks the parser (0 sphere, 1 view, 2 screen
+    error), the rest is the text a client sends."""
+    put("region_fuzz", "sphere", b"\x00" + b"1.5,-2,0.3,0.25")
+    put("region_fuzz", "sphere_nan", b"\x00" + b"1,2,nan,1")
+    put("region_fuzz", "view", b"\x01" + b"0,0,5,0,0,-1,45,1920,1080")
+    put("region_fuzz", "view_zero_direction", b"\x01" + b"0,0,5,0,0,0,45,640,480")
+    put("region_fuzz", "screen_error", b"\x02" + b"0.75")
+
+
 if __name__ == "__main__":
     if os.path.isdir(SEEDS):
         shutil.rmtree(SEEDS)
@@ -229,3 +239,4 @@ if __name__ == "__main__":
     header_seeds()
     ws_seeds()
     client_seeds()
+    region_seeds()
