@@ -116,3 +116,17 @@ rd_prefix() {
   done
   echo "$found"
 }
+
+# shared_meshes: the shared development meshes the tables run on (all but
+# the small holes patch), one path per line; $MESHES wins when set. Exits
+# with a line when there are none.
+shared_meshes() {
+  if [[ -n ${MESHES:-} ]]; then
+    printf '%s\n' $MESHES
+    return
+  fi
+  local dir=${MESHWAVE_SHARED_MESHES:-$root/../shared/data/meshes} found
+  found=$(ls "$dir"/*.ply "$dir"/*.obj 2> /dev/null | grep -v holes_patch || true)
+  [[ -n $found ]] || { echo "no meshes (set MESHES or put ../shared beside the clone)" >&2; exit 1; }
+  echo "$found"
+}

@@ -21,12 +21,9 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-$root/build}
 cli=$build/tools/meshwave/meshwave
-shared=${MESHWAVE_SHARED_MESHES:-$root/../shared/data/meshes}
 [[ -x $cli ]] || { echo "no meshwave binary at $cli (build first)" >&2; exit 1; }
-if [[ -z ${MESHES:-} ]]; then
-  MESHES=$(ls "$shared"/*.ply "$shared"/*.obj 2> /dev/null | grep -v holes_patch || true)
-fi
-[[ -n $MESHES ]] || { echo "no meshes (set MESHES or put ../shared beside the clone)" >&2; exit 1; }
+source "$root/bench/lib.sh"
+meshes=$(shared_meshes)
 if [[ -n ${CSV_DIR:-} ]]; then
   tmp=$CSV_DIR
   mkdir -p "$tmp"
@@ -36,7 +33,7 @@ else
 fi
 printf '%-26s %9s %9s %7s  %s\n' mesh bytes_0 bytes_p 'size' \
   'at 5, 10, 25, 50, 90 % of bytes_0: PSNR without / with precincts (dB) [bytes with precincts for the same PSNR]'
-for mesh in $MESHES; do
+for mesh in $meshes; do
   name=$(basename "${mesh%.*}")
   if [[ ! -s $tmp/$name.0.csv ]]; then
     echo "$name: rd without precincts" >&2
@@ -53,27 +50,24 @@ name, a, b = sys.argv[1:]
 def curve(path):
     rows = [r for r in csv.DictReader(open(path))]
     return [(int(r["bytes_total"]), float(r["psnr_db"])) for r in rows]
+def interpolate(curve, x, at, to):
+    # Linear between the points around coordinate `at` = x (0: bytes,
+    # 1: PSNR); None past the curve's end, the first point before its start.
+    prev = None
+    for point in curve:
+        if point[at] >= x:
+            if prev is None:
+                return point[to]
+            if point[at] == prev[at]:
+                return point[to]
+            return prev[to] + (point[to] - prev[to]) * (x - prev[at]) / (point[at] - prev[at])
+        prev = point
+    return None
 def psnr_at(curve, budget):
-    # Linear between the packets around `budget`.
-    prev = None
-    for n, p in curve:
-        if n >= budget:
-            if prev is None:
-                return None
-            n0, p0 = prev
-            return p0 + (p - p0) * (budget - n0) / (n - n0) if n > n0 else p
-        prev = (n, p)
-    return None
+    # Before the first packet (the header alone is more): no PSNR.
+    return None if budget < curve[0][0] else interpolate(curve, budget, 0, 1)
 def bytes_for(curve, psnr):
-    prev = None
-    for n, p in curve:
-        if p >= psnr:
-            if prev is None:
-                return n
-            n0, p0 = prev
-            return n0 + (n - n0) * (psnr - p0) / (p - p0) if p > p0 else n
-        prev = (n, p)
-    return None
+    return interpolate(curve, psnr, 1, 0)
 c0, cp = curve(a), curve(b)
 full0, fullp = c0[-1][0], cp[-1][0]
 cells = []

@@ -17,16 +17,13 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-$root/build}
 cli=$build/tools/meshwave/meshwave
-shared=${MESHWAVE_SHARED_MESHES:-$root/../shared/data/meshes}
 [[ -x $cli ]] || { echo "no meshwave binary at $cli (build first)" >&2; exit 1; }
-if [[ -z ${MESHES:-} ]]; then
-  MESHES=$(ls "$shared"/*.ply "$shared"/*.obj 2> /dev/null | grep -v holes_patch || true)
-fi
-[[ -n $MESHES ]] || { echo "no meshes (set MESHES or put ../shared beside the clone)" >&2; exit 1; }
+source "$root/bench/lib.sh"
+meshes=$(shared_meshes)
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 echo "# meshwave region-rd, encode options: ${ENCODE_ARGS:-(defaults)}"
-for mesh in $MESHES; do
+for mesh in $meshes; do
   name=$(basename "${mesh%.*}")
   echo "$name: encoding" >&2
   # shellcheck disable=SC2086

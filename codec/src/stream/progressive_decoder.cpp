@@ -84,6 +84,20 @@ struct ProgressiveDecoder::Impl {
 
   bool parent_contexts() const { return header.coder == StreamCoder::k3xC; }
 
+  // Whether a packet or part of packet `id` may be offered at all: the
+  // decoder not broken, the id in the index.
+  Status CheckUsable(uint32_t id) const {
+    if (broken) {
+      return Status(StatusCode::kInvalidArgument,
+                    "decoder is unusable after an earlier corrupt packet");
+    }
+    if (id >= have.size()) {
+      return InvalidArgument("packet " + std::to_string(id) + " is not in the index of " +
+                             std::to_string(have.size()) + " packets");
+    }
+    return Status::Ok();
+  }
+
   uint32_t PartCount(uint32_t id) const {
     if (!packets->IsSplit(id)) return 0;
     return static_cast<uint32_t>(precinct_parent[static_cast<size_t>(packets->Subband(id))].size());
@@ -305,14 +319,7 @@ bool ProgressiveDecoder::DependenciesMet(uint32_t id) const {
 
 Status ProgressiveDecoder::AddPacket(uint32_t id, std::string_view payload) {
   Impl& m = *impl_;
-  if (m.broken) {
-    return Status(StatusCode::kInvalidArgument,
-                  "decoder is unusable after an earlier corrupt packet");
-  }
-  if (id >= m.have.size()) {
-    return InvalidArgument("packet " + std::to_string(id) + " is not in the index of " +
-                           std::to_string(m.have.size()) + " packets");
-  }
+  MW_RETURN_IF_ERROR(m.CheckUsable(id));
   const auto& index = m.header.packets;
   const bool base = m.packets->IsBase(id);
   const int j = m.packets->Subband(id);
@@ -390,14 +397,7 @@ bool ProgressiveDecoder::PartDependenciesMet(uint32_t id, uint32_t part) const {
 
 Status ProgressiveDecoder::AddPacketPart(uint32_t id, uint32_t part, std::string_view payload) {
   Impl& m = *impl_;
-  if (m.broken) {
-    return Status(StatusCode::kInvalidArgument,
-                  "decoder is unusable after an earlier corrupt packet");
-  }
-  if (id >= m.have.size()) {
-    return InvalidArgument("packet " + std::to_string(id) + " is not in the index of " +
-                           std::to_string(m.have.size()) + " packets");
-  }
+  MW_RETURN_IF_ERROR(m.CheckUsable(id));
   const uint32_t count = m.PartCount(id);
   const int j = m.packets->Subband(id);
   const int b = m.packets->Bitplane(id);
