@@ -172,6 +172,41 @@ TEST(RegionOrderTest, ANewRegionContinuesFromWhatIsHeld) {
   EXPECT_EQ(d->Positions(), f.full);
 }
 
+// A view: the parts of the precincts the camera's cone takes in come
+// before every part it does not, nearer and larger ones first among them.
+TEST(RegionOrderTest, AViewSendsWhatTheCameraSeesFirst) {
+  const RegionFixture& f = RegionStream();
+  // Far off, narrow, aimed at the side of the sphere: its cone takes in
+  // the near side of that point and misses the rest.
+  auto region = ParseViewRegion("6,0,6,-5.3,0.7,-6,4,800,600");
+  ASSERT_TRUE(region.ok());
+  const HeldUnits none(f.s->header, f.precincts);
+  const std::vector<StreamUnit> order =
+      RegionOrder(f.s->header, f.precincts, f.part_lengths, *region, none);
+  auto d = DecoderOf(*f.s);
+  const int finest = f.precincts.levels() - 1;
+  int seen = 0, unseen = 0;
+  bool unseen_started = false;
+  for (const StreamUnit& u : order) {
+    ASSERT_TRUE(SendUnit(f, *d, u).ok());
+    if (u.whole()) continue;
+    // Parts of the finest subband (the coarser ones' precincts are large).
+    if (static_cast<int>(f.precincts.count(finest)) != static_cast<int>(d->PartCount(u.id))) continue;
+    const double w = RegionWeight(*region, f.precincts.centre(finest, u.part),
+                                  f.precincts.radius(finest, u.part));
+    if (w > 0) {
+      ++seen;
+      EXPECT_FALSE(unseen_started) << "a part the camera sees after one it does not";
+    } else {
+      ++unseen;
+      unseen_started = true;
+    }
+  }
+  EXPECT_GT(seen, 10);
+  EXPECT_GT(unseen, 10);
+  EXPECT_EQ(d->Positions(), f.full);
+}
+
 // HeldUnits' rules are the decoder's: along a random order of units, both
 // agree on what is held and what is ready.
 TEST(RegionOrderTest, HeldUnitsAgreesWithTheDecoder) {
