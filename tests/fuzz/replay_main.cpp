@@ -3,6 +3,10 @@
 // (recursively) in the directories named, so that the seed and regression
 // corpora run in every build, under the sanitizers of that build. Exit code
 // 0 when every input ran; a finding aborts (the sanitizer or Require).
+// The first argument is the target's seed folder: missing or empty, the
+// replay fails (2), as libFuzzer does in the sanitizer stage, so that a
+// target whose seeds went missing is not a pass in the Release stage; a
+// regression corpus after it may not exist yet.
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
@@ -17,6 +21,12 @@ extern "C" __attribute__((weak)) int LLVMFuzzerInitialize(int* argc, char*** arg
 int main(int argc, char** argv) {
   if (LLVMFuzzerInitialize) LLVMFuzzerInitialize(&argc, &argv);
   std::vector<std::filesystem::path> files;
+  if (argc < 2 || !std::filesystem::is_directory(argv[1]) ||
+      std::filesystem::is_empty(argv[1])) {
+    std::fprintf(stderr, "replay: the seed folder %s is missing or empty\n",
+                 argc < 2 ? "(none named)" : argv[1]);
+    return 2;
+  }
   for (int i = 1; i < argc; ++i) {
     const std::filesystem::path p = argv[i];
     if (std::filesystem::is_directory(p)) {
