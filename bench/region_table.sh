@@ -4,8 +4,8 @@
 # `meshwave region-rd` on the stream: spheres holding 5, 10 and 25 % of the
 # finest vertices around the vertices farthest along two fixed directions;
 # per sphere the region's PSNR at 10, 25 and 50 % of the payload bytes in
-# both orders, and the bytes each needs to come within 0.1 dB of the
-# complete stream's region PSNR. PSNR: vertex PSNR of the vertices inside
+# both orders, and the bytes each needs before the region's vertices are
+# exactly the complete stream's. PSNR: vertex PSNR of the vertices inside
 # the sphere against the complete stream's decoded mesh, peak = the
 # header's bounding-box diagonal.
 #

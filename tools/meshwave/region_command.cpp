@@ -4,7 +4,7 @@
 // For each region (--region, or spheres around a few finest vertices
 // holding --shares of the finest vertices): the region's PSNR at some
 // budgets in both orders, and the bytes each order needs before the
-// region is within --tolerance dB of its PSNR in the complete stream.
+// region's vertices are exactly those of the complete stream.
 // PSNR: vertex PSNR of the vertices inside the sphere against the
 // complete stream's decoded mesh (what both orders converge to), peak =
 // the header's bounding-box diagonal. Bytes: payload bytes (the header,
@@ -23,6 +23,7 @@
 #include "meshwave/progressive_decoder.h"
 #include "meshwave/region.h"
 #include "meshwave/region_order.h"
+#include "stream/packet_index.h"  // HeaderDiagonal
 
 namespace meshwave::cli {
 namespace {
@@ -32,7 +33,6 @@ struct RegionArgs {
   std::string region;
   std::string shares = "0.05,0.1,0.25";
   int seeds = 3;
-  double tolerance = 0.1;
 };
 
 struct Stream {
@@ -99,16 +99,15 @@ size_t PrefixWithin(const Stream& s, const std::vector<StreamUnit>& order, uint6
   return k;
 }
 
-// The shortest prefix whose region PSNR is within `tolerance` of `final`
-// (bisection: the region's PSNR rises with the prefix, packet steps aside).
-Result<size_t> PrefixReaching(const Stream& s, ProgressiveDecoder& d,
-                              const std::vector<StreamUnit>& order, const SphereRegion& r,
-                              double target) {
+// The shortest prefix after which the region's vertices are exactly the
+// complete stream's (bisection: once exact, a longer prefix stays exact).
+Result<size_t> PrefixExact(const Stream& s, ProgressiveDecoder& d,
+                           const std::vector<StreamUnit>& order, const SphereRegion& r) {
   size_t lo = 0, hi = order.size();
   while (lo < hi) {
     const size_t mid = (lo + hi) / 2;
     MW_ASSIGN_OR_RETURN(double psnr, PsnrAfter(s, d, order, mid, r));
-    if (psnr >= target) {
+    if (std::isinf(psnr)) {
       hi = mid;
     } else {
       lo = mid + 1;
@@ -143,11 +142,7 @@ Result<Stream> Load(const std::string& path, std::string& bytes) {
     MW_RETURN_IF_ERROR(decoder->AddPacket(id, s.payload[id]));
   }
   s.full = decoder->Positions();
-  for (int a = 0; a < 3; ++a) {
-    const double e = h.bbox_max[static_cast<size_t>(a)] - h.bbox_min[static_cast<size_t>(a)];
-    s.diagonal += e * e;
-  }
-  s.diagonal = std::sqrt(s.diagonal);
+  s.diagonal = HeaderDiagonal(h);
   return s;
 }
 
@@ -216,7 +211,7 @@ Status Run(const RegionArgs& args) {
               "sphere against the complete stream's mesh) rd / region order\n",
               args.file.c_str(), s.full.size(), static_cast<unsigned long long>(total));
   std::printf("%-10s %8s %15s %15s %15s   %s\n", "region", "vertices", "at 10 %", "at 25 %",
-              "at 50 %", "bytes to within tolerance of the final: rd / region (ratio)");
+              "at 50 %", "bytes until the region is exact: rd / region (ratio)");
   for (const Case& c : cases) {
     const HeldUnits none(h, *s.precincts);
     const Region region{c.sphere, std::nullopt};
@@ -224,7 +219,6 @@ Status Run(const RegionArgs& args) {
         RegionOrder(h, *s.precincts, s.part_lengths, region, none);
     size_t inside = 0;
     for (const Vec3& p : s.full) inside += (p - c.sphere.centre).norm() <= c.sphere.radius;
-    MW_ASSIGN_OR_RETURN(double final_psnr, PsnrAfter(s, *decoder, rd, rd.size(), c.sphere));
     std::string cells;
     for (double share : {0.10, 0.25, 0.50}) {
       const auto budget = static_cast<uint64_t>(share * static_cast<double>(total));
@@ -236,11 +230,8 @@ Status Run(const RegionArgs& args) {
       std::snprintf(cell, sizeof cell, " %6.2f / %6.2f", a, b);
       cells += cell;
     }
-    // Within tolerance of the final (infinite: exact).
-    const double target = std::isinf(final_psnr) ? 999.0 : final_psnr - args.tolerance;
-    MW_ASSIGN_OR_RETURN(size_t rd_count, PrefixReaching(s, *decoder, rd, c.sphere, target));
-    MW_ASSIGN_OR_RETURN(size_t region_count,
-                        PrefixReaching(s, *decoder, by_region, c.sphere, target));
+    MW_ASSIGN_OR_RETURN(size_t rd_count, PrefixExact(s, *decoder, rd, c.sphere));
+    MW_ASSIGN_OR_RETURN(size_t region_count, PrefixExact(s, *decoder, by_region, c.sphere));
     const uint64_t rd_bytes = BytesOf(s, rd, rd_count);
     const uint64_t region_bytes = BytesOf(s, by_region, region_count);
     std::printf("%-10s %8zu%s   %llu / %llu (%.2f)\n", c.label.c_str(), inside, cells.c_str(),
@@ -260,8 +251,8 @@ void AddRegionCommand(CLI::App& app, int& exit_code) {
       "region-rd",
       "How much sooner the region order refines a region than the uniform rd order, on a "
       "complete .mwv stream: the region's PSNR at 10, 25 and 50 % of the payload bytes in "
-      "both orders, and the bytes each needs to come within --tolerance of the complete "
-      "stream there");
+      "both orders, and the bytes each needs before the region is exactly the complete "
+      "stream's");
   cmd->add_option("stream", args->file, "A complete .mwv stream (meshwave encode)")->required();
   cmd->add_option("--region", args->region, "A sphere x,y,z,r (default: spheres chosen by --shares)");
   cmd->add_option("--shares", args->shares,
@@ -270,10 +261,6 @@ void AddRegionCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--seeds", args->seeds, "Automatic spheres per share (around the vertices "
                                           "farthest along fixed directions)")
       ->check(CLI::Range(1, 5))
-      ->capture_default_str();
-  cmd->add_option("--tolerance", args->tolerance,
-                  "dB below the complete stream's region PSNR that counts as reached")
-      ->check(CLI::Range(0.0, 100.0))
       ->capture_default_str();
   cmd->callback([args, &exit_code] {
     if (Status s = Run(*args); !s.ok()) exit_code = Fail("region-rd", s);
