@@ -245,6 +245,7 @@ Result<std::unique_ptr<ProgressiveDecoder>> ProgressiveDecoder::Create(
   Impl* m = impl.get();
   const PrecinctPartition partition = PartitionIntoPrecincts(
       *m->hierarchy, m->base.grid, m->header.packets.precinct_coefficients);
+  // Per subband, each precinct's parent (subband 0's: 0): also their count.
   m->precinct_parent = partition.ParentsPerSubband();
   if (partition.levels() > 0) m->precinct_parent[0].assign(partition.count(0), 0);
   m->chain_packets.assign(m->estimates.chain_start.size(), {});
@@ -255,7 +256,7 @@ Result<std::unique_ptr<ProgressiveDecoder>> ProgressiveDecoder::Create(
   }
   auto layouts = std::make_shared<SubbandLayoutBuilder>(
       *m->hierarchy, m->base.grid, m->header.octree_leaf_size,
-      partition.FacePrecinctsPerSubband(), partition.ParentsPerSubband());
+      partition.FacePrecinctsPerSubband(), m->precinct_parent);
   m->coding.Start(static_cast<size_t>(m->hierarchy->levels()),
                   [m, layouts](size_t j) {
                     Impl::SubbandCoding s{layouts->Next(), {}, {}};
