@@ -8,6 +8,7 @@
 #include <cstring>
 #include <string>
 
+#include "core/base64.h"
 #include "core/byte_reader.h"
 #include "meshwave/gltf.h"
 #include "meshwave/mesh.h"
@@ -36,30 +37,6 @@ void AppendUnsigned(std::string& out, uint64_t value) {
   char buffer[24];
   auto [end, ec] = std::to_chars(buffer, buffer + sizeof(buffer), value);
   out.append(buffer, end);
-}
-
-// RFC 4648 base64 with padding.
-std::string Base64(std::string_view bytes) {
-  static constexpr char kDigits[] =
-      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  out.reserve((bytes.size() + 2) / 3 * 4);
-  size_t i = 0;
-  for (; i + 3 <= bytes.size(); i += 3) {
-    const uint32_t v = uint32_t{static_cast<uint8_t>(bytes[i])} << 16 |
-                       uint32_t{static_cast<uint8_t>(bytes[i + 1])} << 8 |
-                       static_cast<uint8_t>(bytes[i + 2]);
-    for (int shift = 18; shift >= 0; shift -= 6) out += kDigits[(v >> shift) & 63];
-  }
-  if (const size_t rest = bytes.size() - i; rest > 0) {
-    uint32_t v = uint32_t{static_cast<uint8_t>(bytes[i])} << 16;
-    if (rest == 2) v |= uint32_t{static_cast<uint8_t>(bytes[i + 1])} << 8;
-    out += kDigits[(v >> 18) & 63];
-    out += kDigits[(v >> 12) & 63];
-    out += rest == 2 ? kDigits[(v >> 6) & 63] : '=';
-    out += '=';
-  }
-  return out;
 }
 
 void AppendFloatArray(std::string& out, const std::array<float, 3>& v) {
