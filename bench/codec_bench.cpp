@@ -8,6 +8,8 @@
 #include <memory>
 #include <iostream>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "meshwave/encoder.h"
 #include "meshwave/mesh.h"
@@ -122,7 +124,96 @@ void BM_RefinementStep(benchmark::State& state) {
   state.counters["vertices"] = static_cast<double>(s.header.vertices);
 }
 
+// A region step (issue 21) on the 1.66 M-vertex stream (default precincts):
+// one part of the finest subband's last split packet decoded, against the
+// whole packet, each into a decoder holding every other packet; no
+// reconstruction (Positions() rebuilds the whole mesh, BM_RefinementStep).
+// A part decodes its precinct alone: its cost follows the precinct, not
+// the mesh.
+struct FinestSplit {
+  uint32_t id = 0;
+  uint32_t parts = 0;
+};
+
+FinestSplit LastSplitPacket(const EncodedStream& s) {
+  auto d = ProgressiveDecoder::Create(s.header);
+  FinestSplit out;
+  for (uint32_t id = 0; id < s.packets.size(); ++id) {
+    if ((*d)->PartCount(id) > 0) out = {id, (*d)->PartCount(id)};
+  }
+  if (out.parts == 0) std::exit(1);
+  return out;
+}
+
+std::unique_ptr<ProgressiveDecoder> AllBut(const EncodedStream& s, uint32_t missing) {
+  auto d = std::move(ProgressiveDecoder::Create(s.header)).value();
+  for (uint32_t id = 0; id < s.packets.size(); ++id) {
+    if (id != missing && !d->AddPacket(id, s.packets[id]).ok()) std::exit(1);
+  }
+  return d;
+}
+
+void BM_PartOfFinestPacket(benchmark::State& state) {
+  const EncodedStream& s = Stream();
+  const FinestSplit split = LastSplitPacket(s);
+  std::vector<std::string> parts;
+  {
+    // The parts' payloads, cut as FORMAT.md 2.2 says: P - 1 varint lengths.
+    std::string_view in = s.packets[split.id];
+    std::vector<uint64_t> lengths;
+    for (uint32_t p = 0; p + 1 < split.parts; ++p) {
+      uint64_t v = 0;
+      for (int shift = 0;; shift += 7) {
+        const auto byte = static_cast<uint8_t>(in.front());
+        in.remove_prefix(1);
+        v |= uint64_t{byte & 0x7fu} << shift;
+        if (!(byte & 0x80)) break;
+      }
+      lengths.push_back(v);
+    }
+    for (uint64_t n : lengths) {
+      parts.emplace_back(in.substr(0, n));
+      in.remove_prefix(n);
+    }
+    parts.emplace_back(in);
+  }
+  std::unique_ptr<ProgressiveDecoder> d;
+  uint32_t next = split.parts;
+  uint64_t bytes = 0;
+  for (auto _ : state) {
+    if (next == split.parts) {
+      state.PauseTiming();
+      d = AllBut(s, split.id);
+      next = 0;
+      state.ResumeTiming();
+    }
+    bytes += parts[next].size();
+    if (!d->AddPacketPart(split.id, next, parts[next]).ok()) std::exit(1);
+    ++next;
+  }
+  state.counters["parts"] = split.parts;
+  state.counters["part_bytes"] = static_cast<double>(bytes) / static_cast<double>(state.iterations());
+}
+
+void BM_WholeFinestPacket(benchmark::State& state) {
+  const EncodedStream& s = Stream();
+  const FinestSplit split = LastSplitPacket(s);
+  for (auto _ : state) {
+    state.PauseTiming();
+    auto d = AllBut(s, split.id);
+    state.ResumeTiming();
+    if (!d->AddPacket(split.id, s.packets[split.id]).ok()) std::exit(1);
+    state.PauseTiming();
+    d.reset();
+    state.ResumeTiming();
+  }
+  state.counters["parts"] = split.parts;
+  state.counters["packet_bytes"] = static_cast<double>(s.packets[split.id].size());
+}
+
 BENCHMARK(BM_DecoderSetup)->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK(BM_PartOfFinestPacket)->Unit(benchmark::kMicrosecond)->Iterations(200);
+BENCHMARK(BM_WholeFinestPacket)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(BM_RefinementStep)->Unit(benchmark::kMillisecond)->Iterations(20);
 BENCHMARK(BM_Encode3xC)->Unit(benchmark::kMillisecond)->Iterations(2);
 BENCHMARK(BM_DecodeAllPackets3xC)->Unit(benchmark::kMillisecond)->Iterations(3);

@@ -6,8 +6,9 @@
 # subband: 18 s under TSan); the server suites also decode with them.
 asan_suites=(core_test mesh_test entropy_test stream_test wavelet_test metrics_test remesh_test
              server_test server_http_test server_ws_test client_test client_e2e_test
-             reliability_test child_process_test)
+             reliability_test child_process_test server_region_test)
 fuzz_targets=(ply_reader_fuzz obj_reader_fuzz off_reader_fuzz container_fuzz packet_fuzz
               decoder_order_fuzz stream_header_fuzz http_request_fuzz ws_message_fuzz
-              stream_splitter_fuzz ws_server_message_fuzz local_state_fuzz region_fuzz)
+              stream_splitter_fuzz ws_server_message_fuzz local_state_fuzz region_fuzz
+              stream_units_fuzz)
 tsan_suites=(core_test stream_test server_http_test server_ws_test reliability_test)

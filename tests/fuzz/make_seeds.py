@@ -230,6 +230,10 @@ def client_seeds():
     count = len(payloads)
     put("local_state_fuzz", "http_quality_all", state(b"http://127.0.0.1:8080/v1/meshes/0123456789ab", b"quality", -1, count, 5000, tiny))
     put("local_state_fuzz", "ws_rd_level1", state(b"ws://localhost:9/v1/meshes/abcdefabcdef", b"rd", 1, count, 9000, tiny))
+    units_meta = f(1, 0, 1) + f(2, 2, b"http://127.0.0.1:8080/v1/meshes/0123456789ab") + f(3, 2, b"quality") \
+        + f(4, 0, 0xFFFFFFFFFFFFFFFF) + f(6, 0, 4000) + f(7, 0, 1) + f(8, 2, varint(3) + varint(1) + varint(2) + b"xy") \
+        + f(9, 2, b"Bw") + f(10, 2, b"sphere:0,0,0,1")
+    put("local_state_fuzz", "units_state", struct.pack("<H", len(units_meta)) + units_meta + tiny)
     put("local_state_fuzz", "cursor_mismatch", state(b"https://h/v1/meshes/0123456789ab", b"resolution", 2, 3, 1, tiny))
 
 def region_seeds():
