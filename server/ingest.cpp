@@ -93,6 +93,8 @@ Result<IngestResult> IngestMeshBytes(Catalog& catalog, std::string_view bytes,
   EncodeOptions options;
   options.name = name;
   options.threads = choices.threads;
+  options.precinct_coefficients = choices.precinct_coefficients;
+  options.split_bytes_per_precinct = choices.split_bytes_per_precinct;
   if (fidelity) options.precision = PrecisionForFidelity(choices.fidelity_db);
   MW_ASSIGN_OR_RETURN(EncodedStream stream, EncodeMesh(input.mesh, options));
   double reached = 0;

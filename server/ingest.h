@@ -11,6 +11,7 @@
 #include <string_view>
 
 #include "catalog.h"
+#include "meshwave/encoder.h"
 #include "meshwave/fidelity.h"
 #include "meshwave/mesh.h"
 #include "meshwave/status.h"
@@ -40,6 +41,11 @@ struct EncodeChoices {
   // Remesh even a mesh that is already semi-regular (`meshwave encode
   // --remesh`).
   bool force_remesh = false;
+  // Precincts (`meshwave encode --precinct-size`, `--split-bytes`): base
+  // faces grouped into runs of at least this many coefficients per subband
+  // so that region requests can refine one part first; 0: none.
+  uint32_t precinct_coefficients = EncodeOptions{}.precinct_coefficients;
+  uint32_t split_bytes_per_precinct = EncodeOptions{}.split_bytes_per_precinct;
 };
 
 // Stores a complete container (checked with ParseContainer and

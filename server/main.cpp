@@ -145,6 +145,17 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   ingest->add_flag("--remesh", ingest_options.choices.force_remesh,
                    "Remesh even meshes that are already semi-regular (meshwave encode --remesh)");
+  ingest->add_option("--precinct-size", ingest_options.choices.precinct_coefficients,
+                     "Precincts, so that region requests can refine one part first: base faces "
+                     "grouped into runs of at least this many coefficients per subband "
+                     "(meshwave encode --precinct-size); 0: none")
+      ->check(CLI::Range(0u, 1u << 30))
+      ->capture_default_str();
+  ingest->add_option("--split-bytes", ingest_options.choices.split_bytes_per_precinct,
+                     "Packets are split into one codeword per precinct where the precincts "
+                     "would average at least this many bytes (meshwave encode --split-bytes)")
+      ->check(CLI::Range(1u, 1u << 20))
+      ->capture_default_str();
   ingest->add_option("--shard", ingest_options.shard,
                      "I/N: only the files of shard I of N (one per worker of a Job)")
       ->capture_default_str();

@@ -5,7 +5,10 @@
 #include "meshwave/container.h"
 #include "response.h"
 #include "stream_plan.h"
+#include "sha256.h"
 #include "stream_query.h"
+#include "unit_plan.h"
+#include "meshwave/stream_units.h"
 
 namespace meshwave::server {
 namespace {
@@ -47,6 +50,44 @@ Response Binary(const std::shared_ptr<const ServedMesh>& mesh, const std::string
   r.set(http::field::content_type, "application/octet-stream");
   r.body().mesh = mesh;
   MarkImmutable(r, etag);
+  return r;
+}
+
+// A region request (docs/API.md, "Region requests"): unit records of what
+// the client lacks, in the region's (or the uniform order's) order.
+Response GetUnits(const Request& req, const std::shared_ptr<const ServedMesh>& mesh,
+                  const StreamQuery& q) {
+  const ServedMesh& m = *mesh;
+  auto table = m.units();
+  if (!table.ok()) return StatusError(table.status());
+  HeldUnits held = (*table)->nothing_held();
+  if (q.held) {
+    if (Status s = DecodeHeldUnits(*q.held, (*table)->numbering(), held); !s.ok()) {
+      return StatusError(s);
+    }
+  }
+  auto plan = PlanUnits(m, **table, held,
+                        UnitRequest{q.region, q.order, q.max_level, q.budget});
+  if (!plan.ok()) return StatusError(plan.status());
+  // The bytes depend on what is held, the order or region, the level limit
+  // and how many units fitted.
+  const std::string key =
+      std::string(ProgressionName(q.order)) + "|" + (q.region ? FormatRegionShape(*q.region) : "") +
+      "|" + std::to_string(q.max_level) + "|" + q.held.value_or("") + "|" +
+      std::to_string(plan->units.size());
+  const std::string etag = StrongEtag(m.entry().sha256, "u-" + Sha256Hex(key).substr(0, 32));
+  Response r;
+  if (!NotModified(req, etag, r)) {
+    r = Binary(mesh, etag);
+    r.set(http::field::content_type, "application/vnd.meshwave.units");
+    std::string& body = r.body().owned;
+    body.reserve(plan->bytes + 12 * plan->units.size());
+    for (const StreamUnit& u : plan->units) {
+      AppendUnitRecord(body, u, (*table)->Payload(m.payload(u.id), u));
+    }
+  }
+  r.set("X-Meshwave-Units", std::to_string(plan->units.size()));
+  r.set("X-Meshwave-Complete", plan->complete ? "true" : "false");
   return r;
 }
 
@@ -141,6 +182,7 @@ Response GetStream(ServerContext& ctx, const Request& req, const std::string& id
   if (!q.ok()) return StatusError(q.status());
   Lookup l = Find(ctx, id);
   if (!l.mesh) return std::move(l.error);
+  if (q->units()) return GetUnits(req, l.mesh, *q);
   const ServedMesh& m = *l.mesh;
   auto plan = PlanStream(m, q->order, q->max_level, q->from, q->budget, q->from == 0);
   if (!plan.ok()) return StatusError(plan.status());

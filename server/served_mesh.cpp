@@ -51,4 +51,17 @@ const std::vector<uint32_t>& ServedMesh::Order(Progression p, int max_level) con
   return orders_[3 * static_cast<size_t>(max_level + 1) + static_cast<size_t>(p)];
 }
 
+Result<const UnitTable*> ServedMesh::units() const {
+  std::call_once(units_once_, [this] {
+    auto table = UnitTable::Build(header_, payloads_);
+    if (table.ok()) {
+      units_ = std::move(*table);
+    } else {
+      units_status_ = ParseError("mesh " + entry_.id + ": " + table.status().message());
+    }
+  });
+  if (!units_) return units_status_;
+  return units_.get();
+}
+
 }  // namespace meshwave::server

@@ -6,6 +6,7 @@
 #define MESHWAVE_SERVER_SERVED_MESH_H_
 
 #include <atomic>
+#include <mutex>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -16,6 +17,7 @@
 #include "meshwave/progression.h"
 #include "meshwave/status.h"
 #include "meshwave/stream_header.h"
+#include "unit_table.h"
 
 namespace meshwave::server {
 
@@ -46,6 +48,9 @@ class ServedMesh {
   // PacketOrder(header, p, max_level); max_level in [-1, levels()].
   const std::vector<uint32_t>& Order(Progression p, int max_level) const;
   const std::vector<RdTablePoint>& rd_table() const { return rd_table_; }
+  // The precincts and units region requests need, built on the first call
+  // (thread-safe; tens of milliseconds for a large mesh) and kept.
+  Result<const UnitTable*> units() const;
 
   // Set once the mesh leaves the MeshCache (deleted, or evicted as least
   // recently used): responses planned from it are no longer served from
@@ -64,6 +69,9 @@ class ServedMesh {
   std::vector<std::vector<uint32_t>> orders_;
   std::vector<RdTablePoint> rd_table_;
   mutable std::atomic<bool> retired_{false};
+  mutable std::once_flag units_once_;
+  mutable std::unique_ptr<const UnitTable> units_;
+  mutable Status units_status_;
 };
 
 }  // namespace meshwave::server

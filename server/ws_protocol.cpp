@@ -1,5 +1,7 @@
 #include "ws_protocol.h"
 
+#include <cmath>
+
 #include "core/protobuf_wire.h"
 #include "mesh_id.h"
 #include "stream_query.h"
@@ -69,6 +71,26 @@ Status ParseStreamFields(const StreamFields& s, ClientRequest& r) {
   return Status::Ok();
 }
 
+// A region or view and its screen error, as the three fields of a start,
+// refine or resume carry them (ASCII text forms of meshwave/region.h).
+Result<std::optional<Region>> ParseRegionFields(const std::string& region, const std::string& view,
+                                                bool has_screen_error, double screen_error) {
+  if (!region.empty() && !view.empty()) return Bad("region and view: ask for one of them");
+  if (has_screen_error && view.empty()) return Bad("screen_error applies to a view only");
+  if (region.empty() && view.empty()) return std::optional<Region>();
+  auto r = region.empty() ? ParseViewRegion(view) : ParseSphereRegion(region);
+  if (!r.ok()) return Bad((region.empty() ? "view: " : "region: ") + r.status().message());
+  if (has_screen_error) {
+    // The text parser's checks, on the number's shortest text form.
+    if (!std::isfinite(screen_error) || screen_error <= 0 || screen_error > kMaxScreenPixels) {
+      return Bad("screen_error must be a number of pixels in (0, " +
+                 std::to_string(kMaxScreenPixels) + "]");
+    }
+    r->screen_error_px = screen_error;
+  }
+  return std::optional<Region>(*std::move(r));
+}
+
 }  // namespace
 
 Result<ClientRequest> ParseClientMessage(std::string_view bytes,
@@ -90,6 +112,9 @@ Result<ClientRequest> ParseClientMessage(std::string_view bytes,
       MW_RETURN_IF_ERROR(ParseStreamFields(s, r));
       r.header_only = s.header_only();
       if (r.header_only && r.budget) return Bad("header_only takes no budget");
+      MW_ASSIGN_OR_RETURN(r.region, ParseRegionFields(s.region(), s.view(), s.has_screen_error(),
+                                                      s.screen_error()));
+      if (r.region && !s.order().empty()) return Bad("order and a region: ask for one of them");
       return r;
     }
     case proto::ClientMessage::kRefine: {
@@ -99,6 +124,14 @@ Result<ClientRequest> ParseClientMessage(std::string_view bytes,
         return Bad("refine needs extra_bytes of at least 1");
       if (r.extra_bytes > kMaxBudget)
         return Bad("extra_bytes is above 2^50 bytes");
+      const auto& f = m.refine();
+      MW_ASSIGN_OR_RETURN(r.region, ParseRegionFields(f.region(), f.view(), f.has_screen_error(),
+                                                      f.screen_error()));
+      if (!f.order().empty()) {
+        if (r.region) return Bad("order and a region: ask for one of them");
+        MW_ASSIGN_OR_RETURN(r.order, ParseOrder(f.order()));
+        r.refine_order = true;
+      }
       return r;
     }
     case proto::ClientMessage::kResume: {
@@ -106,6 +139,13 @@ Result<ClientRequest> ParseClientMessage(std::string_view bytes,
       r.kind = ClientRequest::Kind::kResume;
       MW_RETURN_IF_ERROR(ParseStreamFields(s, r));
       r.cursor = s.cursor();
+      MW_ASSIGN_OR_RETURN(r.region, ParseRegionFields(s.region(), s.view(), s.has_screen_error(),
+                                                      s.screen_error()));
+      if (r.region && !s.order().empty()) return Bad("order and a region: ask for one of them");
+      if (!s.held().empty() || r.region) {
+        if (r.cursor != 0) return Bad("cursor and held: a session counting units resumes with held");
+        r.held = s.held();
+      }
       return r;
     }
     case proto::ClientMessage::MESSAGE_NOT_SET:
@@ -122,19 +162,23 @@ std::string ErrorMessage(proto::Error::Code code, std::string_view message) {
 }
 
 std::string PacketMessagePrefix(uint32_t cursor, uint32_t id,
-                                uint64_t payload_size) {
-  // Wire format, fields in number order as protobuf writes them; proto3
-  // leaves zero numbers and empty bytes out. Every tag is one byte (field
-  // numbers below 16).
+                                uint64_t payload_size, std::optional<uint32_t> part) {
+  // Wire format, fields in number order as protobuf writes them but `part`
+  // (4) before the payload (3), which must come last; proto3 leaves zero
+  // numbers and empty bytes out, an optional field is written when set.
+  // Every tag is one byte (field numbers below 16).
   constexpr uint32_t kPacketTag =
       WireTag(proto::ServerMessage::kPacketFieldNumber, kLengthDelimited);
   constexpr uint32_t kCursorTag = WireTag(proto::Packet::kCursorFieldNumber, kVarint);
   constexpr uint32_t kIdTag = WireTag(proto::Packet::kIdFieldNumber, kVarint);
   constexpr uint32_t kPayloadTag = WireTag(proto::Packet::kPayloadFieldNumber, kLengthDelimited);
-  static_assert(kPacketTag < 0x80 && kCursorTag < 0x80 && kIdTag < 0x80 && kPayloadTag < 0x80);
+  constexpr uint32_t kPartTag = WireTag(proto::Packet::kPartFieldNumber, kVarint);
+  static_assert(kPacketTag < 0x80 && kCursorTag < 0x80 && kIdTag < 0x80 && kPayloadTag < 0x80 &&
+                kPartTag < 0x80);
   uint64_t inner = 0;
   if (cursor != 0) inner += 1 + VarintSize(cursor);
   if (id != 0) inner += 1 + VarintSize(id);
+  if (part) inner += 1 + VarintSize(*part);
   if (payload_size != 0) inner += 1 + VarintSize(payload_size) + payload_size;
   std::string out;
   out.reserve(24);
@@ -147,6 +191,10 @@ std::string PacketMessagePrefix(uint32_t cursor, uint32_t id,
   if (id != 0) {
     PutVarint(out, kIdTag);
     PutVarint(out, id);
+  }
+  if (part) {
+    PutVarint(out, kPartTag);
+    PutVarint(out, *part);
   }
   if (payload_size != 0) {
     PutVarint(out, kPayloadTag);

@@ -11,6 +11,7 @@
 #include <string_view>
 
 #include "meshwave/progression.h"
+#include "meshwave/region.h"
 #include "meshwave/status.h"
 #include "websocket.pb.h"
 
@@ -41,6 +42,14 @@ struct ClientRequest {
   bool header_only = false;        // kStart
   uint32_t cursor = 0;             // kResume
   uint64_t extra_bytes = 0;        // kRefine, >= 1
+  // Region requests (docs/API.md): a region or view to refine first (all
+  // three kinds; start and resume leave `order` at its default with one).
+  std::optional<Region> region;
+  bool refine_order = false;       // kRefine: `order` names a new order
+  // kResume of a session counting units: the held bitmap's text (checked
+  // against the mesh by the session); set, maybe empty, with a region too.
+  std::optional<std::string> held;
+  bool units() const { return region.has_value() || held.has_value(); }
 };
 
 // Parses one binary message from a client. Safe on any bytes: kInvalidArgument
@@ -49,19 +58,22 @@ struct ClientRequest {
 // order, or has a number out of range (max_level > kMaxLevelLimit, budgets
 // and extra_bytes > kMaxBudget, rate > kMaxRate or in (0, kMinRate), extra_bytes 0,
 // header_only
-// with a budget). Limits that depend on the mesh (levels, order length) are
-// the session's to check.
+// with a budget); a region or view that does not parse, both at once, a
+// screen error without a view, a region beside an order, and a resume with
+// both a cursor and held units. Limits that depend on the mesh (levels,
+// order length, the held bitmap) are the session's to check.
 Result<ClientRequest> ParseClientMessage(std::string_view bytes,
                                          const WsLimits& limits);
 
 // A serialized ServerMessage holding `error`.
 std::string ErrorMessage(proto::Error::Code code, std::string_view message);
 
-// The bytes of a ServerMessage holding Packet{cursor, id, payload} that come
-// before the payload: the frame is this prefix followed by the payload
-// itself, byte for byte what SerializeAsString would give.
-std::string PacketMessagePrefix(uint32_t cursor, uint32_t id,
-                                uint64_t payload_size);
+// The bytes of a ServerMessage holding Packet{cursor, id, part, payload}
+// that come before the payload: the frame is this prefix followed by the
+// payload itself, byte for byte what SerializeAsString would give without
+// a part (with one, `part` comes before the payload).
+std::string PacketMessagePrefix(uint32_t cursor, uint32_t id, uint64_t payload_size,
+                                std::optional<uint32_t> part = std::nullopt);
 
 }  // namespace meshwave::server
 

@@ -5,6 +5,7 @@
 #include <array>
 
 #include "meshwave/container.h"
+#include "meshwave/stream_units.h"
 #include "response.h"
 #include "stream_plan.h"
 #include "stream_query.h"
@@ -154,8 +155,7 @@ void WsSession::Handle(const ClientRequest& request) {
   if (ctx_.stopping()) {
     return SendError(proto::Error::UNAVAILABLE, "the server is stopping");
   }
-  if (request.kind == ClientRequest::Kind::kRefine)
-    return RefineStream(request.extra_bytes);
+  if (request.kind == ClientRequest::Kind::kRefine) return RefineStream(request);
   if (streaming()) {
     return SendError(proto::Error::BAD_REQUEST,
                      "a stream is in progress: wait for Done, or send refine");
@@ -173,6 +173,10 @@ void WsSession::StartStream(const ClientRequest& r) {
   if (!*found)
     return SendError(proto::Error::NOT_FOUND, "no mesh with id " + r.mesh_id);
   std::shared_ptr<const ServedMesh> mesh = std::move(*found);
+  if (r.units()) {
+    if (StartUnits(r, std::move(mesh))) SetPacing(r.rate);
+    return;
+  }
   const bool start = r.kind == ClientRequest::Kind::kStart;
   uint64_t budget = r.budget.value_or(kMaxBudget);
   // Exactly the header's container: no packet fits beside it.
@@ -184,17 +188,14 @@ void WsSession::StartStream(const ClientRequest& r) {
 
   mesh_ = std::move(mesh);
   order_ = plan->order;
+  max_level_ = r.max_level;
+  units_ = nullptr;
+  held_.reset();
+  selected_.clear();
   cursor_ = from;
   end_ = plan->selection.next_cursor;
-  done_at_.push_back(end_);
-  const auto now = TokenBucket::Clock::now();
-  if (r.rate == 0) {
-    pacer_.reset();
-  } else if (pacer_ && pacer_->rate() == r.rate) {
-    pacer_->DropCredit(now);
-  } else {
-    pacer_.emplace(r.rate, now);
-  }
+  done_at_.push_back({end_, plan->complete()});
+  SetPacing(r.rate);
   spdlog::info(
       "ws {}: {} mesh {} order {} max_level {} from {} to {} ({} bytes) rate "
       "{} B/s",
@@ -211,7 +212,115 @@ void WsSession::StartStream(const ClientRequest& r) {
   Queue(m, start);
 }
 
-void WsSession::RefineStream(uint64_t extra_bytes) {
+void WsSession::SetPacing(uint64_t rate) {
+  const auto now = TokenBucket::Clock::now();
+  if (rate == 0) {
+    pacer_.reset();
+  } else if (pacer_ && pacer_->rate() == rate) {
+    pacer_->DropCredit(now);
+  } else {
+    pacer_.emplace(rate, now);
+  }
+}
+
+bool WsSession::StartUnits(const ClientRequest& r, std::shared_ptr<const ServedMesh> mesh) {
+  if (r.max_level > static_cast<int>(mesh->levels())) {
+    SendError(proto::Error::BAD_REQUEST,
+              "max_level " + std::to_string(r.max_level) + " exceeds the " +
+                  std::to_string(mesh->levels()) + " levels of mesh " + mesh->entry().id);
+    return false;
+  }
+  auto table = mesh->units();
+  if (!table.ok()) {
+    SendError(proto::Error::UNAVAILABLE, table.status().message());
+    return false;
+  }
+  HeldUnits held = (*table)->nothing_held();
+  if (r.held) {
+    if (Status s = DecodeHeldUnits(*r.held, (*table)->numbering(), held); !s.ok()) {
+      SendError(proto::Error::BAD_REQUEST, s.message());
+      return false;
+    }
+  }
+  const bool start = r.kind == ClientRequest::Kind::kStart;
+  // A start's budget counts the header, as a container's does.
+  const uint64_t header = start ? ContainerSize(mesh->header(), {}) : 0;
+  uint64_t budget = r.budget.value_or(kMaxBudget);
+  if (r.header_only) budget = header;
+  if (budget < header) {
+    SendError(proto::Error::BAD_REQUEST, "budget " + std::to_string(budget) +
+                                             " is smaller than the stream header (" +
+                                             std::to_string(header) + " bytes)");
+    return false;
+  }
+  mesh_ = std::move(mesh);
+  order_ = nullptr;
+  max_level_ = r.max_level;
+  units_ = *table;
+  held_.emplace(std::move(held));
+  unit_request_ = UnitRequest{r.region, r.order, r.max_level, 0};
+  selected_.clear();
+  cursor_ = end_ = 0;
+  const UnitPlan plan = SelectUnits(budget - header);
+  spdlog::info("ws {}: {} mesh {} {} max_level {}: {} units ({} bytes)", remote_,
+               start ? "start" : "resume", mesh_->entry().id,
+               r.region ? "region " + FormatRegionShape(*r.region)
+                        : std::string("order ") + ProgressionName(r.order),
+               r.max_level, plan.units.size(), plan.bytes);
+  proto::ServerMessage m;
+  if (start) {
+    m.mutable_start()->set_header(mesh_->header_bytes());
+    *m.mutable_start()->mutable_selection() = UnitSelection(0, plan, header + plan.bytes);
+  } else {
+    *m.mutable_selection() = UnitSelection(0, plan, plan.bytes);
+  }
+  Queue(m, start);
+  return true;
+}
+
+bool WsSession::SwitchToUnits() {
+  if (units_) return true;
+  auto table = mesh_->units();
+  if (!table.ok()) {
+    SendError(proto::Error::UNAVAILABLE, table.status().message());
+    return false;
+  }
+  units_ = *table;
+  held_.emplace(units_->nothing_held());
+  // Cursors keep counting messages: packets selected so far are units.
+  for (size_t k = 0; k < end_; ++k) {
+    selected_.push_back({(*order_)[k]});
+    held_->Add({(*order_)[k]});
+  }
+  unit_request_.max_level = max_level_;
+  order_ = nullptr;
+  return true;
+}
+
+UnitPlan WsSession::SelectUnits(uint64_t budget) {
+  unit_request_.budget = budget;
+  // The level limit was checked when the stream started.
+  UnitPlan plan = *PlanUnits(*mesh_, *units_, *held_, unit_request_);
+  for (const StreamUnit& u : plan.units) {
+    held_->Add(u);
+    selected_.push_back(u);
+  }
+  end_ = selected_.size();
+  done_at_.push_back({end_, plan.complete});
+  return plan;
+}
+
+proto::Selection WsSession::UnitSelection(size_t from, const UnitPlan& plan,
+                                          uint64_t bytes) const {
+  proto::Selection s;
+  s.set_from_cursor(static_cast<uint32_t>(from));
+  s.set_next_cursor(static_cast<uint32_t>(from + plan.units.size()));
+  s.set_order_packets(static_cast<uint32_t>(units_->UnitsBelow(max_level_)));
+  s.set_bytes(bytes);
+  return s;
+}
+
+void WsSession::RefineStream(const ClientRequest& r) {
   if (!mesh_) {
     return SendError(proto::Error::BAD_REQUEST,
                      "nothing to refine: send start or resume first");
@@ -221,16 +330,31 @@ void WsSession::RefineStream(uint64_t extra_bytes) {
                      std::to_string(kMaxPendingDone) +
                          " requests of this stream are still running: wait for a Done");
   }
+  const bool changes = r.region || r.refine_order;
+  if (changes || units_) {
+    if (!SwitchToUnits()) return;
+    if (changes) {
+      unit_request_.region = r.region;
+      unit_request_.order = r.order;
+    }
+    const size_t from = end_;
+    const UnitPlan plan = SelectUnits(r.extra_bytes);
+    proto::ServerMessage m;
+    *m.mutable_selection() = UnitSelection(from, plan, plan.bytes);
+    spdlog::debug("ws {}: refine {} bytes, {} units", remote_, r.extra_bytes, plan.units.size());
+    if (!streaming() && pacer_) pacer_->DropCredit(TokenBucket::Clock::now());
+    return Queue(m, false);
+  }
   StreamPlan plan;
   plan.order = order_;
-  plan.selection = SelectPayloads(mesh_->header(), *order_, extra_bytes, end_);
+  plan.selection = SelectPayloads(mesh_->header(), *order_, r.extra_bytes, end_);
   proto::ServerMessage m;
   *m.mutable_selection() = ToProto(plan, end_);
-  spdlog::debug("ws {}: refine {} bytes, to {}", remote_, extra_bytes,
+  spdlog::debug("ws {}: refine {} bytes, to {}", remote_, r.extra_bytes,
                 plan.selection.next_cursor);
   end_ = plan.selection.next_cursor;
   if (!streaming() && pacer_) pacer_->DropCredit(TokenBucket::Clock::now());
-  done_at_.push_back(end_);
+  done_at_.push_back({end_, plan.complete()});
   Queue(m, false);
 }
 
@@ -258,19 +382,24 @@ void WsSession::Pump() {
     return write(net::buffer(in_flight_));
   }
   // One Done per request, once the packets it selected are out.
-  if (!done_at_.empty() && cursor_ == done_at_.front()) {
+  if (!done_at_.empty() && cursor_ == done_at_.front().end) {
     proto::ServerMessage m;
     m.mutable_done()->set_next_cursor(static_cast<uint32_t>(cursor_));
-    m.mutable_done()->set_complete(cursor_ == order_->size());
+    m.mutable_done()->set_complete(done_at_.front().complete);
     done_at_.pop_front();
     in_flight_ = m.SerializeAsString();
     return write(net::buffer(in_flight_));
   }
   if (mesh_ && cursor_ < end_) {
-    const auto id = (*order_)[cursor_];
-    const std::string_view payload = mesh_->payload(id);
+    const StreamUnit unit = order_ ? StreamUnit{(*order_)[cursor_]} : selected_[cursor_];
+    std::string_view payload = mesh_->payload(unit.id);
+    std::optional<uint32_t> part;
+    if (!unit.whole()) {
+      payload = units_->Payload(payload, unit);
+      part = unit.part;
+    }
     std::string prefix =
-        PacketMessagePrefix(static_cast<uint32_t>(cursor_), id, payload.size());
+        PacketMessagePrefix(static_cast<uint32_t>(cursor_), unit.id, payload.size(), part);
     if (!MayWriteNow(prefix.size() + payload.size())) return;
     in_flight_ = std::move(prefix);
     in_flight_mesh_ = mesh_;

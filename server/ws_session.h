@@ -18,6 +18,7 @@
 #include "served_mesh.h"
 #include "server_context.h"
 #include "token_bucket.h"
+#include "unit_plan.h"
 #include "ws_protocol.h"
 
 #pragma GCC diagnostic push
@@ -51,7 +52,19 @@ class WsSession : public Closable,
   void OnRead(beast::error_code ec, size_t bytes);
   void Handle(const ClientRequest& request);
   void StartStream(const ClientRequest& request);
-  void RefineStream(uint64_t extra_bytes);
+  void RefineStream(const ClientRequest& request);
+  // A start or resume of a session counting units (docs/API.md, "Region
+  // requests"); `mesh` found, the pacing not yet set.
+  bool StartUnits(const ClientRequest& request, std::shared_ptr<const ServedMesh> mesh);
+  // Switches a session counting packets of order_ to counting units, the
+  // packets selected so far held. False (an error sent) when the mesh's
+  // units cannot be built.
+  bool SwitchToUnits();
+  // Selects what the held units lack in unit_request_'s order within
+  // `budget` payload bytes and marks it held.
+  UnitPlan SelectUnits(uint64_t budget);
+  proto::Selection UnitSelection(size_t from, const UnitPlan& plan, uint64_t bytes) const;
+  void SetPacing(uint64_t rate);
   void SendError(proto::Error::Code code, const std::string& message);
   void Queue(const proto::ServerMessage& message, bool paced);
   bool streaming() const { return !done_at_.empty(); }
@@ -91,14 +104,27 @@ class WsSession : public Closable,
   bool closing_ = false;            // no more reads or writes
   bool close_after_write_ = false;  // Shutdown during a write
 
-  // The current stream: order[cursor_ .. end_) is still to send.
+  // The current stream: order[cursor_ .. end_) is still to send (counting
+  // packets), or selected_[cursor_ .. end_) (counting units: order_ null).
   std::shared_ptr<const ServedMesh> mesh_;
   const std::vector<uint32_t>* order_ = nullptr;
   size_t cursor_ = 0;
   size_t end_ = 0;
-  // The end cursors of the requests still owed a Done, in request order:
-  // each Done goes when the packets before its cursor are sent.
-  std::deque<size_t> done_at_;
+  int max_level_ = -1;
+  // Counting units: the mesh's unit table, everything selected so far (the
+  // client holds it once sent), the order or region a refine continues,
+  // and the units selected, one Packet message each, by cursor.
+  const UnitTable* units_ = nullptr;
+  std::optional<HeldUnits> held_;
+  UnitRequest unit_request_;
+  std::vector<StreamUnit> selected_;
+  // The requests still owed a Done, in request order: each Done goes when
+  // the packets before its end cursor are sent.
+  struct Owed {
+    size_t end = 0;
+    bool complete = false;  // nothing of the stream left after it
+  };
+  std::deque<Owed> done_at_;
   std::optional<TokenBucket> pacer_;
 
   std::string remote_;

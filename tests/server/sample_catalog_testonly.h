@@ -70,13 +70,16 @@ class FileLock {
 // Fills `catalog` (a directory that must not exist yet) with the catalog of
 // `meshes` ingested at --fidelity 0 (one remesh at about each input's
 // density: these tests are about serving, and tests/server/ingest_test.cpp
-// and the fidelity tests cover the default). Fails the test on an error.
+// and the fidelity tests cover the default), with `ingest_options` added to
+// the command. Fails the test on an error.
 inline void CopySampleCatalog(
     const std::filesystem::path& catalog,
-    const std::vector<std::filesystem::path>& meshes) {
+    const std::vector<std::filesystem::path>& meshes,
+    const std::vector<std::string>& ingest_options = {}) {
   namespace fs = std::filesystem;
   using namespace sample_catalog_internal;
   std::string stamp = BinaryStamp(ServerPath());
+  for (const auto& o : ingest_options) stamp += o + ";";
   for (const auto& m : meshes) stamp += MeshStamp(m);
   char key[17];
   std::snprintf(key, sizeof key, "%016zx", std::hash<std::string>{}(stamp));
@@ -92,6 +95,7 @@ inline void CopySampleCatalog(
       std::vector<std::string> args = {"ingest", "--catalog",
                                        (original / "catalog").string(),
                                        "--fidelity", "0"};
+      args.insert(args.end(), ingest_options.begin(), ingest_options.end());
       for (const auto& m : meshes) args.push_back(m.string());
       const pid_t pid = SpawnServer(args, original / "ingest.log");
       ASSERT_EQ(WaitExit(pid, std::chrono::seconds(300)), 0)
