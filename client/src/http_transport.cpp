@@ -5,6 +5,7 @@
 #include "header_limit.h"
 #include "http_client.h"
 #include "meshwave/client/transport.h"
+#include "meshwave/stream_units.h"
 
 namespace meshwave::client {
 namespace {
@@ -101,6 +102,38 @@ class HttpTransport final : public Transport {
           return sink.OnHead(*h);
         },
         [&](std::string_view bytes) { return sink.OnBytes(bytes); });
+  }
+
+  net::awaitable<Status> StreamUnits(const UnitStreamRequest& request,
+                                     UnitSink& sink) override {
+    std::string target = url_.Path() + "/stream?";
+    if (request.region) {
+      const bool sphere = std::holds_alternative<SphereRegion>(request.region->shape);
+      target += (sphere ? "region=" : "view=") + FormatRegionShape(*request.region);
+      if (request.region->screen_error_px) {
+        target += "&screen_error=" + std::to_string(*request.region->screen_error_px);
+      }
+    } else {
+      target += std::string("order=") + ProgressionName(request.order);
+    }
+    // Always named, even empty: the request is then a region request.
+    target += "&held=" + request.held;
+    if (request.max_level >= 0) target += "&max_level=" + std::to_string(request.max_level);
+    if (request.budget) target += "&budget=" + std::to_string(*request.budget);
+    UnitRecordReader reader(request.max_payload, [&](StreamUnit u, std::string_view payload) {
+      return sink.OnUnit(u, payload);
+    });
+    Status s = co_await client_.Get(
+        target, "",
+        [&](const http::response_header<>& head) -> Status {
+          auto units = HeaderNumber(head, "X-Meshwave-Units");
+          return units.ok() ? Status::Ok() : units.status().WithContext("GET " + target);
+        },
+        [&](std::string_view bytes) { return reader.Feed(bytes); });
+    if (s.ok() && !reader.at_boundary()) {
+      s = IoError("GET " + target + ": the body ended inside a unit");
+    }
+    co_return s;
   }
 
   void Close() override { client_.Close(); }

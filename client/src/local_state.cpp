@@ -41,6 +41,10 @@ std::string SessionBytes(const LocalState& state) {
   meta.set_max_level(state.max_level);
   meta.set_cursor(state.cursor);
   meta.set_budget_bytes(state.budget_bytes);
+  meta.set_units(state.units);
+  meta.set_parts(state.parts);
+  meta.set_held(state.held);
+  meta.set_region(state.region);
   return meta.SerializeAsString();
 }
 
@@ -87,6 +91,13 @@ Result<LocalState> ParseState(std::string_view session, std::string container,
   state.container = std::move(container);
   auto parsed = ParseContainer(state.container);
   if (!parsed.ok()) return refuse(file, parsed.status().message());
+  if (meta.units()) {
+    state.units = true;
+    state.parts = meta.parts();
+    state.held = meta.held();
+    state.region = meta.region();
+    return state;
+  }
   if (meta.cursor() != parsed->ids.size()) {
     return refuse(file, "holds " + std::to_string(parsed->ids.size()) +
                             " packets but " + sidecar.string() + " says " +

@@ -80,6 +80,55 @@ class WebSocketTransport final : public Transport {
     co_return co_await Request(MessageFor(request), request, sink);
   }
 
+  net::awaitable<Status> StreamUnits(const UnitStreamRequest& request,
+                                     UnitSink& sink) override {
+    proto::ClientMessage m;
+    auto* r = m.mutable_resume();
+    r->set_mesh_id(url_.mesh_id);
+    if (request.region) {
+      const std::string text = FormatRegionShape(*request.region);
+      if (std::holds_alternative<SphereRegion>(request.region->shape)) {
+        r->set_region(text);
+      } else {
+        r->set_view(text);
+        if (request.region->screen_error_px) r->set_screen_error(*request.region->screen_error_px);
+      }
+    } else {
+      r->set_order(ProgressionName(request.order));
+    }
+    // An empty held set is still a session of units: the region or order
+    // says so; with neither, the order's packets (the same units).
+    r->set_held(request.held);
+    if (request.max_level >= 0) r->set_max_level(static_cast<uint32_t>(request.max_level));
+    if (request.budget) r->set_budget(*request.budget);
+    r->set_rate(options_.pace_bytes_per_second);
+    // The messages' sink: every Packet a unit.
+    class Forward final : public StreamSink {
+     public:
+      explicit Forward(UnitSink& units) : units_(units) {}
+      Status OnHead(const StreamHead&) override { return Status::Ok(); }
+      Status OnBytes(std::string_view) override {
+        return ParseError("bytes where messages were expected");
+      }
+      Status OnHeaderMessage(std::string_view) override {
+        return ParseError("a stream header in the answer to a resume");
+      }
+      Status OnPacketMessage(size_t, uint32_t id, std::string_view payload) override {
+        return units_.OnUnit({id}, payload);
+      }
+      Status OnUnitMessage(size_t, StreamUnit unit, std::string_view payload) override {
+        return units_.OnUnit(unit, payload);
+      }
+
+     private:
+      UnitSink& units_;
+    } forward(sink);
+    StreamRequest limits;  // for the reader's header limit: no header comes
+    Status s = co_await Request(m, limits, forward);
+    server_stream_.reset();  // a stream of units: never continued by a refine
+    co_return s;
+  }
+
   void Close() override {
     plain_.reset();
     tls_.reset();

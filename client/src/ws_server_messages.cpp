@@ -78,14 +78,17 @@ Result<std::optional<uint64_t>> ServerMessageReader::OnMessage(
       selected_ = true;
       MW_RETURN_IF_ERROR(sink_.OnHead(HeadOf(reply.selection())));
       return Done();
-    case proto::ServerMessage::kPacket:
+    case proto::ServerMessage::kPacket: {
       if (!selected_) {
         return ParseError(where_ + " sent a packet before its selection");
       }
-      MW_RETURN_IF_ERROR(sink_.OnPacketMessage(reply.packet().cursor(),
-                                               reply.packet().id(),
-                                               reply.packet().payload()));
+      const auto& packet = reply.packet();
+      MW_RETURN_IF_ERROR(sink_.OnUnitMessage(
+          packet.cursor(),
+          {packet.id(), packet.has_part() ? packet.part() : StreamUnit::kWholePacket},
+          packet.payload()));
       return Done();
+    }
     case proto::ServerMessage::kDone:
       if (!selected_) {
         return ParseError(where_ + " ended a stream it never started");

@@ -136,19 +136,26 @@ def http_seeds(mesh_id):
                                           % mesh_id).encode())
     put("http_request_fuzz", "post", b"POST /v1/meshes?name=a HTTP/1.1\r\nAuthorization: Bearer x\r\n"
                                      b"Content-Length: 3\r\n\r\nply")
+    put("http_request_fuzz", "stream_region", ("GET /v1/meshes/%s/stream?region=0.1,0,0,0.5&held=Bw&budget=900 HTTP/1.1\r\n\r\n"
+                                               % mesh_id).encode())
+    put("http_request_fuzz", "stream_view", ("GET /v1/meshes/%s/stream?view=0,0,3,0,0,-1,45,800,600&screen_error=2 HTTP/1.1\r\n\r\n"
+                                             % mesh_id).encode())
     put("http_request_fuzz", "chunked", ("GET /v1/meshes HTTP/1.1\r\nTransfer-Encoding: chunked\r\n\r\n"
                                          "3\r\nabc\r\n0\r\n\r\n").encode())
 
 
+def varint(n):
+    """LEB128, as protobuf writes it."""
+    out = b""
+    while True:
+        low, n = n & 0x7F, n >> 7
+        if not n:
+            return out + bytes([low])
+        out += bytes([low | 0x80])
+
+
 def protobuf_field(number, wire_type, payload):
     """One protobuf field: varint key, then a length for wire type 2."""
-    def varint(n):
-        out = b""
-        while True:
-            low, n = n & 0x7F, n >> 7
-            if not n:
-                return out + bytes([low])
-            out += bytes([low | 0x80])
     key = varint(number << 3 | wire_type)
     if wire_type == 2:
         return key + varint(len(payload)) + payload
@@ -182,6 +189,10 @@ def ws_seeds():
     put("ws_message_fuzz", "refine_4096", f(2, 2, f(1, 0, 4096)))
     resume = f(1, 2, mesh) + f(2, 2, b"quality") + f(4, 0, 5) + f(5, 0, 65536) + f(6, 0, 0)
     put("ws_message_fuzz", "resume_quality_cursor5", f(3, 2, resume))
+    put("ws_message_fuzz", "start_region", f(1, 2, f(1, 2, mesh) + f(4, 0, 9000) + f(7, 2, b"0.1,0.2,0,0.5")))
+    put("ws_message_fuzz", "refine_view", f(2, 2, f(1, 0, 4096) + f(3, 2, b"0,0,3,0,0,-1,45,800,600")))
+    put("ws_message_fuzz", "refine_order", f(2, 2, f(1, 0, 4096) + f(5, 2, b"rd")))
+    put("ws_message_fuzz", "resume_held_region", f(3, 2, f(1, 2, mesh) + f(7, 2, b"Bw") + f(8, 2, b"1,1,1,2")))
 
 
 def client_seeds():
@@ -231,6 +242,19 @@ def region_seeds():
     put("region_fuzz", "screen_error", b"\x02" + b"0.75")
 
 
+def stream_units_seeds():
+    """stream_units_fuzz over tetrahedron_sr2.mwv: byte 0 even, a held
+    bitmap's text; odd, a unit-records body (packet id, 0 or 1 + part,
+    length: varints, then the payload)."""
+    put("stream_units_fuzz", "held_nothing", b"\x00")
+    put("stream_units_fuzz", "held_first_units", b"\x00" + b"Bw")
+    put("stream_units_fuzz", "held_garbage", b"\x02" + b"a+b=")
+    def record(pid, part, payload):
+        return varint(pid) + varint(part) + varint(len(payload)) + payload
+    put("stream_units_fuzz", "records", b"\x05" + record(0, 0, b"abc") + record(7, 2, b"xy") + record(3, 1, b""))
+    put("stream_units_fuzz", "record_cut", b"\x01" + record(1, 0, b"abcdef")[:-2])
+
+
 if __name__ == "__main__":
     if os.path.isdir(SEEDS):
         shutil.rmtree(SEEDS)
@@ -240,3 +264,4 @@ if __name__ == "__main__":
     ws_seeds()
     client_seeds()
     region_seeds()
+    stream_units_seeds()

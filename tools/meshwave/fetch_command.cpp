@@ -8,6 +8,7 @@
 #include "meshwave/client/blocking_session.h"
 #include "meshwave/client/local_state.h"
 #include "meshwave/stream_limits.h"
+#include "region_fetch.h"
 
 namespace meshwave::cli {
 namespace {
@@ -20,6 +21,7 @@ struct FetchArgs {
   FetchOutputOptions output;
   ClientArgs client;
   DecodeLimitArgs limits;
+  RegionRequestArgs region;
 };
 
 Result<client::Budget> BudgetFrom(const FetchArgs& a) {
@@ -70,6 +72,19 @@ Status Run(const FetchArgs& args) {
   FetchOutputOptions output_options = args.output;
   output_options.max_level = args.max_level;
   MW_ASSIGN_OR_RETURN(auto output, FetchOutput::Create(output_options));
+  MW_ASSIGN_OR_RETURN(std::optional<Region> region, RegionFrom(args.region));
+  if (region) {
+    // Units, region first: the budget counts the header as a container's.
+    if (budget.kind == client::Budget::Kind::kPsnr) {
+      return InvalidArgument("--psnr does not go with --region or --view: give --budget");
+    }
+    client::RegionSession session(url, options, transport);
+    return RunRegionFetch(session, url, region,
+                          budget.kind == client::Budget::Kind::kBytes
+                              ? std::optional<uint64_t>(budget.bytes)
+                              : std::nullopt,
+                          /*budget_counts_header=*/true, *output, args.state);
+  }
   client::BlockingSession blocking(url, options, transport);
   const Status fetched = blocking.Fetch(budget, output->Handler());
   client::Session& session = blocking.session();
@@ -125,6 +140,7 @@ void AddFetchCommand(CLI::App& app, int& exit_code) {
                   "Keep the packets received as a partial container FILE (and "
                   "FILE.session) "
                   "for `meshwave refine`");
+  AddRegionOptions(cmd, args->region);
   AddClientOptions(cmd, args->client);
   AddDecodeLimitOptions(cmd, args->limits);
   cmd->callback([args, &exit_code] {

@@ -128,18 +128,24 @@ client::ProgressHandler FetchOutput::Handler() {
 
 Status FetchOutput::Finish(const client::Session& session,
                            const std::string& url, const std::string& state) {
+  const char* order = ProgressionName(session.options().order);
+  return Finish(session.decoder(), session.progress(), order,
+                std::string("packets in ") + order + " order", url, state);
+}
+
+Status FetchOutput::Finish(const ProgressiveDecoder* decoder, const client::Progress& p,
+                           const std::string& order, const std::string& counted,
+                           const std::string& url, const std::string& state) {
   if (line_open_) std::fprintf(stderr, "\n");
   line_open_ = false;
   MW_RETURN_IF_ERROR(lod_error_);
-  const ProgressiveDecoder* decoder = session.decoder();
   if (decoder == nullptr)
     return Status(StatusCode::kInternal, "no stream header received");
-  const client::Progress p = session.progress();
   const TriMesh mesh = OutputMesh(*decoder);
   if (!options_.out.empty()) MW_RETURN_IF_ERROR(WriteMesh(mesh, options_.out));
 
   report_.set_mesh_url(url);
-  report_.set_order(ProgressionName(session.options().order));
+  report_.set_order(order);
   report_.set_max_level(options_.max_level);
   report_.set_packets(p.packets);
   report_.set_packets_total(p.order_packets);
@@ -168,9 +174,9 @@ Status FetchOutput::Finish(const client::Session& session,
         p.levels);
   }
   std::printf(
-      "%zu of %zu packets in %s order, %llu bytes (%llu received), estimated "
+      "%zu of %zu %s, %llu bytes (%llu received), estimated "
       "PSNR %s (against the encoded mesh)",
-      p.packets, p.order_packets, ProgressionName(session.options().order),
+      p.packets, p.order_packets, counted.c_str(),
       static_cast<unsigned long long>(p.bytes),
       static_cast<unsigned long long>(p.received_bytes),
       Db(p.estimated_psnr_db).c_str());

@@ -47,6 +47,12 @@ class FetchOutput {
   // file written, if any.
   Status Finish(const client::Session& session, const std::string& url,
                 const std::string& state);
+  // The same for any session: `order` as the report names it, `counted`
+  // what p.packets counts ("packets in quality order", "units, region
+  // first").
+  Status Finish(const ProgressiveDecoder* decoder, const client::Progress& p,
+                const std::string& order, const std::string& counted, const std::string& url,
+                const std::string& state);
 
  private:
   explicit FetchOutput(FetchOutputOptions options)

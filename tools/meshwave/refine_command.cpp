@@ -7,6 +7,7 @@
 #include "fetch_output.h"
 #include "meshwave/client/blocking_session.h"
 #include "meshwave/client/local_state.h"
+#include "region_fetch.h"
 
 namespace meshwave::cli {
 namespace {
@@ -16,7 +17,31 @@ struct RefineArgs {
   FetchOutputOptions output;
   ClientArgs client;
   DecodeLimitArgs limits;
+  RegionRequestArgs region;
 };
+
+// A session of units, or one of packets asked for a region: the units the
+// region (given, or the state's last) puts first, `more` bytes of them.
+Status RunUnits(const RefineArgs& args, const client::LocalState& state,
+                const client::SessionOptions& options, const client::TransportOptions& transport,
+                uint64_t more, FetchOutput& output) {
+  std::optional<Region> region;
+  if (args.region.given()) {
+    MW_ASSIGN_OR_RETURN(region, RegionFrom(args.region));
+  } else {
+    auto kept = RegionFromStateText(state.region);
+    if (!kept.ok()) return kept.status().WithContext("state " + args.state);
+    region = *kept;
+  }
+  client::RegionSession session(state.url, options, transport);
+  Status restored = session.Restore(state.container, state.parts);
+  if (restored.ok() && state.units && session.HeldText() != state.held) {
+    restored = ParseError("the held units differ from what its files hold (they do not belong together)");
+  }
+  if (!restored.ok()) return restored.WithContext("state " + args.state);
+  return RunRegionFetch(session, state.url, region, more, /*budget_counts_header=*/false, output,
+                        args.state);
+}
 
 Status Run(const RefineArgs& args) {
   MW_ASSIGN_OR_RETURN(uint64_t more, ParseByteSize(args.more));
@@ -33,6 +58,9 @@ Status Run(const RefineArgs& args) {
   }
   output_options.max_level = state.max_level;
   MW_ASSIGN_OR_RETURN(auto output, FetchOutput::Create(output_options));
+  if (state.units || args.region.given()) {
+    return RunUnits(args, state, options, transport, more, *output);
+  }
   client::BlockingSession blocking(state.url, options, transport);
   client::Session& session = blocking.session();
   Status restored = session.Restore(state.container, state.budget_bytes);
@@ -62,11 +90,13 @@ void AddRefineCommand(CLI::App& app, int& exit_code) {
                   "State file written by `meshwave fetch --state`")
       ->required();
   cmd->add_option("--more", args->more,
-                  "Bytes to add to the budget (e.g. 64KiB)")
+                  "Bytes to add to the budget (e.g. 64KiB); with a region (given, or the "
+                  "state's last), bytes of the units it puts first")
       ->required();
   AddFetchOutputOptions(cmd, args->output,
                         "Output mesh (.ply, .obj, .glb, .gltf; default: STATE as .ply)",
                         /*out_required=*/false);
+  AddRegionOptions(cmd, args->region);
   AddClientOptions(cmd, args->client);
   AddDecodeLimitOptions(cmd, args->limits);
   cmd->callback([args, &exit_code] {

@@ -24,6 +24,14 @@ struct LocalState {
   size_t cursor = 0;          // packets of the order in `container`
   uint64_t budget_bytes = 0;  // container bytes asked for so far
   std::string container;      // holds exactly order[0 .. cursor)
+  // A session of units (RegionSession): `container` holds the packets held
+  // whole, `parts` unit records of the other units held; `held` is the
+  // held bitmap's text, `region` the last region's (FormatRegionShape, a
+  // view prefixed "view:"), for the record. `cursor` is not used.
+  bool units = false;
+  std::string parts;
+  std::string held;
+  std::string region;
 };
 
 // FILE.session.
@@ -38,7 +46,9 @@ Status SaveState(const std::filesystem::path& file, const LocalState& state);
 // Reads and checks both files; safe on untrusted bytes. Refuses (kParseError,
 // naming the file) a sidecar that does not parse or names an unknown
 // version, URL or order, a container that does not parse or is cut short,
-// and a cursor that differs from the container's packet count. Whether the
+// and a cursor that differs from the container's packet count (a session of
+// packets). Whether a session of units' parts decode and match `held` is
+// checked when a RegionSession restores them. Whether the
 // packets are the order's prefix and pass their CRCs is checked when a
 // Session restores the container.
 Result<LocalState> LoadState(const std::filesystem::path& file);

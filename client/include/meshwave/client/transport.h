@@ -16,6 +16,8 @@
 
 #include "meshwave/client/url.h"
 #include "meshwave/progression.h"
+#include "meshwave/region.h"
+#include "meshwave/region_order.h"
 #include "meshwave/status.h"
 #include "meshwave/stream_limits.h"
 
@@ -75,6 +77,31 @@ class StreamSink {
   // The packet at `cursor` of the order, `id` in the header's index.
   virtual Status OnPacketMessage(size_t cursor, uint32_t id,
                                  std::string_view payload) = 0;
+  // A Packet message that may carry a part of a split packet (a session
+  // counting units); a stream of packets refuses parts.
+  virtual Status OnUnitMessage(size_t cursor, StreamUnit unit, std::string_view payload) {
+    if (!unit.whole()) return ParseError("a part of a split packet in a stream of packets");
+    return OnPacketMessage(cursor, unit.id, payload);
+  }
+};
+
+// The units of a region request (docs/API.md, "Region requests"), from
+// what the client holds: GET /stream?region|view=&held=&budget= over HTTP,
+// a `resume` with `held` over WebSocket. Each request names everything
+// held, so none depends on an earlier one.
+struct UnitStreamRequest {
+  std::optional<Region> region;  // absent: the uniform `order`
+  Progression order = Progression::kQuality;
+  int max_level = -1;              // -1: all levels
+  std::string held;                // the held bitmap's text (stream_units.h)
+  std::optional<uint64_t> budget;  // payload bytes; absent: everything
+  uint64_t max_payload = uint64_t{1} << 30;  // a longer unit is refused
+};
+
+class UnitSink {
+ public:
+  virtual ~UnitSink() = default;
+  virtual Status OnUnit(StreamUnit unit, std::string_view payload) = 0;
 };
 
 // Errors: kIoError for failures worth retrying (refused, reset or dropped
@@ -98,6 +125,12 @@ class Transport {
   // the Session fetches the first packet by id (HTTP: /stream from cursor 0
   // always starts with the header).
   virtual bool CanStreamPayloadsFromStart() const { return false; }
+  // Units of a region request, each handed to `sink` as it arrives.
+  virtual net::awaitable<Status> StreamUnits(const UnitStreamRequest& request, UnitSink& sink) {
+    (void)request;
+    (void)sink;
+    co_return Status(StatusCode::kUnsupported, "this transport has no region requests");
+  }
 };
 
 // HTTP/1.1 (http:// or https:// with certificate and host name
