@@ -21,6 +21,15 @@ class Decoder {
     this.ids.add(id);
     this.bytes += payload.length;
   }
+  // Parts count as units of their own here (key `id.part`).
+  partCount() { return 1 << 10; }
+  hasPart(id, part) { return this.ids.has(id) || this.ids.has(`${id}.${part}`); }
+  partDependenciesMet() { return true; }
+  addPacketPart(id, part, payload) {
+    if (this.hasPart(id, part)) throw new Error(`part ${part} of packet ${id} is already decoded`);
+    this.ids.add(`${id}.${part}`);
+    this.bytes += payload.length;
+  }
   positions() {
     // The apex leans over as packets arrive: a visible change, same size.
     const t = 0.3 * Math.min(1, this.ids.size / 25);

@@ -20,9 +20,11 @@ export function skip(message) {
 
 export function tempDir(prefix) { return mkdtempSync(path.join(tmpdir(), prefix)); }
 
-// `meshwave-server ingest` of one mesh file; its catalog id.
-export function ingest(serverBinary, catalog, meshFile) {
-  const out = execFileSync(serverBinary, ['ingest', '--catalog', catalog, meshFile], { encoding: 'utf8' });
+// `meshwave-server ingest` of one mesh file (more ingest options in
+// `options`); its catalog id.
+export function ingest(serverBinary, catalog, meshFile, options = []) {
+  const out = execFileSync(serverBinary, ['ingest', '--catalog', catalog, ...options, meshFile],
+    { encoding: 'utf8' });
   // The id opens the line naming the file (a log line, e.g. a fidelity
   // warning, may come first).
   const found = out.match(/^([0-9a-f]{12}) /m);

@@ -1,13 +1,15 @@
 // web/viewer/ws_protocol.js against protoc: what the page sends is byte for
-// byte protoc's encoding of the same ClientMessage, and what protoc encodes
-// as a ServerMessage the page reads back field for field; malformed bytes
-// are a ProtocolError, never a wrong message.
+// byte protoc's encoding of the same ClientMessage (region requests too:
+// view, region, screen_error, a refine's order), and what protoc encodes
+// as a ServerMessage the page reads back field for field, a Packet's part
+// also when written before the payload as the server does; malformed
+// bytes are a ProtocolError, never a wrong message.
 //
 // node ws_protocol_test.mjs PROTO_DIR
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
 import test from 'node:test';
-import { ProtocolError, decodeServerMessage, encodeRefine, encodeStart } from
+import { ProtocolError, decodeServerMessage, encodeRefine, encodeStart, viewText } from
   '../../web/viewer/ws_protocol.js';
 
 const protoDir = process.argv[2];
@@ -34,6 +36,43 @@ test('refine messages equal protoc\'s', () => {
   }
 });
 
+// A camera as the viewer sends it: fractional, negative, tiny numbers.
+const camera = { eye: [0.125, -2.5, 1e-7], direction: [-0.6, 0, -0.8], fov: 40, width: 960,
+                 height: 640 };
+const cameraText = '0.125,-2.5,1e-7,-0.6,0,-0.8,40,960,640';
+
+test('region requests equal protoc\'s', () => {
+  assert.equal(viewText(camera), cameraText);
+  assert.deepEqual(encodeStart({ meshId: '0123456789ab', budget: 6144, view: camera }),
+    encode('ClientMessage', `start { mesh_id: "0123456789ab" budget: 6144 view: "${cameraText}" }`));
+  assert.deepEqual(encodeStart({ meshId: '0123456789ab', view: camera, screenError: 1.5 }),
+    encode('ClientMessage', `start { mesh_id: "0123456789ab" view: "${cameraText}" screen_error: 1.5 }`));
+  assert.deepEqual(encodeStart({ meshId: '0123456789ab', region: { centre: [0.1, 0.2, -3], radius: 0.25 } }),
+    encode('ClientMessage', 'start { mesh_id: "0123456789ab" region: "0.1,0.2,-3,0.25" }'));
+  assert.deepEqual(encodeRefine(8192, { view: camera }),
+    encode('ClientMessage', `refine { extra_bytes: 8192 view: "${cameraText}" }`));
+  assert.deepEqual(encodeRefine(8192, { view: camera, screenError: 0.5 }),
+    encode('ClientMessage', `refine { extra_bytes: 8192 view: "${cameraText}" screen_error: 0.5 }`));
+  assert.deepEqual(encodeRefine(100, { region: { centre: [1, 2, 3], radius: 4 } }),
+    encode('ClientMessage', 'refine { extra_bytes: 100 region: "1,2,3,4" }'));
+  assert.deepEqual(encodeRefine(100, { order: 'rd' }),
+    encode('ClientMessage', 'refine { extra_bytes: 100 order: "rd" }'));
+  // No options: the plain refine (continues the last region or order).
+  assert.deepEqual(encodeRefine(100, {}), encode('ClientMessage', 'refine { extra_bytes: 100 }'));
+});
+
+test('region requests the server would refuse are refused here', () => {
+  const bad = [
+    { ...camera, fov: 180 }, { ...camera, fov: 0 }, { ...camera, width: 0 },
+    { ...camera, height: 16385 }, { ...camera, width: 10.5 }, { ...camera, direction: [0, 0, 0] },
+    { ...camera, eye: [NaN, 0, 0] }, { ...camera, direction: [Infinity, 0, 1] },
+  ];
+  for (const view of bad) assert.throws(() => encodeRefine(1, { view }), RangeError, JSON.stringify(view));
+  assert.throws(() => encodeRefine(1, { region: { centre: [0, 0, 0], radius: 0 } }), RangeError);
+  assert.throws(() => encodeRefine(1, { view: camera, order: 'rd' }), TypeError);
+  assert.throws(() => encodeStart({ meshId: '0123456789ab', order: 'quality', view: camera }), TypeError);
+});
+
 test('server messages read back', () => {
   const start = decodeServerMessage(encode('ServerMessage',
     'start { header: "\\001\\002\\377" selection { from_cursor: 0 next_cursor: 7 order_packets: 40 bytes: 6100 } }'));
@@ -47,6 +86,24 @@ test('server messages read back', () => {
   assert.equal(packet.cursor, 3);
   assert.equal(packet.id, 200);
   assert.equal(new TextDecoder().decode(packet.payload), 'abc');
+  assert.equal(packet.part, null, 'a whole packet has no part');
+
+  // A part of a split packet: protoc writes part after payload, the server
+  // before it (the payload goes last, uncopied); both read the same.
+  for (const part of [0, 1, 300]) {
+    const protoc = decodeServerMessage(encode('ServerMessage',
+      `packet { cursor: 3 id: 200 payload: "abc" part: ${part} }`));
+    const partVarint = part < 128 ? [part] : [(part & 0x7f) | 0x80, part >> 7];
+    const inner = [0x08, 3, 0x10, 0xc8, 0x01, 0x20, ...partVarint, 0x1a, 3, 0x61, 0x62, 0x63];
+    const server = decodeServerMessage(Uint8Array.from([0x1a, inner.length, ...inner]));
+    for (const m of [protoc, server]) {
+      assert.equal(m.kind, 'packet');
+      assert.equal(m.cursor, 3);
+      assert.equal(m.id, 200);
+      assert.equal(m.part, part);
+      assert.equal(new TextDecoder().decode(m.payload), 'abc');
+    }
+  }
 
   // Zero-valued fields are absent on the wire: the defaults are filled in.
   const first = decodeServerMessage(encode('ServerMessage', 'packet { payload: "x" }'));
@@ -68,6 +125,15 @@ test('malformed bytes are a ProtocolError', () => {
   for (let cut = 1; cut < good.length; ++cut) {
     assert.throws(() => decodeServerMessage(good.subarray(0, cut)), ProtocolError, `cut at ${cut}`);
   }
+  // A part, before the payload as the server writes it.
+  const inner = [0x08, 3, 0x10, 0xc8, 0x01, 0x20, 0x85, 0x02, 0x1a, 3, 0x61, 0x62, 0x63];
+  const part = Uint8Array.from([0x1a, inner.length, ...inner]);
+  assert.equal(decodeServerMessage(part).part, 261);
+  for (let cut = 1; cut < part.length; ++cut) {
+    assert.throws(() => decodeServerMessage(part.subarray(0, cut)), ProtocolError, `part cut at ${cut}`);
+  }
+  // part with the wrong wire type.
+  assert.throws(() => decodeServerMessage(Uint8Array.from([0x1a, 3, 0x22, 1, 0])), ProtocolError);
   assert.throws(() => decodeServerMessage(new Uint8Array([0x0b])), ProtocolError);  // wire type 3
   assert.throws(() => decodeServerMessage(new Uint8Array(11).fill(0xff)), ProtocolError);
   assert.throws(() => decodeServerMessage(new Uint8Array(0)), ProtocolError);  // no kind

@@ -3,9 +3,12 @@
 #   wasm_decoder_test.sh MESHWAVE_CLI WASM_REFERENCE MODULE.js SAMPLE_DIR SHARED_DIR
 # encodes every sample mesh (SAMPLE_DIR/*.off, *.ply: the repository's
 # data/) and every shared development mesh (SHARED_DIR; skipped with one
-# line when absent) with the native `meshwave encode`, has wasm_reference
-# write the native decoder's output at five budgets in the three orders,
-# and runs wasm_decoder_test.mjs on it under Node.
+# line when absent) with the native `meshwave encode`, and the samples
+# again with small precincts (many split packets: docs/FORMAT.md 2.2), takes
+# the fuzz fixtures' containers (tests/fuzz/data/*.mwv, split too), has
+# wasm_reference write the native decoder's output at five budgets in the
+# three orders and, for split packets, unit by unit, and runs
+# wasm_decoder_test.mjs on it under Node.
 set -eu
 if [ "${1:-}" = "-h" ] || [ "${1:-}" = "--help" ]; then
   sed -n '2,8p' "$0" | sed 's/^# \{0,1\}//'
@@ -18,20 +21,32 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
 dirs=""
-add() {  # add MESH: encode it, write the native reference
-  name=$(basename "$1")
-  name=${name%.*}
-  "$cli" encode "$1" "$work/$name.mwv" >/dev/null 2>"$work/$name.log" || {
+reference() {  # reference CONTAINER NAME: write the native reference
+  mkdir "$work/$2"
+  "$reference" "$1" "$work/$2"
+  dirs="$dirs $work/$2"
+}
+add() {  # add MESH [SUFFIX ENCODE_OPTIONS...]: encode it, write the native reference
+  mesh=$1
+  name=$(basename "$mesh")
+  name=${name%.*}${2:-}
+  shift $(($# < 2 ? $# : 2))
+  "$cli" encode "$mesh" "$work/$name.mwv" "$@" >/dev/null 2>"$work/$name.log" || {
     cat "$work/$name.log" >&2
-    echo "meshwave encode $1 failed" >&2
+    echo "meshwave encode $mesh failed" >&2
     exit 1
   }
-  mkdir "$work/$name"
-  "$reference" "$work/$name.mwv" "$work/$name"
-  dirs="$dirs $work/$name"
+  reference "$work/$name.mwv" "$name"
 }
 for mesh in "$samples"/*.off "$samples"/*.ply; do
-  if [ -e "$mesh" ]; then add "$mesh"; fi
+  if [ -e "$mesh" ]; then
+    add "$mesh"
+    add "$mesh" _precincts --precinct-size 256 --split-bytes 8
+  fi
+done
+for container in "$here"/../fuzz/data/*.mwv; do
+  name=$(basename "$container" .mwv)
+  reference "$container" "fixture_$name"
 done
 if [ -d "$shared" ]; then
   for mesh in "$shared"/*.off "$shared"/*.ply "$shared"/*.obj; do

@@ -6,11 +6,20 @@
 //   CASE.pos64        positions at the finest level, float64 x,y,z (LE)
 //   CASE.l1.pos64     positions at level 1
 //   CASE.faces        faces at the finest level, u32 (LE)
-//   manifest.json     {container: CONTAINER, cases: [...]}, per case: order,
-//                     budget, and the decoder's level, levels, packets,
-//                     payload bytes, estimated PSNR
+//   PARTS.units       a stream with split packets (docs/FORMAT.md 2.2) only:
+//                     units fed one by one, u32 id, u32 part + 1 (0: the
+//                     whole packet), u32 length, payload (LE); the parts
+//                     are the library's cut (PacketParts)
+//   manifest.json     {container: CONTAINER, cases: [...], partCases: [...],
+//                     split: [[id, parts], ...]}, per case: order, budget,
+//                     and the decoder's level, levels, packets, payload
+//                     bytes, estimated PSNR
 // The selection is `meshwave decode --budget B --order O`'s (SelectPackets
-// on PacketOrder). Links the decoder library alone.
+// on PacketOrder). The part cases follow the region order (RegionOrder) of
+// a sphere around the finest subband's first precinct: parts_0 its units
+// up to 40 % of the payload bytes; parts_1 those, then every packet not
+// held whole in the quality order (which decodes only the parts missing);
+// parts_2 the whole region order. Links the decoder library alone.
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -22,6 +31,7 @@
 #include "meshwave/container.h"
 #include "meshwave/progression.h"
 #include "meshwave/progressive_decoder.h"
+#include "meshwave/region_order.h"
 
 namespace {
 
@@ -53,6 +63,110 @@ std::string Flatten(const std::vector<Vec3>& p) {
   std::vector<double> out;
   for (const Vec3& v : p) out.insert(out.end(), {v.x(), v.y(), v.z()});
   return Raw(out);
+}
+
+// The decoder's mesh and counts for case `name`: its .pos64, .l1.pos64 and
+// .faces files, and the fields of its manifest entry after "name".
+bool WriteCase(const std::string& dir, const std::string& name, const ProgressiveDecoder& decoder,
+               std::string& entry) {
+  const TriMesh mesh = decoder.Mesh();
+  std::vector<uint32_t> faces;
+  for (const Face& f : mesh.faces) faces.insert(faces.end(), f.begin(), f.end());
+  if (!Write(dir + "/" + name + ".pos64", Flatten(mesh.positions)) ||
+      !Write(dir + "/" + name + ".l1.pos64", Flatten(decoder.Positions(1))) ||
+      !Write(dir + "/" + name + ".faces", Raw(faces))) {
+    std::fprintf(stderr, "cannot write into %s\n", dir.c_str());
+    return false;
+  }
+  entry = ", \"packets\": " + std::to_string(decoder.packets_decoded()) +
+          ", \"payloadBytes\": " + std::to_string(decoder.payload_bytes_decoded()) +
+          ", \"level\": " + std::to_string(decoder.CompleteLevels()) +
+          ", \"detailLevels\": " + std::to_string(decoder.DetailLevels()) +
+          ", \"levels\": " + std::to_string(decoder.header().transform.levels) +
+          ", \"packetCount\": " + std::to_string(decoder.packet_count()) +
+          ", \"psnr\": " + Number(decoder.EstimatedPsnr()) + "}";
+  return true;
+}
+
+void PutUnit(std::string& out, uint32_t id, uint32_t tag, std::string_view payload) {
+  PutU32(out, id);
+  PutU32(out, tag);
+  PutU32(out, static_cast<uint32_t>(payload.size()));
+  out.append(payload);
+}
+
+// The part cases (see the top of the file) of a stream with split packets:
+// their manifest entries, and the split packets' part counts in `split`.
+bool WritePartCases(const std::string& dir, const StreamHeader& header,
+                    const std::vector<std::string_view>& payload, std::string& entries,
+                    std::string& split) {
+  auto fail = [](const Status& s) {
+    std::fprintf(stderr, "%s\n", s.ToString().c_str());
+    return false;
+  };
+  auto precincts = StreamPrecincts::Create(header);
+  if (!precincts.ok()) return fail(precincts.status());
+  const HeldUnits none(header, *precincts);
+  std::vector<std::vector<uint32_t>> part_lengths;
+  for (uint32_t id = 0; id < payload.size(); ++id) {
+    auto lengths = PartLengths(none, id, payload[id]);
+    if (!lengths.ok()) return fail(lengths.status());
+    part_lengths.push_back(std::move(*lengths));
+    if (none.PartCount(id) == 0) continue;
+    // Piece by piece: "[" + std::to_string(...) trips GCC 12's -Wrestrict
+    // (a false positive in libstdc++'s operator+).
+    if (!split.empty()) split += ", ";
+    split += '[';
+    split += std::to_string(id);
+    split += ", ";
+    split += std::to_string(none.PartCount(id));
+    split += ']';
+  }
+  if (split.empty()) return true;
+  // The finest subband's first precinct, as a sphere: what a client looking
+  // at that patch gets first.
+  const int j = precincts->levels() - 1;
+  const Region region{SphereRegion{precincts->centre(j, 0), precincts->radius(j, 0)}, {}};
+  const std::vector<StreamUnit> order =
+      RegionOrder(header, *precincts, part_lengths, region, none);
+  uint64_t total = 0;
+  for (std::string_view p : payload) total += p.size();
+
+  // parts_k: a fresh decoder fed order[0 .. prefix), then, for parts_1,
+  // every packet it lacks whole in the quality order, for parts_2 the rest
+  // of the region order.
+  const std::vector<uint32_t> quality = PacketOrder(header, Progression::kQuality);
+  for (int k = 0; k < 3; ++k) {
+    auto decoder = ProgressiveDecoder::Create(header);
+    if (!decoder.ok()) return fail(decoder.status());
+    ProgressiveDecoder& d = **decoder;
+    std::string units;
+    uint64_t bytes = 0;
+    for (const StreamUnit& u : order) {
+      if (k < 2 && 5 * bytes >= 2 * total) break;  // 40 % of the payload bytes
+      std::string_view data = payload[u.id];
+      if (!u.whole()) {
+        auto parts = PacketParts(none, u.id, data);
+        if (!parts.ok()) return fail(parts.status());
+        data = (*parts)[u.part];
+      }
+      const Status s = u.whole() ? d.AddPacket(u.id, data) : d.AddPacketPart(u.id, u.part, data);
+      if (!s.ok()) return fail(s);
+      PutUnit(units, u.id, u.whole() ? 0 : u.part + 1, data);
+      bytes += data.size();
+    }
+    for (uint32_t id : quality) {
+      if (k != 1 || d.HasPacket(id)) continue;
+      if (Status s = d.AddPacket(id, payload[id]); !s.ok()) return fail(s);
+      PutUnit(units, id, 0, payload[id]);
+    }
+    const std::string name = "parts_" + std::to_string(k);
+    std::string entry;
+    if (!Write(dir + "/" + name + ".units", units) || !WriteCase(dir, name, d, entry)) return false;
+    if (!entries.empty()) entries += ",\n";
+    entries += "{\"name\": \"" + name + "\"" + entry;
+  }
+  return true;
 }
 
 int Run(const std::string& in, const std::string& dir) {
@@ -96,29 +210,19 @@ int Run(const std::string& in, const std::string& dir) {
         packets.append(payload[id]);
       }
       const std::string name = std::string(ProgressionName(p)) + "_" + std::to_string(k++);
-      const TriMesh mesh = (*decoder)->Mesh();
-      std::vector<uint32_t> faces;
-      for (const Face& f : mesh.faces) faces.insert(faces.end(), f.begin(), f.end());
+      std::string entry;
       if (!Write(dir + "/" + name + ".packets", packets) ||
-          !Write(dir + "/" + name + ".pos64", Flatten(mesh.positions)) ||
-          !Write(dir + "/" + name + ".l1.pos64", Flatten((*decoder)->Positions(1))) ||
-          !Write(dir + "/" + name + ".faces", Raw(faces))) {
-        std::fprintf(stderr, "cannot write into %s\n", dir.c_str());
+          !WriteCase(dir, name, **decoder, entry)) {
         return 1;
       }
       if (manifest.back() == '}') manifest += ",\n";
       manifest += "{\"name\": \"" + name + "\", \"order\": \"" + ProgressionName(p) +
-                  "\", \"budget\": " + std::to_string(budget) +
-                  ", \"packets\": " + std::to_string((*decoder)->packets_decoded()) +
-                  ", \"payloadBytes\": " + std::to_string((*decoder)->payload_bytes_decoded()) +
-                  ", \"level\": " + std::to_string((*decoder)->CompleteLevels()) +
-                  ", \"detailLevels\": " + std::to_string((*decoder)->DetailLevels()) +
-                  ", \"levels\": " + std::to_string(header.transform.levels) +
-                  ", \"packetCount\": " + std::to_string((*decoder)->packet_count()) +
-                  ", \"psnr\": " + Number((*decoder)->EstimatedPsnr()) + "}";
+                  "\", \"budget\": " + std::to_string(budget) + entry;
     }
   }
-  manifest += "\n]}\n";
+  std::string part_cases, split;
+  if (!WritePartCases(dir, header, payload, part_cases, split)) return 1;
+  manifest += "\n], \"partCases\": [\n" + part_cases + "\n], \"split\": [" + split + "]}\n";
   return Write(dir + "/manifest.json", manifest) ? 0 : 1;
 }
 

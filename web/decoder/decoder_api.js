@@ -7,6 +7,7 @@
 //   const mw = await createMeshwave();
 //   const dec = new mw.Decoder(headerBytes);  // Uint8Array | ArrayBuffer
 //   dec.addPacket(id, payload);               // throws Error(message)
+//   dec.addPacketPart(id, part, payload);     // one precinct's part of a split packet
 //   dec.positions(); dec.faces(); ... dec.delete();
 //   const { header, packets } = mw.parseContainer(mwvBytes);  // .mwv files
 (function () {
@@ -18,12 +19,14 @@
     }
     throw new TypeError(what + ' must be a Uint8Array or an ArrayBuffer');
   }
-  function id(value) {
+  function uint32(value, what) {
     if (!Number.isInteger(value) || value < 0 || value > 0xffffffff) {
-      throw new Error('packet id ' + value + ' is not an integer in [0, 2^32)');
+      throw new Error(what + ' ' + value + ' is not an integer in [0, 2^32)');
     }
     return value;
   }
+  function id(value) { return uint32(value, 'packet id'); }
+  function part(value) { return uint32(value, 'part'); }
   function level(value) {
     return value === undefined ? -1 : Math.trunc(value);
   }
@@ -43,6 +46,17 @@
     hasPacket(packet) { return this.live_()['hasPacket'](id(packet)); }
     addPacket(packet, payload) {
       const error = this.live_()['addPacket'](id(packet), bytes(payload, 'the payload'));
+      if (error) throw new Error(error);
+    }
+    // Split packets (docs/FORMAT.md 2.2), precinct by precinct: 0 for a
+    // packet that is not split.
+    partCount(packet) { return this.live_()['partCount'](id(packet)); }
+    hasPart(packet, p) { return this.live_()['hasPart'](id(packet), part(p)); }
+    partDependenciesMet(packet, p) {
+      return this.live_()['partDependenciesMet'](id(packet), part(p));
+    }
+    addPacketPart(packet, p, payload) {
+      const error = this.live_()['addPacketPart'](id(packet), part(p), bytes(payload, 'the payload'));
       if (error) throw new Error(error);
     }
     positions(maxLevel) { return this.live_()['positions'](level(maxLevel)); }

@@ -42,9 +42,20 @@ class RawDecoder {
     return decoder_->AddPacket(id, payload).message();
   }
 
+  // One precinct's part of a split packet (docs/FORMAT.md 2.2), as a
+  // region stream sends it: "" or the reason it was refused.
+  std::string AddPacketPart(uint32_t id, uint32_t part, const std::string& payload) {
+    return decoder_->AddPacketPart(id, part, payload).message();
+  }
+
   size_t PacketCount() const { return decoder_->packet_count(); }
   bool HasPacket(uint32_t id) const { return decoder_->HasPacket(id); }
   bool DependenciesMet(uint32_t id) const { return decoder_->DependenciesMet(id); }
+  uint32_t PartCount(uint32_t id) const { return decoder_->PartCount(id); }
+  bool HasPart(uint32_t id, uint32_t part) const { return decoder_->HasPart(id, part); }
+  bool PartDependenciesMet(uint32_t id, uint32_t part) const {
+    return decoder_->PartDependenciesMet(id, part);
+  }
   int Level() const { return decoder_->CompleteLevels(); }
   int DetailLevels() const { return decoder_->DetailLevels(); }
   int Levels() const { return static_cast<int>(decoder_->header().transform.levels); }
@@ -120,6 +131,10 @@ EMSCRIPTEN_BINDINGS(meshwave_decoder) {
       .function("packetCount", &RawDecoder::PacketCount)
       .function("hasPacket", &RawDecoder::HasPacket)
       .function("dependenciesMet", &RawDecoder::DependenciesMet)
+      .function("addPacketPart", &RawDecoder::AddPacketPart)
+      .function("partCount", &RawDecoder::PartCount)
+      .function("hasPart", &RawDecoder::HasPart)
+      .function("partDependenciesMet", &RawDecoder::PartDependenciesMet)
       .function("level", &RawDecoder::Level)
       .function("detailLevels", &RawDecoder::DetailLevels)
       .function("levels", &RawDecoder::Levels)

@@ -1,6 +1,8 @@
 // The three.js view: one mesh, lit, orbitable, drawn only when something
 // changed. The camera is fitted to the first mesh of a stream and then left
-// alone, so refinements are seen from the same place.
+// alone, so refinements are seen from the same place. It tells when the
+// user starts and stops moving the camera, and gives the camera as a
+// region request's view in the mesh's own coordinates.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 
@@ -21,6 +23,12 @@ export class MeshView {
     this.scene.add(this.camera);
     this.controls = new OrbitControls(this.camera, this.renderer.domElement);
     this.controls.addEventListener('change', () => this.draw());
+    // OrbitControls says 'start' on a press (and each wheel step), 'end'
+    // on its release; what the page does then is its own.
+    this.onCameraStart = () => {};
+    this.onCameraEnd = () => {};
+    this.controls.addEventListener('start', () => this.onCameraStart());
+    this.controls.addEventListener('end', () => this.onCameraEnd());
     this.mesh = null;
     new ResizeObserver(() => this.resize()).observe(container);
     this.resize();
@@ -68,6 +76,24 @@ export class MeshView {
     this.camera.updateProjectionMatrix();
     this.controls.target.copy(center);
     this.controls.update();
+  }
+
+  // The camera as a view of a region request (ws_protocol.js viewText):
+  // eye and look direction in the mesh's own coordinates (its vertices as
+  // decoded: the mesh is drawn untransformed today, and the inverse of its
+  // world matrix keeps that true if it ever is moved or scaled uniformly),
+  // vertical fov in degrees, the canvas's size in pixels. null before the
+  // first mesh.
+  viewRegion() {
+    if (!this.mesh) return null;
+    this.mesh.updateMatrixWorld();
+    const toMesh = this.mesh.matrixWorld.clone().invert();
+    const eye = this.camera.getWorldPosition(new THREE.Vector3()).applyMatrix4(toMesh);
+    const direction = this.camera.getWorldDirection(new THREE.Vector3()).transformDirection(toMesh);
+    const { width, height } = this.renderer.domElement;
+    const pixels = (n) => Math.min(16384, Math.max(1, Math.round(n)));
+    return { eye: eye.toArray(), direction: direction.toArray(), fov: this.camera.fov,
+             width: pixels(width), height: pixels(height) };
   }
 
   draw() {

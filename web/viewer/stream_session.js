@@ -1,5 +1,7 @@
 // One mesh streamed over GET /v1/ws into the WebAssembly decoder: sends
-// `start` and `refine`, feeds every packet to the decoder as it arrives,
+// `start` and `refine` (a refine may name a view or region: the server
+// then sends units, whole packets or one precinct's part of a split packet,
+// region first), feeds every unit to the decoder as it arrives,
 // and reports the decoded mesh at most once per animation frame (the
 // decoder copies the whole mesh out, so a burst of small packets is shown
 // as one refinement per frame). Any failure — a refused packet, a
@@ -16,8 +18,10 @@ export class StreamSession {
     this.mw = mw;
     this.callbacks = { onMesh, onProgress, onDone, onError };
     this.decoder = null;
-    this.stats = { bytes: 0, packets: 0, level: null, levels: null, psnr: null, complete: false,
-                   streaming: false };
+    // packets: Packet messages (units: a whole packet or a part); parts:
+    // those that were one precinct's part of a split packet.
+    this.stats = { bytes: 0, packets: 0, parts: 0, level: null, levels: null, psnr: null,
+                   complete: false, streaming: false };
     this.failed = false;
     this.dirty = false;
     this.socket = new WebSocket(wsUrl);
@@ -39,10 +43,12 @@ export class StreamSession {
     this.send(encodeStart({ meshId, order, budget, rate }));
   }
 
-  refine(extraBytes) {
+  // extraBytes more payload bytes; options {view} or {region} (ws_protocol.js)
+  // to refine that first from now on; none: as the last request did.
+  refine(extraBytes, options = {}) {
     if (this.failed || !this.decoder) return;
     this.stats.streaming = true;
-    this.send(encodeRefine(extraBytes));
+    this.send(encodeRefine(extraBytes, options));
   }
 
   close() {
@@ -84,12 +90,15 @@ export class StreamSession {
       case 'packet':
         if (!this.decoder) return this.fail('a packet before the stream header');
         try {
-          this.decoder.addPacket(m.id, m.payload);
+          if (m.part === null) this.decoder.addPacket(m.id, m.payload);
+          else this.decoder.addPacketPart(m.id, m.part, m.payload);
         } catch (e) {
-          return this.fail(`packet ${m.id} (cursor ${m.cursor}) was refused: ${e.message}`);
+          const what = m.part === null ? `packet ${m.id}` : `part ${m.part} of packet ${m.id}`;
+          return this.fail(`${what} (cursor ${m.cursor}) was refused: ${e.message}`);
         }
         this.stats.bytes += m.payload.length;
         this.stats.packets += 1;
+        if (m.part !== null) this.stats.parts += 1;
         this.updateLevel();
         this.scheduleMesh();
         break;

@@ -1,12 +1,18 @@
 // The viewer page: the catalog (GET /v1/meshes), a mesh streamed over
 // GET /v1/ws with the order, budget and pace chosen, every refinement drawn
-// as it arrives, readouts, "refine +N KiB", optional error colours against
-// the complete stream. Errors are shown in words; the last good mesh stays.
+// as it arrives, readouts, "refine +N KiB", "refine where I look" (when the
+// camera stops, a refine of N KiB with the camera as its view: the server
+// sends what that view sees first), optional error colours against the
+// complete stream. Errors are shown in words; the last good mesh stays.
 import { StreamSession, fetchComplete } from './stream_session.js';
 import { errorColours } from './error_colours.js';
 
 const $ = (id) => document.getElementById(id);
 const KiB = 1024;
+// How long the camera must rest before the page asks for what it sees: a
+// drag ends with a release, but a wheel zoom is a train of steps, each with
+// its own 'end' (about 100 ms apart when scrolled by hand).
+const SETTLE_MS = 400;
 const wsUrl = `${location.protocol === 'https:' ? 'wss' : 'ws'}://${location.host}/v1/ws`;
 
 let mw = null;        // the decoder module
@@ -15,6 +21,9 @@ let session = null;   // the current StreamSession
 let lastMesh = null;  // what is drawn: {positions, faces, level}
 let reference = null; // {meshId, order, decoder} of the complete stream
 let streamStarted = 0, firstMeshShown = false;
+let settleTimer = 0;      // the pending "refine where I look"
+let viewWanted = false;   // the camera stopped while a request ran
+let viewRefines = 0;      // refines with a view sent (body[data-view-refines])
 
 function setState(state) { document.body.dataset.state = state; }
 
@@ -33,6 +42,7 @@ function showStats(s) {
   $('r-bytes').textContent = `${s.bytes} B (${kib(s.bytes)})`;
   $('r-bytes').dataset.value = s.bytes;
   $('r-packets').textContent = s.packets;
+  $('r-parts').textContent = s.parts;
   $('r-level').textContent = s.level === null ? '–' : `${s.level} of ${s.levels}`;
   $('r-level').dataset.value = s.level ?? '';
   $('r-psnr').textContent = s.psnr === null ? '–' : s.psnr >= 999 ? 'lossless' : `${s.psnr.toFixed(2)} dB`;
@@ -73,6 +83,8 @@ function startStream() {
   clearError();
   lastMesh = null;
   firstMeshShown = false;
+  clearTimeout(settleTimer);
+  viewWanted = false;
   $('r-first').textContent = '–';
   const budgetKiB = parseFloat($('budget').value);
   const rateKiB = parseFloat($('rate').value);
@@ -90,10 +102,11 @@ function startStream() {
     onProgress: showStats,
     onDone(stats) {
       if (s !== session) return;
-      status(stats.complete ? 'complete: the whole order is here' : 'done; refine for more');
+      status(stats.complete ? 'complete: the whole stream is here' : 'done; refine for more');
       $('refine').disabled = stats.complete;
       setState('done');
       if ($('errors').checked) ensureReference();
+      if (viewWanted) refineWhereLooking();
     },
     onError(message) {
       if (s !== session) return;
@@ -107,13 +120,49 @@ function startStream() {
   s.start(request);
 }
 
+function refineBytes() { return Math.round(parseFloat($('refine-kib').value) * KiB); }
+
+// Without a view: the server continues the last region asked for, or the
+// order.
 function refine() {
-  const extra = Math.round(parseFloat($('refine-kib').value) * KiB);
+  const extra = refineBytes();
   if (!session || !(extra > 0)) return;
+  clearTimeout(settleTimer);
+  viewWanted = false;
   $('refine').disabled = true;
   setState('streaming');
   status(`refining by ${kib(extra)} …`);
   session.refine(extra);
+}
+
+// "refine where I look": the camera has rested SETTLE_MS. A request still
+// running (the stream, a refine) is left to finish, and the camera as it
+// then is asked for after its `done`; nothing once the stream is complete.
+function refineWhereLooking() {
+  viewWanted = false;
+  if (!$('follow-view').checked || !view || !session?.decoder || session.failed) return;
+  if (session.stats.streaming) {
+    viewWanted = true;
+    return;
+  }
+  const extra = refineBytes();
+  const camera = view.viewRegion();
+  if (session.stats.complete || !(extra > 0) || !camera) return;
+  $('refine').disabled = true;
+  setState('streaming');
+  status(`refining where you look by ${kib(extra)} …`);
+  document.body.dataset.viewRefines = ++viewRefines;
+  session.refine(extra, { view: camera });
+}
+
+function onCameraStart() {
+  clearTimeout(settleTimer);
+  viewWanted = false;
+}
+
+function onCameraEnd() {
+  clearTimeout(settleTimer);
+  if ($('follow-view').checked) settleTimer = setTimeout(refineWhereLooking, SETTLE_MS);
 }
 
 async function ensureReference() {
@@ -166,10 +215,15 @@ async function main() {
   $('refine').onclick = refine;
   $('refine-kib').oninput = () => { $('refine-label').textContent = $('refine-kib').value; };
   $('errors').onchange = () => ($('errors').checked && lastMesh ? ensureReference() : draw(false));
+  $('follow-view').onchange = () => {
+    if (!$('follow-view').checked) onCameraStart();
+  };
   $('stream').disabled = true;
   try {
     const { MeshView } = await import('./scene.js');
     view = new MeshView($('view'));
+    view.onCameraStart = onCameraStart;
+    view.onCameraEnd = onCameraEnd;
   } catch (e) {
     showError(`3D view unavailable (WebGL?): ${e.message}`);
   }
