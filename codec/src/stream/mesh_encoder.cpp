@@ -186,8 +186,23 @@ Result<EncodedStream> EncodeMesh(const SemiRegularMesh& input,
     for (auto packet = coded[j].rbegin(); packet != coded[j].rend(); ++packet, ++split) {
       if (packet->payload.size() < uint64_t{options.split_bytes_per_precinct} * precincts) break;
     }
-    if (split > 0) coded[j] = code_subband(j, split);
     split_planes[static_cast<size_t>(j)] = split;
+  });
+  // A packet (j, b) sent whole needs every part of (j - 1, b) (3xC's
+  // parent contexts): a subband splits at least the bitplanes its parent
+  // subband splits, so that a region's part of a finer subband never
+  // drags in a coarser subband's whole bitplane.
+  for (int j = 1; j < levels; ++j) {
+    if (layouts[j].size() < 2) continue;
+    auto& split = split_planes[static_cast<size_t>(j)];
+    split = std::max(split, std::min(split_planes[static_cast<size_t>(j - 1)],
+                                     static_cast<uint32_t>(coded[j].size())));
+  }
+  ParallelTasks(static_cast<size_t>(levels), options.threads, [&](size_t i) {
+    const int j = finest_first(i);
+    if (split_planes[static_cast<size_t>(j)] > 0) {
+      coded[j] = code_subband(j, split_planes[static_cast<size_t>(j)]);
+    }
   });
   proto::PacketIndex& index = *header.mutable_packets();
   // Absent when nothing is split: a stream without precincts pays nothing.

@@ -185,7 +185,7 @@ std::vector<StreamUnit> RegionOrder(const StreamHeader& header, const StreamPrec
     }
   }
   const size_t count = units.size();
-  std::vector<double> value(count, 0);
+  std::vector<double> gain(count, 0), cost(count, 0);
   std::vector<char> in_region(count, 0);  // before every other unit
   std::vector<uint32_t> pending(count, 0);
   std::vector<std::vector<uint32_t>> dependants(count);
@@ -224,8 +224,11 @@ std::vector<StreamUnit> RegionOrder(const StreamHeader& header, const StreamPrec
       in_region[k] = inside(w);
     }
     // An untrusted header may give negative or NaN reductions: worth 0.
-    const double v = w * reduction / (bytes + 4.0);
-    value[k] = v > 0 ? v : 0;
+    // Each unit's record or message costs a few bytes more; a unit of no
+    // bytes (a precinct with nothing at that bitplane) costs nothing.
+    const double g = w * reduction;
+    gain[k] = g > 0 ? g : 0;
+    cost[k] = bytes == 0 ? 0 : bytes + 4.0;
     std::vector<std::pair<int, int>> needs;  // (packet, its subband)
     if (j < 0) {
       needs.push_back({layout.BaseId(b + 1), -1});
@@ -242,6 +245,26 @@ std::vector<StreamUnit> RegionOrder(const StreamHeader& header, const StreamPrec
         dependants[d].push_back(k);
       }
     }
+  }
+  // A unit's value: the best gain per byte of a chain of units starting
+  // with it (itself, then a unit that needs it, and so on): a unit of
+  // little worth that opens the way to much (an empty part before a rich
+  // one, a part whose finer parts matter) is not left behind. Dependants
+  // have higher indices (they need lower packet ids): one pass from the
+  // end.
+  auto ratio = [](double g, double c) {
+    return c > 0 ? g / c : (g > 0 || c == 0 ? std::numeric_limits<double>::infinity() : 0.0);
+  };
+  std::vector<double> chain_gain(gain), chain_cost(cost), value(count, 0);
+  for (uint32_t k = static_cast<uint32_t>(count); k-- > 0;) {
+    for (uint32_t d : dependants[k]) {
+      const double g = gain[k] + chain_gain[d], c = cost[k] + chain_cost[d];
+      if (ratio(g, c) > ratio(chain_gain[k], chain_cost[k])) {
+        chain_gain[k] = g;
+        chain_cost[k] = c;
+      }
+    }
+    value[k] = ratio(chain_gain[k], chain_cost[k]);
   }
   // Kahn's algorithm: the ready units in the region first, among them (and
   // then among the others) the most valuable (ties: the lower index, so

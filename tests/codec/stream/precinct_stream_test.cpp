@@ -110,12 +110,17 @@ TEST(PrecinctStreamTest, APartIsRefusedTwiceBeforeItsDependenciesOrOnAnUnsplitPa
   const EncodedStream& s = Precincted();
   auto d = DecoderOf(s);
   const PacketLayout layout(s.header);
-  uint32_t split = 0, unsplit = 0;
-  for (uint32_t id = 0; id < static_cast<uint32_t>(layout.detail_count()); ++id) {
-    if (d->PartCount(id) > 0 && split == 0) split = id;
+  // A split detail packet, and a packet that is not split (the base
+  // refinement's, when every detail packet is).
+  uint32_t split = 0, unsplit = 0xffffffffu;
+  for (uint32_t id = 0; id < static_cast<uint32_t>(layout.count()); ++id) {
+    if (id < static_cast<uint32_t>(layout.detail_count()) && d->PartCount(id) > 0 && split == 0) {
+      split = id;
+    }
     if (d->PartCount(id) == 0) unsplit = id;
   }
   ASSERT_GT(split, 0u);
+  ASSERT_NE(unsplit, 0xffffffffu);
   const auto parts = PartsOf(s, *d, split);
   Status early = d->AddPacketPart(split, 0, parts[0]);
   EXPECT_EQ(early.code(), StatusCode::kInvalidArgument);
