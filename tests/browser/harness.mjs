@@ -18,6 +18,24 @@ export function skip(message) {
   process.exit(SKIP);
 }
 
+// Named checks, one line each ("ok: NAME" or "FAIL: NAME: why"); a failure
+// does not stop the ones after it, and `failed()` tells the exit code.
+export function checks() {
+  let anyFailed = false;
+  return {
+    async test(name, body) {
+      try {
+        await body();
+        console.log(`ok: ${name}`);
+      } catch (e) {
+        anyFailed = true;
+        console.log(`FAIL: ${name}: ${e.stack || e}`);
+      }
+    },
+    failed: () => anyFailed,
+  };
+}
+
 export function tempDir(prefix) { return mkdtempSync(path.join(tmpdir(), prefix)); }
 
 // `meshwave-server ingest` of one mesh file (more ingest options in

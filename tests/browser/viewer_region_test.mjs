@@ -37,7 +37,7 @@ import path from 'node:path';
 import { setTimeout as sleep } from 'node:timers/promises';
 import { fileURLToPath, pathToFileURL } from 'node:url';
 import { parseArgs } from 'node:util';
-import { Server, ingest, launchChromium, skip, tempDir, viewerDir } from './harness.mjs';
+import { Server, ingest, launchChromium, skip, tempDir, viewerDir, checks } from './harness.mjs';
 import { decodeServerMessage } from '../../web/viewer/ws_protocol.js';
 
 const { values: opt } = parseArgs({ options: {
@@ -70,7 +70,6 @@ const catalog = path.join(work, 'catalog');
 const id = ingest(opt.server, catalog, opt.mesh, PRECINCTS);
 // Both stopped in the `finally` below, also when the other failed to start.
 let server = null, browser = null;
-let failed = false;
 
 // A ClientMessage as protoc's text format (what the page sent, read by an
 // independent parser).
@@ -171,15 +170,7 @@ async function readouts(page) {
   }));
 }
 
-async function test(name, body) {
-  try {
-    await body();
-    console.log(`ok: ${name}`);
-  } catch (e) {
-    failed = true;
-    console.log(`FAIL: ${name}: ${e.stack || e}`);
-  }
-}
+const { test, failed } = checks();
 
 try {
   server = await Server.start(opt.server, catalog,
@@ -312,5 +303,5 @@ try {
   rmSync(work, { recursive: true, force: true });
 }
 console.log(`screenshots in ${opt.artefacts}`);
-if (failed) process.exit(1);
+if (failed()) process.exit(1);
 console.log('viewer_region_test: all passed');

@@ -21,7 +21,7 @@ import { execFileSync } from 'node:child_process';
 import { existsSync, mkdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import path from 'node:path';
 import { parseArgs } from 'node:util';
-import { Server, SKIP, ingest, launchChromium, skip, tempDir, viewerDir } from './harness.mjs';
+import { Server, SKIP, ingest, launchChromium, skip, tempDir, viewerDir, checks } from './harness.mjs';
 import { decodeServerMessage } from '../../web/viewer/ws_protocol.js';
 
 const { values: opt } = parseArgs({ options: {
@@ -47,7 +47,6 @@ const id = ingest(opt.server, catalog, opt.mesh);
 const server = await Server.start(opt.server, catalog,
   viewerDir(opt.viewer, opt.decoder, path.join(work, 'viewer')), work);
 const browser = await launchChromium(opt['node-modules']);
-let failed = false;
 
 // What the server and the CLI say about the prefix order[0 .. packets) that
 // fits `budget` container bytes: the bytes the page receives for it,
@@ -158,15 +157,7 @@ async function refineAndWait(page) {
   await page.waitForSelector('body[data-state="done"], body[data-state="error"]');
 }
 
-async function test(name, body) {
-  try {
-    await body();
-    console.log(`ok: ${name}`);
-  } catch (e) {
-    failed = true;
-    console.log(`FAIL: ${name}: ${e.stack || e}`);
-  }
-}
+const { test, failed } = checks();
 
 try {
   await test('stream, refine: readouts equal the server\'s, the mesh drawn and refined', async () => {
@@ -311,7 +302,7 @@ try {
   rmSync(work, { recursive: true, force: true });
 }
 console.log(`screenshots in ${opt.artefacts}`);
-if (failed) process.exit(1);
+if (failed()) process.exit(1);
 if (fake) {
   console.log('SKIP: wiring checked with the test-only fake decoder; the real module is needed to pass');
   process.exit(SKIP);
