@@ -1,6 +1,7 @@
-// The meshwave-server binary end to end: ingest shared meshes, start it on
-// a free port, and check every endpoint with a Beast client, including the
-// refusals, then stop it with SIGTERM (exit code 0).
+// The meshwave-server binary end to end: ingest the sample meshes, start it
+// on a free port, and check every endpoint that reads the catalog with a
+// Beast client, including the refusals, then stop it with SIGTERM (exit
+// code 0). The requests that change the catalog: server_catalog_http_test.cpp.
 #include <google/protobuf/util/json_util.h>
 #include <gtest/gtest.h>
 
@@ -19,7 +20,7 @@
 #include "meshwave/metrics.h"
 #include "meshwave/progression.h"
 #include "meshwave/progressive_decoder.h"
-#include "sample_catalog_testonly.h"
+#include "server_http_fixture_testonly.h"
 #include "server_process_testonly.h"
 #include "stream.pb.h"
 #include "sha256.h"
@@ -30,28 +31,6 @@ namespace meshwave::testing {
 namespace {
 
 using server::Sha256Hex;
-
-constexpr char kToken[] = "test-token-1234";
-
-// The repository's samples (no ../shared needed): elephant.off (irregular:
-// remeshed), holes.off (semi-regular, 2 levels), and two copies of
-// holes.off under other names in `dir`, which encode to other containers
-// (the name is in the header): four entries.
-std::vector<std::filesystem::path> TestMeshes(const std::filesystem::path& dir) {
-  std::vector<std::filesystem::path> meshes = {SampleMesh("elephant.off"), SampleMesh("holes.off")};
-  for (const char* name : {"holes_patch.off", "holes_copy.off"}) {
-    std::filesystem::copy_file(SampleMesh("holes.off"), dir / name,
-                               std::filesystem::copy_options::overwrite_existing);
-    meshes.push_back(dir / name);
-  }
-  return meshes;
-}
-
-proto::MeshList ParseList(const std::string& json) {
-  proto::MeshList list;
-  EXPECT_TRUE(google::protobuf::util::JsonStringToMessage(json, &list).ok()) << json;
-  return list;
-}
 
 // Decodes a container; the positions of the finest level.
 std::vector<Vec3> Decode(std::string_view bytes, double* estimated_psnr = nullptr) {
@@ -79,50 +58,6 @@ double Psnr(const std::vector<Vec3>& reference, const std::vector<Vec3>& test, d
   EXPECT_TRUE(e.ok());
   return e.ok() ? e->psnr_db : -1;
 }
-
-bool IsJsonError(const HttpReply& r) {
-  return r.Header("content-type") == "application/json" &&
-         r.body.find("\"error\"") != std::string::npos;
-}
-
-class ServerHttpTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    work_ = tmp_ / "work";
-    std::filesystem::create_directories(work_);
-    catalog_ = tmp_ / "catalog";
-    // Every test changes its own copy; the default fidelity's denser
-    // remesh is tested by UploadWithAFidelity... and tests/server/ingest_test.
-    ASSERT_NO_FATAL_FAILURE(CopySampleCatalog(catalog_, TestMeshes(work_)));
-    server_ = std::make_unique<ServerProcess>(
-        catalog_, work_, std::vector<std::string>{std::string("MESHWAVE_UPLOAD_TOKEN=") + kToken});
-    ASSERT_TRUE(server_->running()) << ReadBytes(server_->log());
-    port_ = server_->port();
-    const HttpReply list = HttpGet(port_, "/v1/meshes");
-    ASSERT_EQ(list.status, 200u);
-    const proto::MeshList meshes = ParseList(list.body);
-    for (const auto& m : meshes.meshes()) ids_[m.name()] = m.id();
-    ASSERT_EQ(ids_.size(), 4u) << list.body;
-  }
-
-  void TearDown() override {
-    if (server_) {
-      EXPECT_EQ(server_->Stop(), 0) << ReadBytes(server_->log());
-    }
-  }
-
-  std::string Container(const std::string& id) {
-    const HttpReply r = HttpGet(port_, "/v1/meshes/" + id + "/container");
-    EXPECT_EQ(r.status, 200u);
-    return r.body;
-  }
-
-  TempDir tmp_;
-  std::filesystem::path work_, catalog_;
-  std::unique_ptr<ServerProcess> server_;
-  uint16_t port_ = 0;
-  std::map<std::string, std::string> ids_;  // name -> id
-};
 
 TEST_F(ServerHttpTest, ListsCatalogAsJsonWithPaging) {
   const HttpReply all = HttpGet(port_, "/v1/meshes");
@@ -481,89 +416,6 @@ TEST_F(ServerHttpTest, CachedResponsesAreTheSameAndEndWithTheMesh) {
   }
 }
 
-TEST_F(ServerHttpTest, UploadAndDeleteNeedTheToken) {
-  const std::string mesh = ReadBytes(SampleMesh("holes.off"));
-  HttpConnection c1(port_);
-  HttpReply r = c1.Send(http::verb::post, "/v1/meshes?name=uploaded", {}, mesh);
-  EXPECT_EQ(r.status, 401u);
-  EXPECT_TRUE(IsJsonError(r));
-  HttpConnection c2(port_);
-  r = c2.Send(http::verb::post, "/v1/meshes?name=uploaded", {{"Authorization", "Bearer wrong"}},
-              mesh);
-  EXPECT_EQ(r.status, 403u);
-  HttpConnection c3(port_);
-  const std::pair<std::string, std::string> auth = {"Authorization", std::string("Bearer ") + kToken};
-  r = c3.Send(http::verb::post, "/v1/meshes?name=uploaded", {auth}, mesh);
-  ASSERT_EQ(r.status, 201u) << r.body;
-  proto::MeshSummary summary;
-  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(r.body, &summary).ok());
-  EXPECT_EQ(summary.name(), "uploaded");
-  EXPECT_EQ(r.Header("location"), "/v1/meshes/" + summary.id());
-  r = c3.Send(http::verb::post, "/v1/meshes?name=uploaded", {auth}, mesh);
-  EXPECT_EQ(r.status, 200u);  // same bytes: the same entry
-  EXPECT_EQ(ParseList(HttpGet(port_, "/v1/meshes").body).total(), 5u);
-  r = c3.Send(http::verb::post, "/v1/meshes?name=junk&format=ply", {auth}, "ply\nnonsense\n");
-  EXPECT_EQ(r.status, 422u);
-  EXPECT_TRUE(IsJsonError(r));
-
-  const std::string target = "/v1/meshes/" + summary.id();
-  EXPECT_EQ(HttpConnection(port_).Send(http::verb::delete_, target).status, 401u);
-  EXPECT_EQ(HttpConnection(port_)
-                .Send(http::verb::delete_, target, {{"Authorization", "Bearer nope"}})
-                .status,
-            403u);
-  EXPECT_EQ(HttpConnection(port_).Send(http::verb::delete_, target, {auth}).status, 204u);
-  EXPECT_EQ(HttpGet(port_, target).status, 404u);
-  EXPECT_EQ(HttpGet(port_, target + "/container").status, 404u);
-  EXPECT_EQ(HttpConnection(port_).Send(http::verb::delete_, target, {auth}).status, 404u);
-  EXPECT_EQ(ParseList(HttpGet(port_, "/v1/meshes").body).total(), 4u);
-}
-
-// POST ?fidelity=DB: the upload is remeshed denser until the complete
-// stream reaches DB against it, measured here on the served container
-// against the uploaded file; a fidelity out of range is a 400.
-TEST_F(ServerHttpTest, UploadWithAFidelityReachesItAgainstTheUpload) {
-  const std::pair<std::string, std::string> auth = {"Authorization", std::string("Bearer ") + kToken};
-  const std::string mesh = ReadBytes(SampleMesh("elephant.off"));
-  for (const char* bad : {"151", "abc", "-3"}) {
-    HttpReply r = HttpConnection(port_).Send(
-        http::verb::post, std::string("/v1/meshes?name=e&format=off&fidelity=") + bad, {auth}, mesh);
-    EXPECT_EQ(r.status, 400u) << bad << ": " << r.body;
-    EXPECT_TRUE(IsJsonError(r)) << bad;
-  }
-  // fidelity=0: one remesh at about the sample's density, about 60 dB
-  // against it; the densest an upload may ask for (4 times its vertices)
-  // reaches about 70.
-  HttpReply r = HttpConnection(port_).Send(
-      http::verb::post, "/v1/meshes?name=plain&format=off&fidelity=0", {auth}, mesh);
-  ASSERT_EQ(r.status, 201u) << r.body;
-  proto::MeshSummary plain;
-  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(r.body, &plain).ok());
-  constexpr double kAsked = 65;
-  r = HttpConnection(port_).Send(
-      http::verb::post, "/v1/meshes?name=fine&format=off&fidelity=65", {auth}, mesh);
-  ASSERT_EQ(r.status, 201u) << r.body;
-  proto::MeshSummary fine;
-  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(r.body, &fine).ok());
-  EXPECT_GT(fine.vertices(), plain.vertices());
-
-  const std::string container = HttpGet(port_, "/v1/meshes/" + fine.id() + "/container").body;
-  auto parsed = ParseContainer(container);
-  ASSERT_TRUE(parsed.ok()) << parsed.status().ToString();
-  auto decoder = ProgressiveDecoder::Create(parsed->header);
-  ASSERT_TRUE(decoder.ok());
-  for (size_t i = 0; i < parsed->ids.size(); ++i) {
-    ASSERT_TRUE((*decoder)->AddPacket(parsed->ids[i], parsed->payloads[i]).ok());
-  }
-  auto original = ReadMesh(SampleMesh("elephant.off"));
-  ASSERT_TRUE(original.ok());
-  auto d = SymmetricSurfaceDistance(*original, (*decoder)->Mesh());
-  ASSERT_TRUE(d.ok());
-  EXPECT_GE(d->PsnrDb(d->rms), kAsked);
-  EXPECT_EQ(HttpConnection(port_).Send(http::verb::delete_, "/v1/meshes/" + fine.id(), {auth}).status,
-            204u);
-}
-
 TEST_F(ServerHttpTest, BadRequestsGetJsonErrorsAndServerStaysUp) {
   const std::string id = ids_.at("holes");
   const std::string m = "/v1/meshes/" + id;
@@ -619,49 +471,6 @@ TEST_F(ServerHttpTest, BadRequestsGetJsonErrorsAndServerStaysUp) {
   const HttpReply health = HttpGet(port_, "/healthz");
   EXPECT_EQ(health.status, 200u);
   EXPECT_EQ(HttpGet(port_, "/v1/meshes").status, 200u);
-}
-
-// A catalog an older build wrote (docs/DEPLOY.md, "Upgrading across a
-// stream format version"): the row and the file are intact, but this build
-// reads another format version. That is the server's condition, not the
-// client's: 500, naming both versions, and the other meshes still served.
-TEST_F(ServerHttpTest, AContainerOfAnotherFormatVersionAnswers500NamingBothVersions) {
-  const std::string id = ids_.at("holes_copy");
-  auto catalog = server::Catalog::Open(catalog_.string());
-  ASSERT_TRUE(catalog.ok()) << catalog.status().ToString();
-  auto found = (*catalog)->Find(id);
-  ASSERT_TRUE(found.ok() && *found);
-  server::CatalogEntry entry = **found;
-  const auto path = (*catalog)->ContainerPath(entry);
-  const std::string original = ReadBytes(path);  // the views below point into it
-  auto parsed = ParseContainer(original);
-  ASSERT_TRUE(parsed.ok()) << parsed.status().ToString();
-  proto::StreamHeader header;
-  ASSERT_TRUE(header.ParseFromString(parsed->header.bytes_without_present));
-  const uint32_t older = kFormatVersion - 1;
-  header.set_format_version(older);
-  std::string bytes = SerializeContainerHead(header.SerializeAsString(), parsed->ids);
-  for (std::string_view payload : parsed->payloads) bytes += payload;
-  {
-    std::ofstream out(path, std::ios::binary | std::ios::trunc);
-    out << bytes;
-  }
-  ASSERT_TRUE((*catalog)->Remove(id).ok());
-  entry.sha256 = Sha256Hex(bytes);
-  ASSERT_TRUE((*catalog)->Insert(entry).ok());
-
-  for (const std::string& target : {"/v1/meshes/" + id + "/stream?budget=5000",
-                                    "/v1/meshes/" + id + "/container"}) {
-    const HttpReply r = HttpGet(port_, target);
-    EXPECT_EQ(r.status, 500u) << target;
-    EXPECT_TRUE(IsJsonError(r)) << r.body;
-    EXPECT_NE(r.body.find("format version " + std::to_string(older) +
-                          " (this build reads version " + std::to_string(kFormatVersion) + ")"),
-              std::string::npos)
-        << r.body;
-  }
-  EXPECT_EQ(HttpGet(port_, "/v1/meshes/" + ids_.at("holes") + "/stream?budget=5000").status,
-            200u);
 }
 
 TEST_F(ServerHttpTest, MetricsCountRequests) {
