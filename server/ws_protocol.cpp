@@ -1,7 +1,5 @@
 #include "ws_protocol.h"
 
-#include <cmath>
-
 #include "core/protobuf_wire.h"
 #include "mesh_id.h"
 #include "stream_query.h"
@@ -81,12 +79,9 @@ Result<std::optional<Region>> ParseRegionFields(const std::string& region, const
   auto r = region.empty() ? ParseViewRegion(view) : ParseSphereRegion(region);
   if (!r.ok()) return Bad((region.empty() ? "view: " : "region: ") + r.status().message());
   if (has_screen_error) {
-    // The text parser's checks, on the number's shortest text form.
-    if (!std::isfinite(screen_error) || screen_error <= 0 || screen_error > kMaxScreenPixels) {
-      return Bad("screen_error must be a number of pixels in (0, " +
-                 std::to_string(kMaxScreenPixels) + "]");
-    }
-    r->screen_error_px = screen_error;
+    auto px = CheckScreenError(screen_error);
+    if (!px.ok()) return Bad("screen_error: " + px.status().message());
+    r->screen_error_px = *px;
   }
   return std::optional<Region>(*std::move(r));
 }

@@ -111,7 +111,7 @@ class HttpTransport final : public Transport {
       const bool sphere = std::holds_alternative<SphereRegion>(request.region->shape);
       target += (sphere ? "region=" : "view=") + FormatRegionShape(*request.region);
       if (request.region->screen_error_px) {
-        target += "&screen_error=" + std::to_string(*request.region->screen_error_px);
+        target += "&screen_error=" + FormatScreenError(*request.region->screen_error_px);
       }
     } else {
       target += std::string("order=") + ProgressionName(request.order);

@@ -29,7 +29,7 @@ Result<std::optional<Region>> RegionFrom(const RegionRequestArgs& args) {
   if (!r.ok()) return InvalidArgument((args.region.empty() ? "--view: " : "--region: ") +
                                       r.status().message());
   if (args.screen_error > 0) {
-    MW_ASSIGN_OR_RETURN(double px, ParseScreenError(std::to_string(args.screen_error)));
+    MW_ASSIGN_OR_RETURN(double px, CheckScreenError(args.screen_error));
     r->screen_error_px = px;
   }
   return std::optional<Region>(*std::move(r));
@@ -41,7 +41,7 @@ std::string RegionStateText(const std::optional<Region>& region) {
     return "sphere:" + FormatRegionShape(*region);
   }
   std::string out = "view:" + FormatRegionShape(*region);
-  if (region->screen_error_px) out += "@" + std::to_string(*region->screen_error_px);
+  if (region->screen_error_px) out += "@" + FormatScreenError(*region->screen_error_px);
   return out;
 }
 

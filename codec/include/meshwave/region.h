@@ -59,6 +59,10 @@ Result<Region> ParseViewRegion(std::string_view text);
 // A screen-space error in pixels: a finite number > 0, at most
 // kMaxScreenPixels.
 Result<double> ParseScreenError(std::string_view text);
+// ParseScreenError's checks on a number (a protobuf field, an option).
+Result<double> CheckScreenError(double px);
+// The text ParseScreenError reads back to `px` (shortest round trip).
+std::string FormatScreenError(double px);
 // The text form ParseSphereRegion or ParseViewRegion reads back to the same
 // region (shortest round-tripping decimals).
 std::string FormatRegionShape(const Region& region);

@@ -98,12 +98,18 @@ Result<Region> ParseViewRegion(std::string_view text) {
 
 Result<double> ParseScreenError(std::string_view text) {
   MW_ASSIGN_OR_RETURN(double px, Number(text, "screen error"));
+  return CheckScreenError(px);
+}
+
+Result<double> CheckScreenError(double px) {
   if (!(px > 0 && px <= kMaxScreenPixels)) {
     return InvalidArgument("screen error must be in (0, " + std::to_string(kMaxScreenPixels) +
                            "] pixels");
   }
   return px;
 }
+
+std::string FormatScreenError(double px) { return Shortest(px); }
 
 std::string FormatRegionShape(const Region& region) {
   std::string out;

@@ -112,5 +112,17 @@ TEST(RegionTest, AViewWeighsByProjectedSizeAndNothingOutsideIt) {
   EXPECT_EQ(RegionWeight(r, Vec3(0, 0, 0), 1e9), 1);  // capped
 }
 
+TEST(RegionTest, AScreenErrorNumberIsCheckedAndWrittenAsTheTextParserReadsIt) {
+  for (double px : {0.75, 1e-7, 1.0 / 3, 16384.0}) {
+    ASSERT_TRUE(CheckScreenError(px).ok()) << px;
+    auto back = ParseScreenError(FormatScreenError(px));
+    ASSERT_TRUE(back.ok()) << FormatScreenError(px);
+    EXPECT_EQ(*back, px);
+  }
+  for (double px : {0.0, -1.0, 16384.5, std::nan("")}) {
+    EXPECT_EQ(CheckScreenError(px).status().code(), StatusCode::kInvalidArgument) << px;
+  }
+}
+
 }  // namespace
 }  // namespace meshwave
