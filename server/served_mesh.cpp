@@ -47,6 +47,12 @@ Result<std::shared_ptr<const ServedMesh>> ServedMesh::Load(
   return std::shared_ptr<const ServedMesh>(std::move(m));
 }
 
+Status ServedMesh::CheckLevelLimit(int max_level) const {
+  if (max_level <= static_cast<int>(levels())) return Status::Ok();
+  return InvalidArgument("max_level " + std::to_string(max_level) + " exceeds the " +
+                         std::to_string(levels()) + " levels of mesh " + entry_.id);
+}
+
 const std::vector<uint32_t>& ServedMesh::Order(Progression p, int max_level) const {
   return orders_[3 * static_cast<size_t>(max_level + 1) + static_cast<size_t>(p)];
 }

@@ -41,6 +41,8 @@ class ServedMesh {
   const StreamHeader& header() const { return header_; }
   const std::string& header_bytes() const { return header_.bytes_without_present; }
   uint32_t levels() const { return header_.transform.levels; }
+  // kInvalidArgument, naming the mesh, for a level limit above its levels.
+  Status CheckLevelLimit(int max_level) const;
   size_t packet_count() const { return payloads_.size(); }
   // Payload of packet `id` (< packet_count()), a view into the map.
   std::string_view payload(uint32_t id) const { return payloads_[id]; }

@@ -9,12 +9,7 @@ namespace meshwave::server {
 Result<StreamPlan> PlanStream(const ServedMesh& mesh, Progression order,
                               int max_level, uint64_t from, uint64_t budget,
                               bool with_header) {
-  const std::string& id = mesh.entry().id;
-  if (max_level > static_cast<int>(mesh.levels())) {
-    return InvalidArgument("max_level " + std::to_string(max_level) +
-                           " exceeds the " + std::to_string(mesh.levels()) +
-                           " levels of mesh " + id);
-  }
+  MW_RETURN_IF_ERROR(mesh.CheckLevelLimit(max_level));
   StreamPlan plan;
   plan.order = &mesh.Order(order, max_level);
   if (from > plan.order->size()) {

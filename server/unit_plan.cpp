@@ -28,10 +28,7 @@ std::vector<StreamUnit> UniformUnits(const ServedMesh& mesh, const HeldUnits& he
 
 Result<UnitPlan> PlanUnits(const ServedMesh& mesh, const UnitTable& table, const HeldUnits& held,
                            const UnitRequest& request) {
-  if (request.max_level > static_cast<int>(mesh.levels())) {
-    return InvalidArgument("max_level " + std::to_string(request.max_level) + " exceeds the " +
-                           std::to_string(mesh.levels()) + " levels of mesh " + mesh.entry().id);
-  }
+  MW_RETURN_IF_ERROR(mesh.CheckLevelLimit(request.max_level));
   const std::vector<StreamUnit> lacking =
       request.region ? RegionOrder(mesh.header(), table.precincts(), table.part_lengths(),
                                    *request.region, held, request.max_level)

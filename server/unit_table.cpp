@@ -16,10 +16,10 @@ Result<std::unique_ptr<const UnitTable>> UnitTable::Build(
   MW_ASSIGN_OR_RETURN(StreamPrecincts precincts, StreamPrecincts::Create(header));
   std::unique_ptr<UnitTable> t(new UnitTable(std::move(precincts), header));
   for (uint32_t id = 0; id < payloads.size(); ++id) {
-    MW_ASSIGN_OR_RETURN(std::vector<std::string_view> parts,
-                        t->nothing_held_.PartCount(id) == 0
-                            ? Result<std::vector<std::string_view>>(std::vector<std::string_view>{})
-                            : PacketParts(t->nothing_held_, id, payloads[id]));
+    std::vector<std::string_view> parts;
+    if (t->nothing_held_.PartCount(id) > 0) {
+      MW_ASSIGN_OR_RETURN(parts, PacketParts(t->nothing_held_, id, payloads[id]));
+    }
     std::vector<uint32_t> lengths, offsets;
     for (std::string_view part : parts) {
       lengths.push_back(static_cast<uint32_t>(part.size()));

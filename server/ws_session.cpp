@@ -224,10 +224,8 @@ void WsSession::SetPacing(uint64_t rate) {
 }
 
 bool WsSession::StartUnits(const ClientRequest& r, std::shared_ptr<const ServedMesh> mesh) {
-  if (r.max_level > static_cast<int>(mesh->levels())) {
-    SendError(proto::Error::BAD_REQUEST,
-              "max_level " + std::to_string(r.max_level) + " exceeds the " +
-                  std::to_string(mesh->levels()) + " levels of mesh " + mesh->entry().id);
+  if (Status s = mesh->CheckLevelLimit(r.max_level); !s.ok()) {
+    SendError(proto::Error::BAD_REQUEST, s.message());
     return false;
   }
   auto table = mesh->units();
