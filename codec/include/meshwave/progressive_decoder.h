@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "meshwave/held_units.h"
 #include "meshwave/mesh.h"
 #include "meshwave/status.h"
 #include "meshwave/stream_header.h"
@@ -48,6 +49,9 @@ class ProgressiveDecoder {
   bool HasPacket(uint32_t id) const;
   // True when every packet `id` depends on has been added.
   bool DependenciesMet(uint32_t id) const;
+  // The units added so far, with the rules of what each needs
+  // (meshwave/held_units.h): what AddPacket and AddPacketPart check.
+  const HeldUnits& held() const;
 
   // Checks and decodes one packet. Errors: unknown id, packet already added,
   // missing dependency (kInvalidArgument: nothing changed, the decoder stays

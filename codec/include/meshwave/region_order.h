@@ -1,8 +1,6 @@
-// Region-of-interest orders (issue 21): the units of a stream with
-// precincts (docs/FORMAT.md 2.2) that refine a region first, then the
-// rest, continuing from whatever the receiver already holds.
-//
-// A unit is a whole packet or one precinct's part of a split packet. The
+// Region-of-interest orders: the units of a stream with precincts
+// (docs/FORMAT.md 2.2; meshwave/held_units.h) that refine a region first,
+// then the rest, continuing from whatever the receiver already holds. The
 // region order sends parts of split packets, never the packet whole, so a
 // receiver that holds some parts is sent only the others.
 #ifndef MESHWAVE_REGION_ORDER_H_
@@ -13,20 +11,13 @@
 #include <string_view>
 #include <vector>
 
+#include "meshwave/held_units.h"
 #include "meshwave/mesh.h"
 #include "meshwave/region.h"
 #include "meshwave/status.h"
 #include "meshwave/stream_header.h"
 
 namespace meshwave {
-
-struct StreamUnit {
-  static constexpr uint32_t kWholePacket = 0xffffffffu;
-  uint32_t id = 0;                // in the header's packet index
-  uint32_t part = kWholePacket;  // a precinct of the packet's subband
-  bool whole() const { return part == kWholePacket; }
-  bool operator==(const StreamUnit&) const = default;
-};
 
 // Where a stream's precincts lie: per subband, each precinct's parent
 // precinct, the ball around its base faces (the decoded base mesh, so a
@@ -44,6 +35,8 @@ class StreamPrecincts {
   const Vec3& centre(int j, uint32_t p) const { return at(j).centre[p]; }
   double radius(int j, uint32_t p) const { return at(j).radius[p]; }
   double share(int j, uint32_t p) const { return at(j).share[p]; }
+  // Every precinct's parent, as HeldUnits takes them.
+  PrecinctParents parents() const;
 
  private:
   struct Subband {
@@ -54,41 +47,6 @@ class StreamPrecincts {
   };
   const Subband& at(int j) const { return subbands_[static_cast<size_t>(j)]; }
   std::vector<Subband> subbands_;
-};
-
-// The units a receiver holds, and what each needs first: a packet needs
-// what section 6 of FORMAT.md says (every part of a split dependency); a
-// part its precinct's share one bitplane up and its parent precinct's at
-// the same bitplane (3xC). The decoder keeps the same rules
-// (ProgressiveDecoder::PartDependenciesMet).
-class HeldUnits {
- public:
-  HeldUnits(const StreamHeader& header, const StreamPrecincts& precincts);
-
-  // 0 for a packet that is not split.
-  uint32_t PartCount(uint32_t id) const;
-  bool Has(StreamUnit u) const;
-  // Not held, and everything it needs is.
-  bool Ready(StreamUnit u) const;
-  // Marks `u` held (a whole packet: all its parts). Does not check Ready.
-  void Add(StreamUnit u);
-  // Whether `u` names a unit of this stream (an id of the index; a part
-  // below PartCount).
-  bool Valid(StreamUnit u) const;
-  size_t packet_count() const { return whole_.size(); }
-
- private:
-  // Precinct p's share of packet id held: its part, or the whole packet.
-  bool HasShare(uint32_t id, uint32_t p) const;
-
-  const StreamPrecincts* precincts_;
-  // Per packet: subband (-1: base refinement), bitplane, the packet one
-  // bitplane up in its chain and the parent subband's at its bitplane
-  // (3xC), -1 where there is none.
-  std::vector<int> subband_, bitplane_, up_, parent_;
-  std::vector<uint32_t> split_planes_;
-  std::vector<char> whole_;
-  std::vector<std::vector<char>> parts_;  // of split packets partly held
 };
 
 // The parts of split packet `id`, as views into its payload (docs/FORMAT.md

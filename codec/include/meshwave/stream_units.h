@@ -1,4 +1,4 @@
-// The two wire forms of a stream's units (meshwave/region_order.h) that
+// The two wire forms of a stream's units (meshwave/held_units.h) that
 // clients and the server exchange (docs/API.md, "Region requests"): the set
 // of units a client holds, as a bitmap over unit numbers in base64url, and
 // the unit records of a region stream's HTTP body.
@@ -12,7 +12,7 @@
 #include <string_view>
 #include <vector>
 
-#include "meshwave/region_order.h"
+#include "meshwave/held_units.h"
 #include "meshwave/status.h"
 
 namespace meshwave {

@@ -1,6 +1,7 @@
 // The units' wire forms (meshwave/stream_units.h): numbering, the held
 // bitmap (round trip, refusals, closure) and unit records read from a body
 // cut anywhere.
+#include "meshwave/region_order.h"
 #include "meshwave/stream_units.h"
 
 #include <gtest/gtest.h>
@@ -20,9 +21,9 @@ using testing::Precincted;
 
 struct Units {
   explicit Units(StreamPrecincts p)
-      : precincts(std::move(p)), empty(Precincted().header, precincts), numbering(empty) {}
+      : precincts(std::move(p)), empty(Precincted().header, precincts.parents()), numbering(empty) {}
   StreamPrecincts precincts;
-  HeldUnits empty;  // points into `precincts`: Units stays where it is made
+  HeldUnits empty;
   UnitNumbering numbering;
 };
 
