@@ -96,6 +96,8 @@ class WaveletTransform {
       const TransformSettings& settings, Stencils when = Stencils::kAllNow);
 
   // positions: the V_J positions of the finest level in canonical order.
+  // The analysis is the encoder's: defined in meshwave_codec
+  // (wavelet/wavelet_forward.cpp), not in the decoder library.
   Pyramid Forward(std::span<const Vec3> positions) const;
   // The same into an existing pyramid, reusing its memory.
   void Forward(std::span<const Vec3> positions, Pyramid& out) const;

@@ -7,7 +7,7 @@
 #include <optional>
 #include <string>
 
-#include "bitplane/bitplane_io.h"
+#include "bitplane/decoder_io.h"
 #include "bitplane/bitplane_passes.h"
 #include "bitplane/subband_layout.h"
 #include "core/deferred.h"
@@ -17,12 +17,12 @@
 #include "meshwave/semiregular.h"
 #include "meshwave/wavelet.h"
 #include "quant/deadzone_quantizer.h"
-#include "stream/base_mesh_codec.h"
+#include "stream/base_mesh_decoder.h"
 #include "stream/decoder_setup.h"
 #include "stream/packet_index.h"
 #include "stream/packet_parts.h"
 #include "stream/precinct_partition.h"
-#include "stream/sawt_field.h"
+#include "stream/sawt_field_decoder.h"
 #include "stream/stream_format.h"
 
 namespace meshwave {

@@ -1,4 +1,7 @@
-#include "stream/base_mesh_codec.h"
+#include "stream/base_mesh_decoder.h"
+#include "stream/base_mesh_encoder.h"
+#include "stream/base_refinement.h"
+#include "stream/base_refinement_encoder.h"
 
 #include <gtest/gtest.h>
 

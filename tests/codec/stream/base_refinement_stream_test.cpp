@@ -13,7 +13,8 @@
 #include "test_data.h"
 #include "meshwave/progression.h"
 #include "meshwave/progressive_decoder.h"
-#include "stream/base_mesh_codec.h"
+#include "stream/base_mesh_encoder.h"
+#include "stream/base_refinement.h"
 #include "stream/packet_index.h"
 #include "stream/stream_preparation.h"
 

@@ -1,9 +1,10 @@
 // The SAWT filter choices in the stream header (docs/FORMAT.md section 9):
 // the octree split flags, then one filter index per coded (level, region),
 // in one arithmetic codeword with the adaptive models of
-// wavelet/sawt_index_model.h.
-#ifndef MESHWAVE_STREAM_SAWT_FIELD_H_
-#define MESHWAVE_STREAM_SAWT_FIELD_H_
+// wavelet/sawt_index_model.h, which the encoder (sawt_field_encoder.h)
+// and the decoder (sawt_field_decoder.h) share.
+#ifndef MESHWAVE_STREAM_SAWT_FIELD_DECODER_H_
+#define MESHWAVE_STREAM_SAWT_FIELD_DECODER_H_
 
 #include <memory>
 #include <span>
@@ -16,11 +17,6 @@
 
 namespace meshwave {
 
-// `base_grid`: the integer base positions the decoder will hold.
-StreamHeader::SawtChoices EncodeSawtChoices(const SemiRegularHierarchy& h,
-                                     std::span<const IntVec3> base_grid,
-                                     const SawtPlan& plan, uint32_t alpha);
-
 // Safe on untrusted input: a codeword that ends early or gives another
 // number of regions than the header states is refused.
 Result<std::shared_ptr<const SawtPlan>> DecodeSawtChoices(
@@ -29,4 +25,4 @@ Result<std::shared_ptr<const SawtPlan>> DecodeSawtChoices(
 
 }  // namespace meshwave
 
-#endif  // MESHWAVE_STREAM_SAWT_FIELD_H_
+#endif  // MESHWAVE_STREAM_SAWT_FIELD_DECODER_H_

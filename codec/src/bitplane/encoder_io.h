@@ -1,14 +1,13 @@
-// The two symbol I/O policies of CodeBitplane: EncoderIo codes the true
-// symbols of known coefficients, DecoderIo reads them back.
-#ifndef MESHWAVE_BITPLANE_BITPLANE_IO_H_
-#define MESHWAVE_BITPLANE_BITPLANE_IO_H_
+// The encoder's symbol I/O policy of CodeBitplane (bitplane/bitplane_passes.h):
+// codes the true symbols of known coefficients. The decoder's:
+// bitplane/decoder_io.h.
+#ifndef MESHWAVE_BITPLANE_ENCODER_IO_H_
+#define MESHWAVE_BITPLANE_ENCODER_IO_H_
 
 #include <cstdint>
 #include <span>
-#include <string_view>
 
 #include "bitplane/coefficient_octree.h"
-#include "entropy/arithmetic_decoder.h"
 #include "entropy/arithmetic_encoder.h"
 
 namespace meshwave {
@@ -49,26 +48,6 @@ class EncoderIo {
   std::span<const uint8_t> negative_;
 };
 
-// Holds the decoder by value, so that CodeBitplane's local copy keeps the
-// coder's state in registers (through a reference, every store to the
-// coefficient arrays could alias it and forced a reload per symbol).
-class DecoderIo {
- public:
-  explicit DecoderIo(std::string_view packet) : dec_(packet) {}
-  int SigCoef(uint32_t, int, BinaryContext& ctx) { return dec_.Decode(ctx); }
-  int SigNode(const OctreeNode&, int, BinaryContext& ctx) {
-    return dec_.Decode(ctx);
-  }
-  // Signs and refinement bits are close to fair coins: decoded without a
-  // branch on the symbol.
-  int Sign(uint32_t, BinaryContext& ctx) { return dec_.DecodeUnpredictable(ctx); }
-  int Refine(uint32_t, int, BinaryContext& ctx) { return dec_.DecodeUnpredictable(ctx); }
-  const ArithmeticDecoder& decoder() const { return dec_; }
-
- private:
-  ArithmeticDecoder dec_;
-};
-
 }  // namespace meshwave
 
-#endif  // MESHWAVE_BITPLANE_BITPLANE_IO_H_
+#endif  // MESHWAVE_BITPLANE_ENCODER_IO_H_
