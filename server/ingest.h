@@ -14,6 +14,7 @@
 #include "meshwave/encoder.h"
 #include "meshwave/fidelity.h"
 #include "meshwave/mesh.h"
+#include "meshwave/mesh_io.h"
 #include "meshwave/status.h"
 
 namespace meshwave::server {

@@ -11,7 +11,7 @@
 #include "meshwave/held_units.h"
 #include "meshwave/stream_units.h"
 #include "net.h"
-#include "stream/packet_parts.h"
+#include "meshwave/packet_parts.h"
 
 namespace meshwave::client {
 

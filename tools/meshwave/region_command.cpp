@@ -23,7 +23,7 @@
 #include "meshwave/progressive_decoder.h"
 #include "meshwave/region.h"
 #include "meshwave/region_order.h"
-#include "stream/packet_index.h"  // HeaderDiagonal
+#include "meshwave/region_text.h"
 
 namespace meshwave::cli {
 namespace {

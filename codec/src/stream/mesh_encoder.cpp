@@ -16,7 +16,7 @@
 #include "stream/base_refinement_encoder.h"
 #include "stream/distortion_index_writer.h"
 #include "stream/packet_index.h"
-#include "stream/packet_parts.h"
+#include "meshwave/packet_parts.h"
 #include "stream/precinct_partition.h"
 #include "stream/stream_format.h"
 #include "stream/stream_format_writer.h"

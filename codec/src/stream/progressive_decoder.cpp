@@ -20,7 +20,7 @@
 #include "stream/base_mesh_decoder.h"
 #include "stream/decoder_setup.h"
 #include "stream/packet_index.h"
-#include "stream/packet_parts.h"
+#include "meshwave/packet_parts.h"
 #include "stream/precinct_partition.h"
 #include "stream/sawt_field_decoder.h"
 #include "stream/stream_format.h"

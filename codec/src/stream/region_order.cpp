@@ -10,7 +10,7 @@
 #include "semiregular/base_face_of.h"
 #include "stream/decoder_setup.h"
 #include "stream/packet_index.h"
-#include "stream/packet_parts.h"
+#include "meshwave/packet_parts.h"
 #include "stream/precinct_partition.h"
 #include "stream/stream_format.h"
 

@@ -10,6 +10,8 @@
 #include "stream/stream_format_writer.h"
 #include "wavelet/sawt_choice.h"
 #include "wavelet/sawt_regions.h"
+#include "meshwave/mesh_stats.h"
+#include "meshwave/subdivision.h"
 
 namespace meshwave {
 

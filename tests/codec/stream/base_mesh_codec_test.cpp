@@ -9,7 +9,10 @@
 #include <utility>
 
 #include "codec/test_meshes.h"
+#include "meshwave/mesh_io.h"
+#include "meshwave/mesh_stats.h"
 #include "meshwave/semiregular.h"
+#include "meshwave/subdivision.h"
 #include "test_data.h"
 
 namespace meshwave {

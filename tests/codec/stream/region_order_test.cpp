@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <random>
 #include <set>
 #include <string_view>
@@ -16,7 +17,7 @@
 #include "codec/stream/precinct_stream_testonly.h"
 #include "meshwave/progression.h"
 #include "meshwave/progressive_decoder.h"
-#include "stream/packet_parts.h"
+#include "meshwave/packet_parts.h"
 
 namespace meshwave {
 namespace {
@@ -178,8 +179,8 @@ TEST(RegionOrderTest, AViewSendsWhatTheCameraSeesFirst) {
   const RegionFixture& f = RegionStream();
   // Far off, narrow, aimed at the side of the sphere: its cone takes in
   // the near side of that point and misses the rest.
-  auto region = ParseViewRegion("6,0,6,-5.3,0.7,-6,4,800,600");
-  ASSERT_TRUE(region.ok());
+  const std::optional<Region> region =
+      Region{ViewRegion{Vec3(6, 0, 6), Vec3(-5.3, 0.7, -6), 4, 800, 600}, std::nullopt};
   const HeldUnits none(f.s->header, f.precincts.parents());
   const std::vector<StreamUnit> order =
       RegionOrder(f.s->header, f.precincts, f.part_lengths, *region, none);

@@ -1,16 +1,16 @@
-#include "meshwave/region.h"
+// The text forms of regions (meshwave/region_text.h).
+#include "meshwave/region_text.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <numbers>
 #include <string>
 #include <vector>
 
 namespace meshwave {
 namespace {
 
-TEST(RegionTest, ParsesASphere) {
+TEST(RegionTextTest, ParsesASphere) {
   auto r = ParseSphereRegion("1.5,-2,3e-1,0.25");
   ASSERT_TRUE(r.ok()) << r.status().ToString();
   const auto& s = std::get<SphereRegion>(r->shape);
@@ -19,7 +19,7 @@ TEST(RegionTest, ParsesASphere) {
   EXPECT_FALSE(r->screen_error_px.has_value());
 }
 
-TEST(RegionTest, ParsesAView) {
+TEST(RegionTextTest, ParsesAView) {
   auto r = ParseViewRegion("0,0,5,0,0,-2,45,1920,1080");
   ASSERT_TRUE(r.ok()) << r.status().ToString();
   const auto& v = std::get<ViewRegion>(r->shape);
@@ -30,7 +30,7 @@ TEST(RegionTest, ParsesAView) {
   EXPECT_EQ(v.height, 1080u);
 }
 
-TEST(RegionTest, RefusesWhatIsNotARegionWithAMessageNamingIt) {
+TEST(RegionTextTest, RefusesWhatIsNotARegionWithAMessageNamingIt) {
   const std::vector<std::pair<std::string, std::string>> spheres = {
       {"", "exactly 4"},          {"1,2,3", "exactly 4"},    {"1,2,3,4,5", "exactly 4"},
       {"1,,3,4", "empty"},        {"1,2,3,0", "> 0"},        {"1,2,3,-1", "> 0"},
@@ -63,7 +63,7 @@ TEST(RegionTest, RefusesWhatIsNotARegionWithAMessageNamingIt) {
   EXPECT_EQ(*ParseScreenError("0.5"), 0.5);
 }
 
-TEST(RegionTest, TheTextFormReadsBackToTheSameRegion) {
+TEST(RegionTextTest, TheTextFormReadsBackToTheSameRegion) {
   for (const char* text : {"0.1,-0.2,1e-7,0.3333333333333333", "1,2,3,4"}) {
     const Region r = *ParseSphereRegion(text);
     EXPECT_TRUE(*ParseSphereRegion(FormatRegionShape(r)) == r) << text;
@@ -80,39 +80,7 @@ TEST(RegionTest, TheTextFormReadsBackToTheSameRegion) {
   EXPECT_FALSE(*ParseViewRegion("0.5,1,-3,0.3,0.1,1,50.5,800,601") == v);
 }
 
-TEST(RegionTest, ASphereWeighsWhatMeetsItOneAndTheRestLessWithDistance) {
-  const Region r = *ParseSphereRegion("0,0,0,1");
-  EXPECT_EQ(RegionWeight(r, Vec3(0.5, 0, 0), 0.1), 1);
-  EXPECT_EQ(RegionWeight(r, Vec3(1.5, 0, 0), 0.6), 1);  // the ball reaches in
-  double previous = 1;
-  for (double x : {1.6, 2.0, 3.0, 10.0, 100.0}) {
-    const double w = RegionWeight(r, Vec3(x, 0, 0), 0.5);
-    EXPECT_LT(w, previous) << x;
-    EXPECT_GT(w, 0) << x;
-    previous = w;
-  }
-  // Gap of one sphere radius: 1 / (1 + 1).
-  EXPECT_DOUBLE_EQ(RegionWeight(r, Vec3(2.5, 0, 0), 0.5), 0.5);
-}
-
-TEST(RegionTest, AViewWeighsByProjectedSizeAndNothingOutsideIt) {
-  // Looking down -z from z = 10, 90 degrees vertically, a square screen.
-  const Region r = *ParseViewRegion("0,0,10,0,0,-1,90,100,100");
-  // tan(45) = 1: projected radius over half height = r / d.
-  EXPECT_NEAR(RegionWeight(r, Vec3(0, 0, 0), 1), 0.1, 1e-12);
-  EXPECT_NEAR(RegionWeight(r, Vec3(0, 0, 5), 1), 0.2, 1e-12);  // nearer: larger
-  EXPECT_EQ(RegionWeight(r, Vec3(0, 0, 20), 1), 0);           // behind the camera
-  EXPECT_EQ(RegionWeight(r, Vec3(100, 0, 0), 1), 0);          // far to the side
-  EXPECT_EQ(RegionWeight(r, Vec3(0, 0, 10.5), 1), 1);         // the eye is inside
-  // Beyond the screen's corner cone (half angle atan(sqrt 2) = 54.7 degrees)
-  // only by less than its angular radius: still seen.
-  const double x = 10 * std::tan(56 * std::numbers::pi / 180);
-  EXPECT_EQ(RegionWeight(r, Vec3(x, 0, 0), 0.01), 0);
-  EXPECT_GT(RegionWeight(r, Vec3(x, 0, 0), 2), 0);
-  EXPECT_EQ(RegionWeight(r, Vec3(0, 0, 0), 1e9), 1);  // capped
-}
-
-TEST(RegionTest, AScreenErrorNumberIsCheckedAndWrittenAsTheTextParserReadsIt) {
+TEST(RegionTextTest, AScreenErrorNumberIsCheckedAndWrittenAsTheTextParserReadsIt) {
   for (double px : {0.75, 1e-7, 1.0 / 3, 16384.0}) {
     ASSERT_TRUE(CheckScreenError(px).ok()) << px;
     auto back = ParseScreenError(FormatScreenError(px));

@@ -7,6 +7,7 @@
 #include <span>
 
 #include "meshwave/container.h"
+#include "meshwave/mesh_stats.h"
 #include "meshwave/metrics.h"
 #include "meshwave/progression.h"
 #include "meshwave/progressive_decoder.h"

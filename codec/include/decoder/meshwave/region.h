@@ -1,19 +1,16 @@
 // A region of interest a client asks the server to refine first: a sphere
 // or a view (camera, direction, field of view, screen size), optionally with
-// the screen-space error below which a view needs no more detail. The text
-// forms are what `meshwave fetch --region/--view` take and what the HTTP
-// query and the WebSocket messages carry (docs/API.md).
+// the screen-space error below which a view needs no more detail, and how
+// much a part of the mesh matters to it. Its text forms, which requests
+// carry: meshwave/region_text.h.
 #ifndef MESHWAVE_REGION_H_
 #define MESHWAVE_REGION_H_
 
 #include <cstdint>
 #include <optional>
-#include <string>
-#include <string_view>
 #include <variant>
 
 #include "meshwave/mesh.h"
-#include "meshwave/status.h"
 
 namespace meshwave {
 
@@ -48,24 +45,6 @@ struct Region {
   std::optional<double> screen_error_px;
   bool operator==(const Region&) const = default;
 };
-
-// "x,y,z,r": a sphere. Finite numbers, r > 0; no spaces.
-Result<Region> ParseSphereRegion(std::string_view text);
-// "ex,ey,ez,dx,dy,dz,fov,width,height": a view; the direction is kept as
-// given (not normalised, so that its text form reads back exactly), any
-// length but zero; fov in degrees, in (0, 180); width and height
-// whole numbers of pixels in [1, kMaxScreenPixels].
-Result<Region> ParseViewRegion(std::string_view text);
-// A screen-space error in pixels: a finite number > 0, at most
-// kMaxScreenPixels.
-Result<double> ParseScreenError(std::string_view text);
-// ParseScreenError's checks on a number (a protobuf field, an option).
-Result<double> CheckScreenError(double px);
-// The text ParseScreenError reads back to `px` (shortest round trip).
-std::string FormatScreenError(double px);
-// The text form ParseSphereRegion or ParseViewRegion reads back to the same
-// region (shortest round-tripping decimals).
-std::string FormatRegionShape(const Region& region);
 
 // How much a ball (a part of the mesh, centre and bounding radius) matters
 // to the region, in [0, 1]. A sphere: 1 for a ball that meets it, else

@@ -103,6 +103,10 @@ struct StreamHeader {
 // stream is ValidateStreamHeader's business.
 Result<StreamHeader> ReadStreamHeader(std::string_view bytes);
 
+// The length of the header's bounding-box diagonal (0 for a box of fewer
+// than three coordinates): the peak of every PSNR of the stream.
+double HeaderDiagonal(const StreamHeader& header);
+
 }  // namespace meshwave
 
 #endif  // MESHWAVE_STREAM_HEADER_H_

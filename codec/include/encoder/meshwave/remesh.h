@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "meshwave/mesh.h"
+#include "meshwave/mesh_clean.h"
 #include "meshwave/semiregular.h"
 #include "meshwave/status.h"
 
