@@ -3,8 +3,8 @@
 #include <spdlog/spdlog.h>
 
 #include "mesh_handlers.h"
-#include "mesh_id.h"
-#include "request_target.h"
+#include "meshwave/mesh_id.h"
+#include "meshwave/request_target.h"
 #include "response.h"
 #include "upload_handler.h"
 #include "viewer_files.h"

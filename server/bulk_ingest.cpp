@@ -9,7 +9,7 @@
 #include <thread>
 
 #include "core/parallel_for.h"
-#include "request_target.h"
+#include "meshwave/request_target.h"
 
 namespace meshwave::server {
 namespace {

@@ -10,7 +10,7 @@
 #include <utility>
 
 #include "core/durable_file.h"
-#include "mesh_id.h"
+#include "meshwave/mesh_id.h"
 #include "meshwave/container.h"
 #include "meshwave/encoder.h"
 #include "meshwave/fidelity.h"

@@ -6,7 +6,7 @@
 #include "response.h"
 #include "stream_plan.h"
 #include "sha256.h"
-#include "stream_query.h"
+#include "meshwave/stream_request.h"
 #include "unit_plan.h"
 #include "meshwave/region_text.h"
 #include "meshwave/stream_units.h"
@@ -57,7 +57,7 @@ Response Binary(const std::shared_ptr<const ServedMesh>& mesh, const std::string
 // A region request (docs/API.md, "Region requests"): unit records of what
 // the client lacks, in the region's (or the uniform order's) order.
 Response GetUnits(const Request& req, const std::shared_ptr<const ServedMesh>& mesh,
-                  const StreamQuery& q) {
+                  const StreamRequest& q) {
   const ServedMesh& m = *mesh;
   auto table = m.units();
   if (!table.ok()) return StatusError(table.status());
@@ -68,7 +68,7 @@ Response GetUnits(const Request& req, const std::shared_ptr<const ServedMesh>& m
     }
   }
   auto plan = PlanUnits(m, **table, held,
-                        UnitRequest{q.region, q.order, q.max_level, q.budget});
+                        UnitRequest{q.region, q.order, q.max_level, q.budget.value_or(kMaxBudget)});
   if (!plan.ok()) return StatusError(plan.status());
   // The bytes depend on what is held, the order or region, the level limit
   // and how many units fitted.
@@ -185,7 +185,8 @@ Response GetStream(ServerContext& ctx, const Request& req, const std::string& id
   if (!l.mesh) return std::move(l.error);
   if (q->units()) return GetUnits(req, l.mesh, *q);
   const ServedMesh& m = *l.mesh;
-  auto plan = PlanStream(m, q->order, q->max_level, q->from, q->budget, q->from == 0);
+  auto plan = PlanStream(m, q->order, q->max_level, q->from, q->budget.value_or(kMaxBudget),
+                         q->from == 0);
   if (!plan.ok()) return StatusError(plan.status());
   const Selection& s = plan->selection;
   // The response bytes depend only on these four numbers.

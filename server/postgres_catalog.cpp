@@ -4,7 +4,7 @@
 #include <charconv>
 #include <climits>
 
-#include "mesh_id.h"
+#include "meshwave/mesh_id.h"
 #include "postgres_migrations.h"
 
 namespace meshwave::server {

@@ -7,7 +7,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "request_target.h"
+#include "meshwave/request_target.h"
 #include "viewer_files.h"
 
 namespace meshwave::server {

@@ -4,7 +4,7 @@
 #include <utility>
 
 #include "ingest_lock.h"
-#include "mesh_id.h"
+#include "meshwave/mesh_id.h"
 
 namespace meshwave::server {
 namespace {

@@ -5,7 +5,7 @@
 
 #include "ingest.h"
 #include "mesh_handlers.h"
-#include "request_target.h"
+#include "meshwave/request_target.h"
 #include "response.h"
 #include "meshwave/mesh_io.h"
 

@@ -9,7 +9,6 @@
 #include "meshwave/stream_units.h"
 #include "response.h"
 #include "stream_plan.h"
-#include "stream_query.h"
 
 namespace meshwave::server {
 namespace {
@@ -174,22 +173,22 @@ void WsSession::StartStream(const ClientRequest& r) {
   if (!*found)
     return SendError(proto::Error::NOT_FOUND, "no mesh with id " + r.mesh_id);
   std::shared_ptr<const ServedMesh> mesh = std::move(*found);
-  if (r.units()) {
+  if (r.stream.units()) {
     if (StartUnits(r, std::move(mesh))) SetPacing(r.rate);
     return;
   }
   const bool start = r.kind == ClientRequest::Kind::kStart;
-  uint64_t budget = r.budget.value_or(kMaxBudget);
+  uint64_t budget = r.stream.budget.value_or(kMaxBudget);
   // Exactly the header's container: no packet fits beside it.
   if (r.header_only) budget = ContainerSize(mesh->header(), {});
-  const uint64_t from = start ? 0 : r.cursor;
-  auto plan = PlanStream(*mesh, r.order, r.max_level, from, budget, start);
+  const uint64_t from = start ? 0 : r.stream.from;
+  auto plan = PlanStream(*mesh, r.stream.order, r.stream.max_level, from, budget, start);
   if (!plan.ok())
     return SendError(proto::Error::BAD_REQUEST, plan.status().message());
 
   mesh_ = std::move(mesh);
   order_ = plan->order;
-  max_level_ = r.max_level;
+  max_level_ = r.stream.max_level;
   units_ = nullptr;
   held_.reset();
   selected_.clear();
@@ -201,7 +200,7 @@ void WsSession::StartStream(const ClientRequest& r) {
       "ws {}: {} mesh {} order {} max_level {} from {} to {} ({} bytes) rate "
       "{} B/s",
       remote_, start ? "start" : "resume", mesh_->entry().id,
-      ProgressionName(r.order), r.max_level, from, end_, plan->selection.bytes,
+      ProgressionName(r.stream.order), r.stream.max_level, from, end_, plan->selection.bytes,
       r.rate);
   proto::ServerMessage m;
   if (start) {
@@ -225,7 +224,7 @@ void WsSession::SetPacing(uint64_t rate) {
 }
 
 bool WsSession::StartUnits(const ClientRequest& r, std::shared_ptr<const ServedMesh> mesh) {
-  if (Status s = mesh->CheckLevelLimit(r.max_level); !s.ok()) {
+  if (Status s = mesh->CheckLevelLimit(r.stream.max_level); !s.ok()) {
     SendError(proto::Error::BAD_REQUEST, s.message());
     return false;
   }
@@ -235,8 +234,8 @@ bool WsSession::StartUnits(const ClientRequest& r, std::shared_ptr<const ServedM
     return false;
   }
   HeldUnits held = (*table)->nothing_held();
-  if (r.held) {
-    if (Status s = DecodeHeldUnits(*r.held, (*table)->numbering(), held); !s.ok()) {
+  if (r.stream.held) {
+    if (Status s = DecodeHeldUnits(*r.stream.held, (*table)->numbering(), held); !s.ok()) {
       SendError(proto::Error::BAD_REQUEST, s.message());
       return false;
     }
@@ -244,7 +243,7 @@ bool WsSession::StartUnits(const ClientRequest& r, std::shared_ptr<const ServedM
   const bool start = r.kind == ClientRequest::Kind::kStart;
   // A start's budget counts the header, as a container's does.
   const uint64_t header = start ? ContainerSize(mesh->header(), {}) : 0;
-  uint64_t budget = r.budget.value_or(kMaxBudget);
+  uint64_t budget = r.stream.budget.value_or(kMaxBudget);
   if (r.header_only) budget = header;
   if (budget < header) {
     SendError(proto::Error::BAD_REQUEST, "budget " + std::to_string(budget) +
@@ -254,18 +253,18 @@ bool WsSession::StartUnits(const ClientRequest& r, std::shared_ptr<const ServedM
   }
   mesh_ = std::move(mesh);
   order_ = nullptr;
-  max_level_ = r.max_level;
+  max_level_ = r.stream.max_level;
   units_ = *table;
   held_.emplace(std::move(held));
-  unit_request_ = UnitRequest{r.region, r.order, r.max_level, 0};
+  unit_request_ = UnitRequest{r.stream.region, r.stream.order, r.stream.max_level, 0};
   selected_.clear();
   cursor_ = end_ = 0;
   const UnitPlan plan = SelectUnits(budget - header);
   spdlog::info("ws {}: {} mesh {} {} max_level {}: {} units ({} bytes)", remote_,
                start ? "start" : "resume", mesh_->entry().id,
-               r.region ? "region " + FormatRegionShape(*r.region)
-                        : std::string("order ") + ProgressionName(r.order),
-               r.max_level, plan.units.size(), plan.bytes);
+               r.stream.region ? "region " + FormatRegionShape(*r.stream.region)
+                        : std::string("order ") + ProgressionName(r.stream.order),
+               r.stream.max_level, plan.units.size(), plan.bytes);
   proto::ServerMessage m;
   if (start) {
     m.mutable_start()->set_header(mesh_->header_bytes());
@@ -329,12 +328,12 @@ void WsSession::RefineStream(const ClientRequest& r) {
                      std::to_string(kMaxPendingDone) +
                          " requests of this stream are still running: wait for a Done");
   }
-  const bool changes = r.region || r.refine_order;
+  const bool changes = r.stream.region || r.refine_order;
   if (changes || units_) {
     if (!SwitchToUnits()) return;
     if (changes) {
-      unit_request_.region = r.region;
-      unit_request_.order = r.order;
+      unit_request_.region = r.stream.region;
+      unit_request_.order = r.stream.order;
     }
     const size_t from = end_;
     const UnitPlan plan = SelectUnits(r.extra_bytes);

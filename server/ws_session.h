@@ -19,6 +19,7 @@
 #include "server_context.h"
 #include "token_bucket.h"
 #include "unit_plan.h"
+#include "meshwave/client_message.h"
 #include "ws_protocol.h"
 
 #pragma GCC diagnostic push

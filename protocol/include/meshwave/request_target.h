@@ -2,8 +2,8 @@
 // percent-decoded path segments and query parameters. Traversal attempts
 // ("..", "%2e%2e", encoded slashes), control bytes and malformed escapes
 // are refused here, before any handler sees the path.
-#ifndef MESHWAVE_SERVER_REQUEST_TARGET_H_
-#define MESHWAVE_SERVER_REQUEST_TARGET_H_
+#ifndef MESHWAVE_REQUEST_TARGET_H_
+#define MESHWAVE_REQUEST_TARGET_H_
 
 #include <cstdint>
 #include <initializer_list>
@@ -15,7 +15,7 @@
 
 #include "meshwave/status.h"
 
-namespace meshwave::server {
+namespace meshwave {
 
 inline constexpr size_t kMaxTargetLength = 2048;
 
@@ -48,6 +48,6 @@ Result<RequestTarget> ParseRequestTarget(std::string_view target);
 Result<uint64_t> ParseUnsigned(std::string_view text, uint64_t max,
                                std::string_view what);
 
-}  // namespace meshwave::server
+}  // namespace meshwave
 
-#endif  // MESHWAVE_SERVER_REQUEST_TARGET_H_
+#endif  // MESHWAVE_REQUEST_TARGET_H_

@@ -1,8 +1,8 @@
-#include "request_target.h"
+#include "meshwave/request_target.h"
 
 #include <algorithm>
 
-namespace meshwave::server {
+namespace meshwave {
 namespace {
 
 int HexValue(char c) {
@@ -136,4 +136,4 @@ Result<uint64_t> ParseUnsigned(std::string_view text, uint64_t max, std::string_
   return v;
 }
 
-}  // namespace meshwave::server
+}  // namespace meshwave

@@ -1,13 +1,13 @@
 // Mesh ids: the first 12 hex digits of the container's SHA-256. They come
 // from URLs, so every use is preceded by IsValidMeshId; they never name a
 // file (the catalog row holds the container path).
-#ifndef MESHWAVE_SERVER_MESH_ID_H_
-#define MESHWAVE_SERVER_MESH_ID_H_
+#ifndef MESHWAVE_MESH_ID_H_
+#define MESHWAVE_MESH_ID_H_
 
 #include <string>
 #include <string_view>
 
-namespace meshwave::server {
+namespace meshwave {
 
 inline constexpr size_t kMeshIdLength = 12;
 
@@ -17,6 +17,6 @@ bool IsValidMeshId(std::string_view id);
 // The id of a container with this SHA-256 (64 lowercase hex digits).
 std::string MeshIdFromSha256(std::string_view sha256_hex);
 
-}  // namespace meshwave::server
+}  // namespace meshwave
 
-#endif  // MESHWAVE_SERVER_MESH_ID_H_
+#endif  // MESHWAVE_MESH_ID_H_

@@ -1,6 +1,6 @@
-#include "mesh_id.h"
+#include "meshwave/mesh_id.h"
 
-namespace meshwave::server {
+namespace meshwave {
 
 bool IsValidMeshId(std::string_view id) {
   if (id.size() != kMeshIdLength) return false;
@@ -14,4 +14,4 @@ std::string MeshIdFromSha256(std::string_view sha256_hex) {
   return std::string(sha256_hex.substr(0, kMeshIdLength));
 }
 
-}  // namespace meshwave::server
+}  // namespace meshwave
