@@ -81,6 +81,27 @@ Response Route(ServerContext& ctx, const Request& req, const RequestTarget& t) {
 
 }  // namespace
 
+std::optional<std::string> ResponseCacheKey(const http::request_header<>& req) {
+  if (req.method() != http::verb::get && req.method() != http::verb::head) return std::nullopt;
+  const std::string_view target = req.target();
+  // The mesh endpoints: /v1/meshes/{id}[/...] (Route's seg.size() >= 3).
+  if (!target.starts_with("/v1/meshes/") || !req[http::field::if_none_match].empty()) {
+    return std::nullopt;
+  }
+  // The target, plus Range and If-Range when there are any: the only other
+  // request fields the mesh endpoints read.
+  std::string key(target);
+  const std::string_view range = req[http::field::range];
+  const std::string_view if_range = req[http::field::if_range];
+  if (!range.empty() || !if_range.empty()) {
+    key += '\n';
+    key.append(range.data(), range.size());
+    key += '\n';
+    key.append(if_range.data(), if_range.size());
+  }
+  return key;
+}
+
 HeaderDecision InspectHeader(const ServerContext& ctx, const http::request_header<>& header) {
   HeaderDecision d;
   const auto method = header.method();

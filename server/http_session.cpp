@@ -204,25 +204,11 @@ bool HttpSession::AnswerFromCache() {
   cacheable_ = false;
   ResponseCache& cache = ctx_.response_cache();
   if (!cache.enabled()) return false;
-  const auto& req = parser_->get();
-  if (req.method() != http::verb::get && req.method() != http::verb::head) return false;
-  const std::string_view target = req.target();
-  // Only the mesh endpoints plan responses that may be cached (the others
-  // never set body().mesh); a conditional GET is answered by the handlers.
-  if (!target.starts_with("/v1/meshes/") || !req[http::field::if_none_match].empty()) {
-    return false;
-  }
-  // The key: the target, plus Range and If-Range when there are any (the
-  // only other request fields the mesh endpoints read).
-  cache_key_.assign(target.data(), target.size());
-  const std::string_view range = req[http::field::range];
-  const std::string_view if_range = req[http::field::if_range];
-  if (!range.empty() || !if_range.empty()) {
-    cache_key_ += '\n';
-    cache_key_.append(range.data(), range.size());
-    cache_key_ += '\n';
-    cache_key_.append(if_range.data(), if_range.size());
-  }
+  // Which requests may be answered from the cache, and under what key:
+  // the routes' rule (api_router.h).
+  std::optional<std::string> key = ResponseCacheKey(parser_->get());
+  if (!key) return false;
+  cache_key_ = std::move(*key);
   cacheable_ = true;
   ResponseCache::Hit hit = cache.Get(cache_key_);
   if (!hit.response) return false;
