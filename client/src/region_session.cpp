@@ -1,6 +1,5 @@
 #include "meshwave/client/region_session.h"
 
-#include <exception>
 #include <map>
 #include <utility>
 #include <vector>
@@ -11,6 +10,8 @@
 #include "meshwave/held_units.h"
 #include "meshwave/stream_units.h"
 #include "net.h"
+#include "retry.h"
+#include "run_to_completion.h"
 #include "meshwave/packet_parts.h"
 
 namespace meshwave::client {
@@ -156,53 +157,39 @@ net::awaitable<Status> RegionSession::Fetch(std::optional<Region> region,
   s.report = true;
   s.remaining = budget;
   bool header_paid = !budget_counts_header || !budget;
-  int failures = 0;
-  net::steady_timer timer(s.transport->executor());
-  for (;;) {
-    const size_t before = s.units_held;
-    const bool had_header = s.header.has_value();
-    Status done;
+  // One try: the header if it is not held, else the units.
+  auto step = [&]() -> net::awaitable<Result<bool>> {
     if (!s.header) {
-      done = co_await s.GetHeader();
-      if (done.ok()) continue;
-    } else {
-      if (!header_paid) {
-        const uint64_t header = ContainerSize(*s.header, {});
-        if (*s.remaining < header) {
-          s.report = false;
-          co_return InvalidArgument("budget " + std::to_string(*s.remaining) +
-                                    " is smaller than the stream header (" +
-                                    std::to_string(header) + " bytes)");
-        }
-        *s.remaining -= header;
-        header_paid = true;
+      MWC_CO_RETURN_IF_ERROR(co_await s.GetHeader());
+      co_return false;
+    }
+    if (!header_paid) {
+      const uint64_t header = ContainerSize(*s.header, {});
+      if (*s.remaining < header) {
+        co_return InvalidArgument("budget " + std::to_string(*s.remaining) +
+                                  " is smaller than the stream header (" +
+                                  std::to_string(header) + " bytes)");
       }
-      UnitStreamRequest request;
-      request.region = region;
-      request.order = s.options.order;
-      request.max_level = s.options.max_level;
-      request.held = EncodeHeldUnits(s.decoder->held(), *s.numbering);
-      request.budget = s.remaining;
-      done = co_await s.transport->StreamUnits(request, s);
-      if (done.ok()) break;
+      *s.remaining -= header;
+      header_paid = true;
     }
-    if (done.code() != StatusCode::kIoError) {
-      s.transport->Close();
-      s.report = false;
-      co_return done;
-    }
-    // A transfer that delivered something starts the count again.
-    if (s.units_held > before || s.header.has_value() != had_header) failures = 0;
-    if (++failures >= s.options.retry.max_attempts) {
-      s.report = false;
-      co_return done.WithContext("gave up after " + std::to_string(failures) + " attempts");
-    }
-    ++s.retries;
-    timer.expires_after(BackoffDelay(s.options.retry, failures));
-    auto [ec] = co_await timer.async_wait(net::as_tuple(net::use_awaitable));
-    if (ec) co_return IoError("interrupted while waiting to retry");
-  }
+    UnitStreamRequest request;
+    request.region = region;
+    request.order = s.options.order;
+    request.max_level = s.options.max_level;
+    request.held = EncodeHeldUnits(s.decoder->held(), *s.numbering);
+    request.budget = s.remaining;
+    MWC_CO_RETURN_IF_ERROR(co_await s.transport->StreamUnits(request, s));
+    co_return true;
+  };
+  const Status status = co_await RetryWithBackoff(
+      s.transport->executor(), s.options.retry, s.retries, step,
+      [&s] { return std::make_pair(s.units_held, s.header.has_value()); });
   s.report = false;
+  if (!status.ok()) {
+    if (status.code() != StatusCode::kIoError) s.transport->Close();
+    co_return status;
+  }
   s.remaining.reset();
   co_return Status::Ok();
 }
@@ -211,24 +198,8 @@ Status RegionSession::FetchBlocking(std::optional<Region> region,
                                     std::optional<uint64_t> budget, bool budget_counts_header,
                                     const ProgressHandler& on_progress) {
   if (!impl_->io) return InvalidArgument("FetchBlocking needs the URL constructor");
-  Status result(StatusCode::kInternal, "the fetch did not finish");
-  bool finished = false;
-  net::co_spawn(*impl_->io, Fetch(std::move(region), budget, budget_counts_header, on_progress),
-                [&](std::exception_ptr e, Status s) {
-                  if (e) {
-                    try {
-                      std::rethrow_exception(e);
-                    } catch (const std::exception& ex) {
-                      s = Status(StatusCode::kInternal, ex.what());
-                    }
-                  }
-                  result = std::move(s);
-                  finished = true;
-                });
-  impl_->io->restart();
-  while (!finished && impl_->io->run_one() > 0) {
-  }
-  return result;
+  return RunToCompletion(*impl_->io,
+                         Fetch(std::move(region), budget, budget_counts_header, on_progress));
 }
 
 Status RegionSession::Restore(std::string_view container, std::string_view parts) {
