@@ -4,6 +4,8 @@
 #
 #   bash deploy/install-deps.sh          everything: build, tests, deployment tests
 #   bash deploy/install-deps.sh build    only what building the programs needs
+#                                        (the main job, tools/demo.sh: the viewer's
+#                                        decoder comes built in web/dist)
 #   bash deploy/install-deps.sh server   that and what the viewer's WebAssembly
 #                                        decoder is built with (the Dockerfile's
 #                                        build stage: the image serves /viewer/)
