@@ -109,6 +109,37 @@ TEST(StreamUnitsTest, HeldBitmapRefusesGarbageBitsPastTheEndAndUnclosedSets) {
   EXPECT_NE(s.message().find("without a unit it depends on"), std::string::npos) << s.message();
 }
 
+// The bitmap's length and padding (docs/API.md, "Units and the held
+// bitmap"): at most ceil(N / 8) bytes for N units, shorter where the
+// trailing bytes are zero, never longer even with zeros; base64url
+// without '=' padding, the last digit's unused bits zero.
+TEST(StreamUnitsTest, HeldBitmapIsAtMostCeilNOver8BytesUnpadded) {
+  const Units& u = TheUnits();
+  const size_t bytes = (u.numbering.size() + 7) / 8;
+  ASSERT_GE(bytes, 3u);
+  // The first unit held (it needs nothing), written at every length.
+  for (size_t length = 1; length <= bytes; ++length) {
+    std::string bitmap(length, '\0');
+    bitmap[0] = 1;
+    HeldUnits held = u.empty;
+    ASSERT_TRUE(DecodeHeldUnits(Base64Url(bitmap), u.numbering, held).ok()) << length;
+    EXPECT_TRUE(held.Has(u.numbering.unit(0)));
+    EXPECT_EQ(EncodeHeldUnits(held, u.numbering), "AQ");  // trailing zeros left out
+  }
+  std::string longer(bytes + 1, '\0');
+  longer[0] = 1;
+  HeldUnits held = u.empty;
+  const Status s = DecodeHeldUnits(Base64Url(longer), u.numbering, held);
+  ASSERT_FALSE(s.ok());
+  EXPECT_NE(s.message().find("bytes of bitmap for a stream of"), std::string::npos) << s.message();
+  held = u.empty;
+  EXPECT_EQ(DecodeHeldUnits("AQ==", u.numbering, held).code(), StatusCode::kInvalidArgument);
+  held = u.empty;
+  EXPECT_EQ(DecodeHeldUnits("AR", u.numbering, held).code(), StatusCode::kInvalidArgument);
+  held = u.empty;
+  EXPECT_EQ(DecodeHeldUnits("A", u.numbering, held).code(), StatusCode::kInvalidArgument);
+}
+
 TEST(StreamUnitsTest, RecordsReadBackWhereverTheBodyIsCut) {
   const EncodedStream& s = Precincted();
   const Units& u = TheUnits();
