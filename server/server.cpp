@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/durable_file.h"
+#include "catalog_watcher.h"
 #include "ingest.h"
 #include "listener.h"
 #include "server_config.h"
@@ -19,10 +20,13 @@ Status RunServer(const ServeOptions& options) {
   const proto::ServerConfig& config = options.config;
   MW_ASSIGN_OR_RETURN(std::unique_ptr<Catalog> catalog,
                       Catalog::Open(options.catalog, options.store));
-  MW_ASSIGN_OR_RETURN(CleanupReport cleanup, RemoveOrphans(*catalog));
-  if (cleanup.orphan_files + cleanup.temp_files > 0) {
-    spdlog::warn("catalog {}: removed {} orphan and {} temporary files", catalog->Describe(),
-                 cleanup.orphan_files, cleanup.temp_files);
+  MW_ASSIGN_OR_RETURN(CleanupReport cleanup,
+                      RemoveOrphans(*catalog, config.retired_container_seconds()));
+  if (cleanup.orphan_files + cleanup.temp_files + cleanup.orphan_originals > 0) {
+    spdlog::warn("catalog {}: removed {} orphan containers, {} orphan original files and {} "
+                 "temporary files",
+                 catalog->Describe(), cleanup.orphan_files, cleanup.orphan_originals,
+                 cleanup.temp_files);
   }
   MW_ASSIGN_OR_RETURN(ListenAddress address, ParseListenAddress(config.listen()));
   beast::error_code ec;
@@ -30,6 +34,9 @@ Status RunServer(const ServeOptions& options) {
   if (ec) return InvalidArgument("listen address '" + address.host + "': " + ec.message());
 
   ServerContext ctx(config, std::move(catalog));
+  ctx.set_catalog_location(options.catalog, options.store);
+  CatalogWatcher watcher(ctx.catalog(), ctx.cache(), ctx.response_cache(),
+                         std::chrono::milliseconds(config.catalog_poll_milliseconds()));
   const int threads = static_cast<int>(config.threads());
   // One io_context per thread (each run by its thread alone: no strands,
   // no lock shared between threads on the way of a request), or one

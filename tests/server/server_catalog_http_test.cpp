@@ -148,5 +148,58 @@ TEST_F(ServerHttpTest, AContainerOfAnotherFormatVersionAnswers500NamingBothVersi
             200u);
 }
 
+// The originals: what was uploaded comes back byte for byte to the holder
+// of the upload token, to nobody else, and no shared cache may keep it.
+TEST_F(ServerHttpTest, OriginalsGoToTheTokenHolderOnly) {
+  const std::pair<std::string, std::string> auth = {"Authorization", std::string("Bearer ") + kToken};
+  const std::string mesh = ReadBytes(SampleMesh("holes.off"));
+  HttpReply r = HttpConnection(port_).Send(http::verb::post, "/v1/meshes?name=mine", {auth}, mesh);
+  ASSERT_EQ(r.status, 201u) << r.body;
+  proto::MeshSummary summary;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(r.body, &summary).ok());
+  EXPECT_TRUE(summary.has_original());
+  const std::string base = "/v1/meshes/" + summary.id() + "/original";
+
+  EXPECT_EQ(HttpGet(port_, base).status, 401u);
+  EXPECT_EQ(HttpGet(port_, base + "/mine.off").status, 401u);
+  EXPECT_EQ(HttpGet(port_, base, {{"Authorization", "Bearer nope"}}).status, 403u);
+  r = HttpGet(port_, base, {auth});
+  ASSERT_EQ(r.status, 200u) << r.body;
+  EXPECT_EQ(r.Header("cache-control"), "private, no-store");
+  proto::OriginalInfo info;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(r.body, &info).ok()) << r.body;
+  EXPECT_EQ(info.mesh_id(), summary.id());
+  EXPECT_EQ(info.main(), "mine.off");
+  EXPECT_EQ(info.format(), "off");
+  ASSERT_EQ(info.files_size(), 1);
+  EXPECT_EQ(info.files(0).sha256(), Sha256Hex(mesh));
+  EXPECT_EQ(info.files(0).bytes(), mesh.size());
+  r = HttpGet(port_, base + "/mine.off", {auth});
+  ASSERT_EQ(r.status, 200u);
+  EXPECT_EQ(r.body, mesh);
+  EXPECT_EQ(r.Header("cache-control"), "private, no-store");
+  EXPECT_EQ(HttpGet(port_, base + "/other.off", {auth}).status, 404u);
+  // The catalog's own entries, ingested from files, kept theirs too.
+  r = HttpGet(port_, "/v1/meshes/" + ids_.at("holes") + "/original/holes.off", {auth});
+  ASSERT_EQ(r.status, 200u);
+  EXPECT_EQ(r.body, mesh);
+}
+
+// An upload larger than upload_limit_bytes is refused from its declared
+// length, before its body is sent, with a message naming the limit.
+TEST_F(ServerHttpTest, AnUploadOverTheLimitIsRefusedBeforeItIsRead) {
+  HttpConnection c(port_);
+  const HttpReply r = c.SendRaw(std::string("POST /v1/meshes?name=big HTTP/1.1\r\nHost: x\r\n") +
+                                "Authorization: Bearer " + kToken +
+                                "\r\nContent-Length: 1000000000\r\nExpect: 100-continue\r\n\r\n");
+  EXPECT_EQ(r.status, 413u);
+  EXPECT_TRUE(IsJsonError(r));
+  EXPECT_NE(r.body.find("1000000000 bytes, more than this server's limit of 67108864 bytes "
+                        "(upload_limit_bytes)"),
+            std::string::npos)
+      << r.body;
+  EXPECT_EQ(ParseList(HttpGet(port_, "/v1/meshes").body).total(), 4u);
+}
+
 }  // namespace
 }  // namespace meshwave::testing

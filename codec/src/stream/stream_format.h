@@ -13,10 +13,8 @@
 
 namespace meshwave {
 
-// 3: Transform.sawt; 4: compact packet index; 5: base refinement packets;
-// 6: 3xC's significance contexts count significant neighbours;
-// 7: precincts and split packets
-inline constexpr uint32_t kFormatVersion = 7;
+// The version this build writes (meshwave/stream_header.h).
+inline constexpr uint32_t kFormatVersion = kStreamFormatVersion;
 inline constexpr char kContainerMagic[4] = {'M', 'W', 'V', '1'};
 // StreamHeader.present's field number in stream.proto, for the decoder
 // library, which has no generated code (stream_format_writer.cpp asserts it
