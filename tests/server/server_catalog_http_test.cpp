@@ -105,9 +105,9 @@ TEST_F(ServerHttpTest, UploadWithAFidelityReachesItAgainstTheUpload) {
             204u);
 }
 
-// A catalog an older build wrote (docs/DEPLOY.md, "Upgrading across a
-// stream format version"): the row and the file are intact, but this build
-// reads another format version. That is the server's condition, not the
+// A container of a format version this build no longer reads (older than
+// the previous one, docs/DEPLOY.md "Upgrades"): the row and the file are
+// intact, but this build cannot read them. That is the server's condition, not the
 // client's: 500, naming both versions, and the other meshes still served.
 TEST_F(ServerHttpTest, AContainerOfAnotherFormatVersionAnswers500NamingBothVersions) {
   const std::string id = ids_.at("holes_copy");
@@ -122,7 +122,7 @@ TEST_F(ServerHttpTest, AContainerOfAnotherFormatVersionAnswers500NamingBothVersi
   ASSERT_TRUE(parsed.ok()) << parsed.status().ToString();
   proto::StreamHeader header;
   ASSERT_TRUE(header.ParseFromString(parsed->header.bytes_without_present));
-  const uint32_t older = kFormatVersion - 1;
+  const uint32_t older = kOldestReadFormatVersion - 1;
   header.set_format_version(older);
   std::string bytes = SerializeContainerHead(header.SerializeAsString(), parsed->ids);
   for (std::string_view payload : parsed->payloads) bytes += payload;
@@ -140,7 +140,9 @@ TEST_F(ServerHttpTest, AContainerOfAnotherFormatVersionAnswers500NamingBothVersi
     EXPECT_EQ(r.status, 500u) << target;
     EXPECT_TRUE(IsJsonError(r)) << r.body;
     EXPECT_NE(r.body.find("format version " + std::to_string(older) +
-                          " (this build reads version " + std::to_string(kFormatVersion) + ")"),
+                          " (this build reads versions " +
+                          std::to_string(kOldestReadFormatVersion) + " to " +
+                          std::to_string(kFormatVersion) + ")"),
               std::string::npos)
         << r.body;
   }
