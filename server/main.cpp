@@ -113,7 +113,7 @@ int IngestUpload(const UploadCommand& c) {
 }
 
 struct ReencodeCommand {
-  std::string catalog, store;
+  std::string catalog, store, shard = "0/1";
   ReencodeOptions options;
   int64_t keep_retired_seconds = kDefaultRetiredSeconds;
 };
@@ -130,7 +130,10 @@ const char* ActionText(ReencodeAction a) {
   return "?";
 }
 
-int Reencode(const ReencodeCommand& c) {
+int Reencode(ReencodeCommand c) {
+  auto shard = ParseShard(c.shard);
+  if (!shard.ok()) return Fail(" reencode", shard.status());
+  c.options.shard = *shard;
   auto catalog = Catalog::Open(c.catalog, c.store);
   if (!catalog.ok()) return Fail(" reencode", catalog.status());
   if (!c.options.dry_run) {
@@ -268,6 +271,10 @@ int main(int argc, char** argv) {
                        "Seconds a replaced container stays on disk for readers that may still "
                        "open it (other replicas) before a later run removes it")
       ->check(CLI::Range(int64_t{0}, int64_t{1} << 40))
+      ->capture_default_str();
+  reencode->add_option("--shard", reencode_command.shard,
+                       "I/N: only the meshes of shard I of N, by a hash of their id (one per "
+                       "worker of a Job)")
       ->capture_default_str();
   reencode->add_flag("--dry-run", reencode_command.options.dry_run,
                      "Say what would be re-encoded and why, change nothing");

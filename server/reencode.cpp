@@ -85,7 +85,11 @@ Result<ReencodeReport> ReencodeCatalog(
     Catalog& catalog, const ReencodeOptions& options,
     const std::function<void(size_t, size_t, const ReencodeStep&)>& progress) {
   MW_ASSIGN_OR_RETURN(const uint64_t count, catalog.Count());
-  MW_ASSIGN_OR_RETURN(std::vector<CatalogEntry> entries, catalog.List(count, 0));
+  MW_ASSIGN_OR_RETURN(std::vector<CatalogEntry> all, catalog.List(count, 0));
+  std::vector<CatalogEntry> entries;
+  for (CatalogEntry& e : all) {
+    if (InShard(e.id, options.shard)) entries.push_back(std::move(e));
+  }
   ReencodeReport report;
   report.meshes = entries.size();
   for (size_t i = 0; i < entries.size(); ++i) {

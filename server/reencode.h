@@ -14,6 +14,7 @@
 #include <optional>
 #include <string>
 
+#include "bulk_ingest.h"
 #include "catalog.h"
 #include "encode_settings.h"
 #include "meshwave/status.h"
@@ -33,6 +34,7 @@ struct SettingsChange {
 
 struct ReencodeOptions {
   SettingsChange change;
+  Shard shard;           // only the meshes whose id is InShard (bulk_ingest.h)
   bool dry_run = false;  // say what would be done, change nothing
   int threads = 0;       // per mesh; 0: the machine's cores
 };
