@@ -13,8 +13,44 @@
 #include "listener.h"
 #include "server_config.h"
 #include "server_context.h"
+#include "worker_process.h"
 
 namespace meshwave::server {
+
+namespace {
+
+// `reencode_on_start`: the re-encode runs in a worker process on the
+// ingest thread (so it waits for, and is waited for by, uploads), its
+// report in the server's log.
+void StartBackgroundReencode(ServerContext& ctx) {
+  net::post(ctx.ingest_pool(), [&ctx] {
+    std::vector<std::string> args = {"reencode", "--catalog", ctx.catalog_location(),
+                                     "--threads", std::to_string(ctx.config().threads())};
+    if (!ctx.store_location().empty()) {
+      args.insert(args.end(), {"--store", ctx.store_location().string()});
+    }
+    WorkerOptions options;
+    options.nice = static_cast<int>(ctx.config().ingest_nice());
+    options.memory_limit_bytes = ctx.config().ingest_memory_limit_bytes();
+    spdlog::info("re-encoding out-of-date meshes in the background");
+    auto run = RunWorker(args, "", options);
+    if (!run.ok()) {
+      spdlog::error("background reencode: {}", run.status().ToString());
+      return;
+    }
+    for (const std::string* text : {&run->out, &run->err}) {
+      size_t i = 0;
+      while (i < text->size()) {
+        const size_t end = std::min(text->find('\n', i), text->size());
+        if (end > i) spdlog::info("background {}", std::string_view(*text).substr(i, end - i));
+        i = end + 1;
+      }
+    }
+    if (run->exit_code != 0) spdlog::error("background reencode {}", DescribeExit(run->exit_code));
+  });
+}
+
+}  // namespace
 
 Status RunServer(const ServeOptions& options) {
   const proto::ServerConfig& config = options.config;
@@ -59,6 +95,7 @@ Status RunServer(const ServeOptions& options) {
     MW_RETURN_IF_ERROR(WriteFileDurably(std::filesystem::absolute(options.port_file),
                                         std::to_string(listener->port()) + "\n"));
   }
+  if (config.reencode_on_start()) StartBackgroundReencode(ctx);
   // Each io_context runs until the stop, even while no connection is on it.
   std::vector<net::executor_work_guard<net::io_context::executor_type>> guards;
   for (auto& c : contexts) guards.push_back(net::make_work_guard(*c));
