@@ -17,6 +17,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <unordered_set>
 #include <vector>
 
 #include "core/edge_key.h"
@@ -120,6 +121,7 @@ size_t Flip(TriMesh& mesh, double fraction, Random& random) {
   for (const Edge& e : edges) existing.push_back(meshwave::EdgeKey(e.a, e.b));
   std::sort(existing.begin(), existing.end());
   std::vector<uint8_t> used(mesh.faces.size(), 0);
+  std::unordered_set<uint64_t> made;
   const auto wanted = static_cast<size_t>(fraction * static_cast<double>(edges.size()));
   size_t flipped = 0;
   for (size_t k = 0; k < 4 * wanted && flipped < wanted; ++k) {
@@ -128,7 +130,9 @@ size_t Flip(TriMesh& mesh, double fraction, Random& random) {
     Face& f0 = mesh.faces[e.face[0]];
     Face& f1 = mesh.faces[e.face[1]];
     const uint32_t c = f0[Opposite(f0, e.a, e.b)], d = f1[Opposite(f1, e.a, e.b)];
-    if (c == d || std::binary_search(existing.begin(), existing.end(), meshwave::EdgeKey(c, d))) {
+    const uint64_t key = meshwave::EdgeKey(c, d);
+    // Neither an edge of the mesh nor one an earlier flip made.
+    if (c == d || std::binary_search(existing.begin(), existing.end(), key) || made.count(key)) {
       continue;
     }
     // f0 = (c, p, q): the new faces (c, p, d) and (c, d, q).
@@ -140,6 +144,7 @@ size_t Flip(TriMesh& mesh, double fraction, Random& random) {
     if (n0.dot(before) <= 0 || n1.dot(before) <= 0) continue;
     f0 = {c, p, d};
     f1 = {c, d, q};
+    made.insert(key);
     used[e.face[0]] = used[e.face[1]] = 1;
     ++flipped;
   }

@@ -40,6 +40,7 @@ test=(
 bench=(
   draco jq bc                  # bench/: Draco 1.5, the baseline, and the tables' arithmetic
   wrk nginx-light              # bench/http_load.sh: the load generator and the nginx reference
+  time                         # /usr/bin/time: wall time and peak memory (bench/ingest_scale.sh)
 )
 
 case "${1:-all}" in
