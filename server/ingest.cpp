@@ -15,6 +15,7 @@
 #include "meshwave/container.h"
 #include "meshwave/encoder.h"
 #include "meshwave/fidelity.h"
+#include "meshwave/mesh_io.h"
 #include "meshwave/progression.h"
 #include "meshwave/semiregular_input.h"
 #include "sha256.h"

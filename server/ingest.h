@@ -15,6 +15,7 @@
 #include "catalog.h"
 #include "encode_settings.h"
 #include "meshwave/mesh.h"
+#include "meshwave/mesh_io.h"
 #include "meshwave/status.h"
 #include "meshwave/stream_header.h"
 #include "original_store.h"

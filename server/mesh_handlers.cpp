@@ -8,6 +8,7 @@
 #include "sha256.h"
 #include "stream_query.h"
 #include "unit_plan.h"
+#include "meshwave/region_text.h"
 #include "meshwave/stream_units.h"
 
 namespace meshwave::server {

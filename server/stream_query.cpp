@@ -1,4 +1,5 @@
 #include "stream_query.h"
+#include "meshwave/region_text.h"
 
 namespace meshwave::server {
 

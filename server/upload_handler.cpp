@@ -8,6 +8,7 @@
 #include "mesh_handlers.h"
 #include "request_target.h"
 #include "response.h"
+#include "meshwave/mesh_io.h"
 
 namespace meshwave::server {
 namespace {

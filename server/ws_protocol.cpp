@@ -3,6 +3,7 @@
 #include "core/protobuf_wire.h"
 #include "mesh_id.h"
 #include "stream_query.h"
+#include "meshwave/region_text.h"
 
 namespace meshwave::server {
 namespace {

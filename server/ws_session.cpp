@@ -5,6 +5,7 @@
 #include <array>
 
 #include "meshwave/container.h"
+#include "meshwave/region_text.h"
 #include "meshwave/stream_units.h"
 #include "response.h"
 #include "stream_plan.h"

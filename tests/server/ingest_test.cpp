@@ -12,6 +12,7 @@
 #include "core/durable_file.h"
 #include "e2e/cli_runner.h"
 #include "meshwave/container.h"
+#include "meshwave/mesh_io.h"
 #include "server/catalog_backends_testonly.h"
 #include "mesh_id.h"
 #include "sha256.h"

@@ -29,7 +29,7 @@ class RegionReceiver {
     auto precincts = StreamPrecincts::Create(header_);
     EXPECT_TRUE(precincts.ok()) << precincts.status().ToString();
     precincts_ = std::make_unique<StreamPrecincts>(*std::move(precincts));
-    held_.emplace(header_, *precincts_);
+    held_.emplace(header_, precincts_->parents());
     numbering_.emplace(*held_);
     auto d = ProgressiveDecoder::Create(header_);
     EXPECT_TRUE(d.ok()) << d.status().ToString();

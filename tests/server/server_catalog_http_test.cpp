@@ -10,6 +10,7 @@
 
 #include "catalog.h"
 #include "meshwave/container.h"
+#include "meshwave/mesh_io.h"
 #include "meshwave/metrics.h"
 #include "meshwave/progressive_decoder.h"
 #include "server_http_fixture_testonly.h"

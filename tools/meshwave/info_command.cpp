@@ -6,8 +6,12 @@
 #include "commands.h"
 #include "meshwave.pb.h"
 #include "meshwave/mesh.h"
+#include "meshwave/mesh_clean.h"
+#include "meshwave/mesh_io.h"
+#include "meshwave/mesh_stats.h"
 #include "meshwave/semiregular.h"
 #include "meshwave/stream_limits.h"
+#include "meshwave/subdivision.h"
 
 namespace meshwave::cli {
 namespace {

@@ -15,6 +15,8 @@
 #include "mesh/mesh_readers.h"
 #include "meshwave/gltf.h"
 #include "meshwave/mesh.h"
+#include "meshwave/mesh_io.h"
+#include "meshwave/mesh_stats.h"
 
 namespace meshwave {
 namespace {

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/parallel_for.h"
+#include "meshwave/mesh_stats.h"
 #include "meshwave/metrics.h"
 #include "metrics/input_checks.h"
 #include "metrics/surface_sampler.h"

@@ -5,7 +5,7 @@
 
 #include "meshwave/stream_limits.h"
 #include "quant/deadzone_quantizer.h"
-#include "stream/sawt_field.h"
+#include "stream/sawt_field_decoder.h"
 #include "stream/stream_format.h"
 
 namespace meshwave {

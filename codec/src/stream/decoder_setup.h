@@ -11,7 +11,7 @@
 #include "meshwave/status.h"
 #include "meshwave/stream_header.h"
 #include "meshwave/wavelet.h"
-#include "stream/base_mesh_codec.h"
+#include "stream/base_mesh_decoder.h"
 
 namespace meshwave {
 

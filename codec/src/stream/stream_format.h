@@ -67,7 +67,7 @@ inline Result<TransformSettings> ReadTransformSettings(const StreamHeader::Trans
   }
   s.frames = t.local_frames ? FrameMode::kLocal : FrameMode::kGlobal;
   // The SAWT choices need the decoded base mesh: the decoders read them
-  // (stream/sawt_field.h) once it is built.
+  // (stream/sawt_field_decoder.h) once it is built.
   if (s.predictor == Predictor::kSawt && !t.sawt) {
     return ParseError("header: SAWT transform without its filter choices");
   }
