@@ -74,12 +74,24 @@ CatalogEntry EntryFor(const EncodedMesh& encoded) {
   return e;
 }
 
+namespace {
+
+// Seconds since `start`, for the log of a long ingest.
+double Since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
 Result<EncodedMesh> EncodeOriginal(const std::vector<OriginalPart>& parts, const std::string& main,
                                    const std::string& name, const EncodeChoices& choices) {
   const OriginalPart* file = FindPart(parts, main);
   if (!file) return InvalidArgument("the mesh file '" + main + "' is not among the files");
   MW_ASSIGN_OR_RETURN(MeshFormat format, FormatFromPath(main));
+  auto step = std::chrono::steady_clock::now();
   MW_ASSIGN_OR_RETURN(TriMesh mesh, ParseMesh(file->bytes, format, main));
+  spdlog::info("{}: read {} vertices, {} faces in {:.1f} s", main, mesh.positions.size(),
+               mesh.faces.size(), Since(step));
   const bool fidelity = choices.fidelity_db > 0;
   const TriMesh original = fidelity ? mesh : TriMesh{};
   SemiRegularInputOptions input_options;
@@ -87,30 +99,39 @@ Result<EncodedMesh> EncodeOriginal(const std::vector<OriginalPart>& parts, const
   input_options.max_vertex_ratio = choices.max_vertex_ratio;
   input_options.threads = choices.threads;
   input_options.force_remesh = choices.force_remesh;
+  step = std::chrono::steady_clock::now();
   MW_ASSIGN_OR_RETURN(SemiRegularInput input, ToSemiRegular(std::move(mesh), input_options));
   for (const auto& w : input.warnings) spdlog::warn("{}: {}", main, w);
+  spdlog::info("{}: {} in {:.1f} s ({} finest vertices, {} remesh attempt(s))", main,
+               input.remeshed ? "remeshed" : "semi-regular as it is", Since(step),
+               input.mesh.positions.size(), input.remesh_attempts);
+  const bool remeshed = input.remeshed;
   EncodeOptions options;
   options.name = name;
   options.threads = choices.threads;
   options.precinct_coefficients = choices.precinct_coefficients;
   options.split_bytes_per_precinct = choices.split_bytes_per_precinct;
   if (fidelity) options.precision = PrecisionForFidelity(choices.fidelity_db);
+  step = std::chrono::steady_clock::now();
   MW_ASSIGN_OR_RETURN(EncodedStream stream, EncodeMesh(input.mesh, options));
+  spdlog::info("{}: encoded {} packets in {:.1f} s", main, stream.packets.size(), Since(step));
+  input = SemiRegularInput{};  // the encoder's copy is what is left to use
   EncodedMesh out;
   if (fidelity) {
+    step = std::chrono::steady_clock::now();
     MW_ASSIGN_OR_RETURN(out.fidelity_db, CompleteStreamPsnr(original, stream, choices.threads));
     const auto level =
         out.fidelity_db >= choices.fidelity_db ? spdlog::level::info : spdlog::level::warn;
     spdlog::log(level,
                 "{}: the complete stream is at {:.2f} dB against the upload (asked {:.2f} dB; "
-                "{} finest vertices after {} remesh attempt(s), precision {})",
-                main, out.fidelity_db, choices.fidelity_db, input.finest_vertices,
-                input.remesh_attempts, options.precision);
+                "{} finest vertices, precision {}; measured in {:.1f} s)",
+                main, out.fidelity_db, choices.fidelity_db, stream.mesh.positions.size(),
+                options.precision, Since(step));
   }
   out.container = SerializeFullContainer(stream);
   out.header = std::move(stream.header);
   out.packets = stream.packets.size();
-  out.remeshed = input.remeshed;
+  out.remeshed = remeshed;
   return out;
 }
 

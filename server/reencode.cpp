@@ -10,6 +10,7 @@
 #include "ingest.h"
 #include "meshwave/container.h"
 #include "meshwave/stream_header.h"
+#include "meshwave/stream_limits.h"
 
 namespace meshwave::server {
 namespace {
