@@ -5,6 +5,7 @@
 #include "mesh_handlers.h"
 #include "meshwave/mesh_id.h"
 #include "meshwave/request_target.h"
+#include "original_handlers.h"
 #include "response.h"
 #include "upload_handler.h"
 #include "viewer_files.h"
@@ -68,6 +69,13 @@ Response Route(ServerContext& ctx, const Request& req, const RequestTarget& t) {
     return DescribeMesh(ctx, req, id);
   }
   const std::string& what = seg[3];
+  if (what == "original") {
+    if (!get) return MethodNotAllowed("GET, HEAD");
+    if (!t.query.empty()) return JsonError(http::status::bad_request, "unexpected query");
+    std::string file;
+    for (size_t i = 4; i < seg.size(); ++i) file += (i > 4 ? "/" : "") + seg[i];
+    return GetOriginal(ctx, req, id, file);
+  }
   const bool known = (seg.size() == 4 && (what == "header" || what == "stream" || what == "container")) ||
                      (seg.size() == 5 && what == "packets");
   if (!known) return JsonError(http::status::not_found, "no such endpoint");

@@ -97,6 +97,9 @@ void ToProto(const CatalogEntry& e, proto::MeshSummary& out) {
   out.set_bytes(e.bytes);
   out.set_sha256(e.sha256);
   out.set_created_unix(e.created_unix);
+  out.set_format_version(e.format_version);
+  out.set_settings(e.settings);
+  out.set_has_original(!e.original.empty());
 }
 
 Response ListMeshes(ServerContext& ctx, const Request& req, const QueryParams& query) {

@@ -21,7 +21,7 @@ FLOORS = [
     ["mesh"],
     ["semiregular", "entropy"],
     ["bitplane"],
-    ["wavelet", "analysis"],
+    ["wavelet", "analysis", "texture"],
     ["quant"],
     ["stream", "metrics"],
     ["pgc", "remesh"],

@@ -11,11 +11,7 @@
 namespace meshwave {
 
 Status ValidateVersionAndLevels(const StreamHeader& h) {
-  if (h.format_version != kFormatVersion) {
-    return Status(StatusCode::kUnsupported,
-                  "stream format version " + std::to_string(h.format_version) +
-                      " (this build reads version " + std::to_string(kFormatVersion) + ")");
-  }
+  MW_RETURN_IF_ERROR(CheckFormatVersion(h).WithContext("stream"));
   const uint32_t levels = h.transform.levels;
   if (levels > kMaxStreamLevels) {
     return ParseError("header: " + std::to_string(levels) + " levels (at most " +

@@ -15,7 +15,7 @@
 
 namespace meshwave {
 
-// The format version this build reads (kUnsupported otherwise) and at most
+// A format version this build reads (CheckFormatVersion) and at most
 // kMaxStreamLevels levels.
 Status ValidateVersionAndLevels(const StreamHeader& h);
 

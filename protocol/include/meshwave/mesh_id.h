@@ -1,4 +1,6 @@
-// Mesh ids: the first 12 hex digits of the container's SHA-256. They come
+// Mesh ids: 12 hex digits, from what the mesh was made of (the server's
+// MeshIdOf, server/mesh_identity.h) or, for a ready container ingested as
+// it is, of the container's SHA-256; a re-encode keeps them. They come
 // from URLs, so every use is preceded by IsValidMeshId; they never name a
 // file (the catalog row holds the container path).
 #ifndef MESHWAVE_MESH_ID_H_

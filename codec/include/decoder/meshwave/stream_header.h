@@ -20,6 +20,12 @@
 
 namespace meshwave {
 
+// The stream format version this build writes (docs/FORMAT.md). 3:
+// Transform.sawt; 4: compact packet index; 5: base refinement packets; 6:
+// 3xC's significance contexts count significant neighbours; 7: precincts
+// and split packets.
+inline constexpr uint32_t kStreamFormatVersion = 7;
+
 // Enum fields keep whatever value the bytes hold, as protobuf's open proto3
 // enums do: validation (ValidateStreamHeader), not reading, refuses values
 // it does not know.

@@ -71,6 +71,12 @@ struct SurfaceDistanceOptions {
   // Threads (0: the machine's cores): the two directions are measured side
   // by side, each as on one thread, so the result is the same for any count.
   int threads = 0;
+  // At most this many samples on each mesh (0: no bound): a mesh whose
+  // face and vertex samples would exceed it gets exactly this many face
+  // samples, spread by area, and no vertex samples, so that the cost of a
+  // measurement stops growing with the mesh (RMS and mean from millions of
+  // samples move by far less than their differences of interest).
+  uint64_t max_samples = 0;
 };
 
 // One-sided and symmetric sampled distances, in the units of the meshes.
