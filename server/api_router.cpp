@@ -5,6 +5,7 @@
 #include "mesh_handlers.h"
 #include "meshwave/mesh_id.h"
 #include "meshwave/request_target.h"
+#include "meshwave/stream_request.h"
 #include "original_handlers.h"
 #include "response.h"
 #include "upload_handler.h"
@@ -65,8 +66,9 @@ Response Route(ServerContext& ctx, const Request& req, const RequestTarget& t) {
       return DeleteMesh(ctx, id);
     }
     if (!get) return MethodNotAllowed("GET, HEAD, DELETE");
-    if (!t.query.empty()) return JsonError(http::status::bad_request, "unexpected query");
-    return DescribeMesh(ctx, req, id);
+    auto pin = ParseContainerQuery(t.query);
+    if (!pin.ok()) return StatusError(pin.status());
+    return DescribeMesh(ctx, req, id, *pin);
   }
   const std::string& what = seg[3];
   if (what == "original") {
@@ -81,10 +83,11 @@ Response Route(ServerContext& ctx, const Request& req, const RequestTarget& t) {
   if (!known) return JsonError(http::status::not_found, "no such endpoint");
   if (!get) return MethodNotAllowed("GET, HEAD");
   if (what == "stream") return GetStream(ctx, req, id, t.query);
-  if (!t.query.empty()) return JsonError(http::status::bad_request, "unexpected query");
-  if (what == "header") return GetHeader(ctx, req, id);
-  if (what == "container") return GetContainer(ctx, req, id);
-  return GetPacket(ctx, req, id, seg[4]);
+  auto pin = ParseContainerQuery(t.query);
+  if (!pin.ok()) return StatusError(pin.status());
+  if (what == "header") return GetHeader(ctx, req, id, *pin);
+  if (what == "container") return GetContainer(ctx, req, id, *pin);
+  return GetPacket(ctx, req, id, seg[4], *pin);
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include "mesh_handlers.h"
 
 #include "byte_range.h"
+#include "container_pin.h"
 #include "etag.h"
 #include "meshwave/container.h"
 #include "meshwave/region_text.h"
@@ -20,9 +21,12 @@ constexpr uint64_t kMaxListLimit = 1000;
 struct Lookup {
   std::shared_ptr<const ServedMesh> mesh;
   Response error;
+  bool pinned = false;  // the request named the container served
 };
 
-Lookup Find(ServerContext& ctx, const std::string& id) {
+// `pin`: the container the request continues, if it names one; another
+// than the one served is a 409 that names both (container_pin.h).
+Lookup Find(ServerContext& ctx, const std::string& id, const std::optional<std::string>& pin) {
   Lookup l;
   auto mesh = ctx.cache().Get(id);
   if (!mesh.ok()) {
@@ -30,33 +34,37 @@ Lookup Find(ServerContext& ctx, const std::string& id) {
                         "mesh " + id + " cannot be served: " + mesh.status().message());
   } else if (!*mesh) {
     l.error = JsonError(http::status::not_found, "no mesh with id " + id);
+  } else if (auto conflict = PinConflict((*mesh)->entry(), pin)) {
+    l.error = JsonError(http::status::conflict, *conflict);
+    l.error.set("X-Meshwave-Container", (*mesh)->entry().sha256);
   } else {
     l.mesh = std::move(*mesh);
+    l.pinned = pin.has_value();
   }
   return l;
 }
 
 // 304 when If-None-Match matches, else null.
-bool NotModified(const Request& req, const std::string& etag, Response& out) {
+bool NotModified(const Request& req, const Lookup& l, const std::string& etag, Response& out) {
   const auto inm = req[http::field::if_none_match];
   if (inm.empty() || !IfNoneMatchMatches(inm, etag)) return false;
   out = Response{http::status::not_modified, 11};
-  MarkImmutable(out, etag);
+  MarkMeshResource(out, etag, l.mesh->entry().sha256, l.pinned);
   return true;
 }
 
-Response Binary(const std::shared_ptr<const ServedMesh>& mesh, const std::string& etag) {
+Response Binary(const Lookup& l, const std::string& etag) {
   Response r{http::status::ok, 11};
   r.set(http::field::content_type, "application/octet-stream");
-  r.body().mesh = mesh;
-  MarkImmutable(r, etag);
+  r.body().mesh = l.mesh;
+  MarkMeshResource(r, etag, l.mesh->entry().sha256, l.pinned);
   return r;
 }
 
 // A region request (docs/API.md, "Region requests"): unit records of what
 // the client lacks, in the region's (or the uniform order's) order.
-Response GetUnits(const Request& req, const std::shared_ptr<const ServedMesh>& mesh,
-                  const StreamRequest& q) {
+Response GetUnits(const Request& req, const Lookup& l, const StreamRequest& q) {
+  const std::shared_ptr<const ServedMesh>& mesh = l.mesh;
   const ServedMesh& m = *mesh;
   StreamCursor cursor;
   // The header is never in the body: the budget counts payloads.
@@ -70,8 +78,8 @@ Response GetUnits(const Request& req, const std::shared_ptr<const ServedMesh>& m
       "|" + std::to_string(q.max_level) + "|" + q.held.value_or("") + "|" + std::to_string(units);
   const std::string etag = StrongEtag(m.entry().sha256, "u-" + Sha256Hex(key).substr(0, 32));
   Response r;
-  if (!NotModified(req, etag, r)) {
-    r = Binary(mesh, etag);
+  if (!NotModified(req, l, etag, r)) {
+    r = Binary(l, etag);
     r.set(http::field::content_type, "application/vnd.meshwave.units");
     std::string& body = r.body().owned;
     body.reserve(s->bytes + 12 * units);
@@ -129,8 +137,9 @@ Response ListMeshes(ServerContext& ctx, const Request& req, const QueryParams& q
   return r;
 }
 
-Response DescribeMesh(ServerContext& ctx, const Request& req, const std::string& id) {
-  Lookup l = Find(ctx, id);
+Response DescribeMesh(ServerContext& ctx, const Request& req, const std::string& id,
+                      const std::optional<std::string>& pin) {
+  Lookup l = Find(ctx, id, pin);
   if (!l.mesh) return std::move(l.error);
   const ServedMesh& m = *l.mesh;
   proto::MeshDetails d;
@@ -153,20 +162,21 @@ Response DescribeMesh(ServerContext& ctx, const Request& req, const std::string&
   }
   const std::string etag = StrongEtag(m.entry().sha256, "info");
   Response r;
-  if (NotModified(req, etag, r)) return r;
+  if (NotModified(req, l, etag, r)) return r;
   r = Message(req, d);
-  MarkImmutable(r, etag);
+  MarkMeshResource(r, etag, m.entry().sha256, l.pinned);
   r.set(http::field::vary, "Accept");
   return r;
 }
 
-Response GetHeader(ServerContext& ctx, const Request& req, const std::string& id) {
-  Lookup l = Find(ctx, id);
+Response GetHeader(ServerContext& ctx, const Request& req, const std::string& id,
+                   const std::optional<std::string>& pin) {
+  Lookup l = Find(ctx, id, pin);
   if (!l.mesh) return std::move(l.error);
   const std::string etag = StrongEtag(l.mesh->entry().sha256, "header");
   Response r;
-  if (NotModified(req, etag, r)) return r;
-  r = Binary(l.mesh, etag);
+  if (NotModified(req, l, etag, r)) return r;
+  r = Binary(l, etag);
   r.set(http::field::content_type, kProtobufType);
   r.body().AddSlice(l.mesh->header_bytes());
   return r;
@@ -176,9 +186,9 @@ Response GetStream(ServerContext& ctx, const Request& req, const std::string& id
                    const QueryParams& query) {
   auto q = ParseStreamQuery(query);
   if (!q.ok()) return StatusError(q.status());
-  Lookup l = Find(ctx, id);
+  Lookup l = Find(ctx, id, q->container);
   if (!l.mesh) return std::move(l.error);
-  if (q->units()) return GetUnits(req, l.mesh, *q);
+  if (q->units()) return GetUnits(req, l, *q);
   const ServedMesh& m = *l.mesh;
   StreamCursor cursor;
   // From cursor 0 the body is a container: the budget counts its header.
@@ -190,8 +200,8 @@ Response GetStream(ServerContext& ctx, const Request& req, const std::string& id
                               "-" + std::to_string(s->next);
   const std::string etag = StrongEtag(m.entry().sha256, variant);
   Response r;
-  if (!NotModified(req, etag, r)) {
-    r = Binary(l.mesh, etag);
+  if (!NotModified(req, l, etag, r)) {
+    r = Binary(l, etag);
     std::vector<uint32_t> ids;
     for (auto u = cursor.Peek(); u; cursor.Advance(), u = cursor.Peek()) {
       ids.push_back(u->unit.id);
@@ -209,10 +219,10 @@ Response GetStream(ServerContext& ctx, const Request& req, const std::string& id
 }
 
 Response GetPacket(ServerContext& ctx, const Request& req, const std::string& id,
-                   const std::string& packet) {
+                   const std::string& packet, const std::optional<std::string>& pin) {
   auto k = ParseUnsigned(packet, 0xffffffffu, "packet number");
   if (!k.ok()) return StatusError(k.status());
-  Lookup l = Find(ctx, id);
+  Lookup l = Find(ctx, id, pin);
   if (!l.mesh) return std::move(l.error);
   if (*k >= l.mesh->packet_count()) {
     return JsonError(http::status::not_found,
@@ -221,18 +231,19 @@ Response GetPacket(ServerContext& ctx, const Request& req, const std::string& id
   }
   const std::string etag = StrongEtag(l.mesh->entry().sha256, "p" + packet);
   Response r;
-  if (NotModified(req, etag, r)) return r;
-  r = Binary(l.mesh, etag);
+  if (NotModified(req, l, etag, r)) return r;
+  r = Binary(l, etag);
   r.body().AddSlice(l.mesh->payload(static_cast<uint32_t>(*k)));
   return r;
 }
 
-Response GetContainer(ServerContext& ctx, const Request& req, const std::string& id) {
-  Lookup l = Find(ctx, id);
+Response GetContainer(ServerContext& ctx, const Request& req, const std::string& id,
+                      const std::optional<std::string>& pin) {
+  Lookup l = Find(ctx, id, pin);
   if (!l.mesh) return std::move(l.error);
   const std::string etag = StrongEtag(l.mesh->entry().sha256, "");
   Response r;
-  if (NotModified(req, etag, r)) return r;
+  if (NotModified(req, l, etag, r)) return r;
   const std::string_view bytes = l.mesh->map()->bytes();
   // RFC 9110 13.2.2: If-None-Match first (above), then If-Range decides
   // whether Range applies at all; a failed If-Range means the whole.
@@ -246,7 +257,7 @@ Response GetContainer(ServerContext& ctx, const Request& req, const std::string&
     r.set(http::field::content_range, "bytes */" + std::to_string(bytes.size()));
     return r;
   }
-  r = Binary(l.mesh, etag);
+  r = Binary(l, etag);
   r.set(http::field::content_type, "application/vnd.meshwave.mwv");
   r.set(http::field::accept_ranges, "bytes");
   if (range.kind == RangeRequest::kPartial) {

@@ -1,9 +1,12 @@
 // The read endpoints of /v1/meshes: listing, one mesh's description, its
 // header, a progressive stream, single packets and the whole container.
-// `id` arguments have passed IsValidMeshId.
+// `id` arguments have passed IsValidMeshId; `pin` is the container the
+// request names (ParseContainerQuery): another than the one served is a
+// 409, and a pinned response is cached as immutable (container_pin.h).
 #ifndef MESHWAVE_SERVER_MESH_HANDLERS_H_
 #define MESHWAVE_SERVER_MESH_HANDLERS_H_
 
+#include <optional>
 #include <string>
 
 #include "meshwave/request_target.h"
@@ -14,13 +17,16 @@
 namespace meshwave::server {
 
 Response ListMeshes(ServerContext& ctx, const Request& req, const QueryParams& query);
-Response DescribeMesh(ServerContext& ctx, const Request& req, const std::string& id);
-Response GetHeader(ServerContext& ctx, const Request& req, const std::string& id);
+Response DescribeMesh(ServerContext& ctx, const Request& req, const std::string& id,
+                      const std::optional<std::string>& pin);
+Response GetHeader(ServerContext& ctx, const Request& req, const std::string& id,
+                   const std::optional<std::string>& pin);
 Response GetStream(ServerContext& ctx, const Request& req, const std::string& id,
                    const QueryParams& query);
 Response GetPacket(ServerContext& ctx, const Request& req, const std::string& id,
-                   const std::string& packet);
-Response GetContainer(ServerContext& ctx, const Request& req, const std::string& id);
+                   const std::string& packet, const std::optional<std::string>& pin);
+Response GetContainer(ServerContext& ctx, const Request& req, const std::string& id,
+                      const std::optional<std::string>& pin);
 
 // The catalog summary of an entry, as the API shows it.
 void ToProto(const CatalogEntry& entry, proto::MeshSummary& out);

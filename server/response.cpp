@@ -56,6 +56,8 @@ Response StatusError(const Status& status) {
       return JsonError(http::status::bad_request, status.message());
     case StatusCode::kNotFound:
       return JsonError(http::status::not_found, status.message());
+    case StatusCode::kStale:
+      return JsonError(http::status::conflict, status.message());
     default:
       return JsonError(http::status::internal_server_error, status.message());
   }
@@ -76,9 +78,11 @@ Response Message(const Request& request, const google::protobuf::Message& messag
   return Text(status, std::move(json), "application/json");
 }
 
-void MarkImmutable(Response& response, const std::string& etag) {
+void MarkMeshResource(Response& response, const std::string& etag, const std::string& container,
+                      bool pinned) {
   response.set(http::field::etag, etag);
-  response.set(http::field::cache_control, kImmutable);
+  response.set(http::field::cache_control, pinned ? kImmutable : kUnpinned);
+  response.set("X-Meshwave-Container", container);
 }
 
 }  // namespace meshwave::server

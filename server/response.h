@@ -14,7 +14,12 @@
 namespace meshwave::server {
 
 inline constexpr std::string_view kProtobufType = "application/x-protobuf";
+// Mesh responses pinned to their container (docs/API.md, "Re-encoded
+// meshes") never change; without the pin the same URL answers from a
+// re-encoded container later, so caches keep it a minute, then revalidate
+// with the ETag.
 inline constexpr std::string_view kImmutable = "public, max-age=31536000, immutable";
+inline constexpr std::string_view kUnpinned = "public, max-age=60";
 
 // {"error": "<message>"} with `status`.
 Response JsonError(http::status status, std::string_view message);
@@ -34,8 +39,10 @@ Response Text(http::status status, std::string body, std::string_view content_ty
 // application/x-protobuf, else as JSON (proto3 mapping, .proto field names).
 Response Message(const Request& request, const google::protobuf::Message& message,
                  http::status status = http::status::ok);
-// Marks an immutable resource: strong ETag and a year of Cache-Control.
-void MarkImmutable(Response& response, const std::string& etag);
+// Marks a mesh resource: its strong ETag, the container it comes from
+// (X-Meshwave-Container) and kImmutable when `pinned`, else kUnpinned.
+void MarkMeshResource(Response& response, const std::string& etag, const std::string& container,
+                      bool pinned);
 
 // JSON string literal of `s` (quotes included).
 std::string JsonQuote(std::string_view s);

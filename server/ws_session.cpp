@@ -1,9 +1,11 @@
 #include "ws_session.h"
 
+#include "container_pin.h"
 #include <spdlog/spdlog.h>
 
 #include <array>
 
+#include "container_pin.h"
 #include "meshwave/container.h"
 #include "meshwave/region_text.h"
 #include "response.h"
@@ -170,6 +172,9 @@ void WsSession::StartStream(const ClientRequest& r) {
   }
   if (!*found)
     return SendError(proto::Error::NOT_FOUND, "no mesh with id " + r.mesh_id);
+  if (auto conflict = PinConflict((*found)->entry(), r.stream.container)) {
+    return SendError(proto::Error::CONFLICT, *conflict);
+  }
   const bool start = r.kind == ClientRequest::Kind::kStart;
   auto selection = stream_.Start(std::move(*found), r.stream, start, r.header_only);
   if (!selection.ok()) return SendError(selection.status());
@@ -183,6 +188,7 @@ void WsSession::StartStream(const ClientRequest& r) {
   proto::ServerMessage m;
   if (start) {
     m.mutable_start()->set_header(stream_.mesh()->header_bytes());
+    m.mutable_start()->set_container(stream_.mesh()->entry().sha256);
     *m.mutable_start()->mutable_selection() = ToProto(*selection);
   } else {
     *m.mutable_selection() = ToProto(*selection);

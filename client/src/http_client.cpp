@@ -149,11 +149,14 @@ net::awaitable<Status> HttpClient::Get(std::string target, std::string accept,
 
 net::awaitable<Result<std::string>> HttpClient::GetBody(std::string target,
                                                         std::string accept,
-                                                        uint64_t limit) {
+                                                        uint64_t limit,
+                                                        HeadHandler on_head) {
   std::string body;
   Status s = co_await Get(
       target, accept,
-      [](const http::response_header<>&) { return Status::Ok(); },
+      [&](const http::response_header<>& head) {
+        return on_head ? on_head(head) : Status::Ok();
+      },
       [&](std::string_view bytes) {
         if (body.size() + bytes.size() > limit) {
           return ParseError("GET " + target + ": response larger than " +

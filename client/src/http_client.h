@@ -31,10 +31,12 @@ class HttpClient {
   // certificate that does not verify is kInvalidArgument.
   net::awaitable<Status> Get(std::string target, std::string accept,
                              HeadHandler on_head, BodyHandler on_body);
-  // GET `target` whole; bodies over `limit` bytes are refused.
+  // GET `target` whole; bodies over `limit` bytes are refused. `on_head`,
+  // when given, sees a 200's head first.
   net::awaitable<Result<std::string>> GetBody(std::string target,
                                               std::string accept,
-                                              uint64_t limit);
+                                              uint64_t limit,
+                                              HeadHandler on_head = {});
   void Close();
   net::any_io_executor executor() const { return executor_; }
   const ServerUrl& server() const { return server_; }

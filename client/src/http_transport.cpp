@@ -5,6 +5,7 @@
 #include "header_limit.h"
 #include "http_client.h"
 #include "meshwave/client/transport.h"
+#include "meshwave/mesh_id.h"
 #include "meshwave/region_text.h"
 #include "meshwave/stream_units.h"
 
@@ -60,8 +61,9 @@ class HttpTransport final : public Transport {
     // as the bytes pass the limit: never more than the limit buffered.
     std::string body;
     Status s = co_await client_.Get(
-        url_.Path() + "/header", "application/x-protobuf",
+        Pinned(url_.Path() + "/header"), "application/x-protobuf",
         [&](const http::response_header<>& head) -> Status {
+          MW_RETURN_IF_ERROR(Learn(head));
           if (head.find(http::field::content_length) == head.end())
             return Status::Ok();
           auto length = HeaderNumber(head, "Content-Length");
@@ -80,7 +82,8 @@ class HttpTransport final : public Transport {
 
   net::awaitable<Result<std::string>> GetPacket(uint32_t id) override {
     co_return co_await client_.GetBody(
-        url_.Path() + "/packets/" + std::to_string(id), "", kPacketLimit);
+        Pinned(url_.Path() + "/packets/" + std::to_string(id)), "", kPacketLimit,
+        [&](const http::response_header<>& head) { return Learn(head); });
   }
 
   net::awaitable<Status> Stream(const StreamRequest& request,
@@ -95,9 +98,11 @@ class HttpTransport final : public Transport {
       target += "&max_level=" + std::to_string(request.max_level);
     if (request.from > 0) target += "&from=" + std::to_string(request.from);
     if (request.budget) target += "&budget=" + std::to_string(*request.budget);
+    target = Pinned(std::move(target));
     co_return co_await client_.Get(
         target, "",
         [&](const http::response_header<>& head) -> Status {
+          MW_RETURN_IF_ERROR(Learn(head));
           auto h = ParseStreamHead(head);
           if (!h.ok()) return h.status().WithContext("GET " + target);
           return sink.OnHead(*h);
@@ -121,12 +126,14 @@ class HttpTransport final : public Transport {
     target += "&held=" + request.held;
     if (request.max_level >= 0) target += "&max_level=" + std::to_string(request.max_level);
     if (request.budget) target += "&budget=" + std::to_string(*request.budget);
+    target = Pinned(std::move(target));
     UnitRecordReader reader(request.max_payload, [&](StreamUnit u, std::string_view payload) {
       return sink.OnUnit(u, payload);
     });
     Status s = co_await client_.Get(
         target, "",
         [&](const http::response_header<>& head) -> Status {
+          MW_RETURN_IF_ERROR(Learn(head));
           auto units = HeaderNumber(head, "X-Meshwave-Units");
           return units.ok() ? Status::Ok() : units.status().WithContext("GET " + target);
         },
@@ -139,7 +146,36 @@ class HttpTransport final : public Transport {
 
   void Close() override { client_.Close(); }
 
+
  private:
+  // Once the client holds something of a container, every request names it
+  // (docs/API.md, "Re-encoded meshes"): the server answers 409 rather than
+  // mix another container's bytes with what is held.
+  std::string Pinned(std::string target) const {
+    if (pinned_.empty()) return target;
+    target += target.find('?') == std::string::npos ? '?' : '&';
+    return target + "container=" + pinned_;
+  }
+
+  // The container a response came from; servers before re-encoding send
+  // none, and are not pinned.
+  Status Learn(const http::response_header<>& head) {
+    const auto it = head.find("X-Meshwave-Container");
+    if (it == head.end()) return Status::Ok();
+    const std::string_view digest = it->value();
+    if (!IsValidContainerDigest(digest)) {
+      return ParseError("X-Meshwave-Container \"" + std::string(digest.substr(0, 80)) +
+                        "\" is not a container digest");
+    }
+    if (pinned_.empty()) pinned_ = std::string(digest);
+    if (digest != pinned_) {
+      return Status(StatusCode::kStale, "the mesh is now served from container " +
+                                            std::string(digest) + ", not " + pinned_ +
+                                            " of what is held");
+    }
+    return Status::Ok();
+  }
+
   MeshUrl url_;
   HttpClient client_;
 };

@@ -6,6 +6,7 @@
 #include "client_state.pb.h"
 #include "core/durable_file.h"
 #include "meshwave/container.h"
+#include "meshwave/mesh_id.h"
 #include "meshwave/stream_limits.h"
 
 namespace meshwave::client {
@@ -45,6 +46,7 @@ std::string SessionBytes(const LocalState& state) {
   meta.set_parts(state.parts);
   meta.set_held(state.held);
   meta.set_region(state.region);
+  meta.set_served_container(state.served_container);
   return meta.SerializeAsString();
 }
 
@@ -87,6 +89,10 @@ Result<LocalState> ParseState(std::string_view session, std::string container,
   }
   state.max_level = meta.max_level();
   state.budget_bytes = meta.budget_bytes();
+  if (!meta.served_container().empty() && !IsValidContainerDigest(meta.served_container())) {
+    return refuse(sidecar, "served_container is not a container digest");
+  }
+  state.served_container = meta.served_container();
 
   state.container = std::move(container);
   auto parsed = ParseContainer(state.container);

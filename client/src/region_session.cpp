@@ -263,4 +263,8 @@ std::string RegionSession::Parts() const {
   return out;
 }
 
+const std::string& RegionSession::ServedContainer() const { return impl_->transport->served_container(); }
+
+void RegionSession::PinContainer(std::string digest) { impl_->transport->PinContainer(std::move(digest)); }
+
 }  // namespace meshwave::client

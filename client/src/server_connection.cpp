@@ -52,6 +52,7 @@ Status StatusFromResponse(const std::string& what, unsigned code,
                            ": " + ErrorMessage(body);
   if (code >= 500) return IoError(text);  // worth retrying
   if (code == 404) return Status(StatusCode::kNotFound, text);
+  if (code == 409) return Status(StatusCode::kStale, text);  // the mesh was re-encoded
   return InvalidArgument(text);
 }
 

@@ -343,4 +343,8 @@ std::string Session::Container() const {
   return out;
 }
 
+const std::string& Session::ServedContainer() const { return impl_->transport->served_container(); }
+
+void Session::PinContainer(std::string digest) { impl_->transport->PinContainer(std::move(digest)); }
+
 }  // namespace meshwave::client

@@ -8,6 +8,7 @@
 
 #include "co_status.h"
 #include "meshwave/client/transport.h"
+#include "meshwave/mesh_id.h"
 #include "meshwave/region_text.h"
 #include "net.h"
 #include "server_connection.h"
@@ -62,6 +63,7 @@ class WebSocketTransport final : public Transport {
     auto* start = m.mutable_start();
     start->set_mesh_id(url_.mesh_id);
     start->set_header_only(true);
+    start->set_container(pinned_);
     start->set_rate(options_.pace_bytes_per_second);
     HeaderSink sink;
     Status s = co_await Request(m, request, sink);
@@ -100,6 +102,7 @@ class WebSocketTransport final : public Transport {
     // An empty held set is still a session of units: the region or order
     // says so; with neither, the order's packets (the same units).
     r->set_held(request.held);
+    r->set_container(pinned_);
     if (request.max_level >= 0) r->set_max_level(static_cast<uint32_t>(request.max_level));
     if (request.budget) r->set_budget(*request.budget);
     r->set_rate(options_.pace_bytes_per_second);
@@ -169,6 +172,7 @@ class WebSocketTransport final : public Transport {
         s->set_max_level(static_cast<uint32_t>(r.max_level));
       if (r.budget) s->set_budget(*r.budget);
       s->set_rate(options_.pace_bytes_per_second);
+      s->set_container(pinned_);
       return m;
     }
     return ResumeFor(r);
@@ -183,6 +187,7 @@ class WebSocketTransport final : public Transport {
     s->set_cursor(static_cast<uint32_t>(r.from));
     if (r.budget) s->set_budget(*r.budget);
     s->set_rate(options_.pace_bytes_per_second);
+    s->set_container(pinned_);
     return m;
   }
 
@@ -294,6 +299,14 @@ class WebSocketTransport final : public Transport {
           std::string_view(static_cast<const char*>(data.data()), data.size()),
           ws.got_binary());
       if (!done.ok()) co_return done.status();
+      // The container, once known, is named in every start and resume
+      // (docs/API.md, "Re-encoded meshes"): CONFLICT rather than a mix.
+      if (!reader.container().empty() && pinned_.empty()) {
+        if (!IsValidContainerDigest(reader.container())) {
+          co_return ParseError(where + " named a container that is not a digest");
+        }
+        pinned_ = reader.container();
+      }
       if (*done) {
         server_stream_ = ServerStream{request.order, request.max_level,
                                       static_cast<size_t>(**done)};

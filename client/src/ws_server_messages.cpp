@@ -26,6 +26,8 @@ Status StatusFromError(const proto::Error& e) {
       return InvalidArgument(what);
     case proto::Error::UNAVAILABLE:
       return IoError(what);  // worth retrying
+    case proto::Error::CONFLICT:
+      return Status(StatusCode::kStale, what);  // start over: the mesh was re-encoded
     default:
       return ParseError("an error message of unknown code " +
                         std::to_string(e.code()) + ": " + e.message());
@@ -68,6 +70,7 @@ Result<std::optional<uint64_t>> ServerMessageReader::OnMessage(
         return ParseError(where_ + " sent an unexpected stream header");
       }
       selected_ = true;
+      container_ = reply.start().container();
       MW_RETURN_IF_ERROR(sink_.OnHead(HeadOf(reply.start().selection())));
       MW_RETURN_IF_ERROR(sink_.OnHeaderMessage(reply.start().header()));
       return Done();

@@ -36,12 +36,17 @@ class ServerMessageReader {
   Result<std::optional<uint64_t>> OnMessage(std::string_view bytes,
                                             bool binary);
 
+  // The container a StreamStart named (StreamStart.container), empty
+  // before one or from a server that does not say.
+  const std::string& container() const { return container_; }
+
  private:
   bool expect_header_;
   uint64_t max_header_bytes_;
   StreamSink& sink_;
   std::string where_;
   bool selected_ = false;
+  std::string container_;
 };
 
 }  // namespace meshwave::client

@@ -38,6 +38,7 @@ Status StreamFields(const Message& m, ClientRequest& r, StreamRequestFields& f) 
   MW_RETURN_IF_ERROR(CheckRate(m.rate()));
   r.rate = m.rate();
   RegionFields(m, f);
+  if (!m.container().empty()) f.container = m.container();
   return Status::Ok();
 }
 

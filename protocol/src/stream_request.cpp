@@ -3,6 +3,7 @@
 #include <limits>
 #include <utility>
 
+#include "meshwave/mesh_id.h"
 #include "meshwave/region_text.h"
 
 namespace meshwave {
@@ -33,6 +34,15 @@ Status QueryNumber(const QueryParams& query, std::string_view key,
   return Status::Ok();
 }
 
+Result<std::optional<std::string>> CheckContainer(std::optional<std::string_view> digest) {
+  if (!digest) return std::optional<std::string>();
+  if (!IsValidContainerDigest(*digest)) {
+    return InvalidArgument(
+        "container: 64 lowercase hex digits, the X-Meshwave-Container of an earlier response");
+  }
+  return std::optional<std::string>(std::string(*digest));
+}
+
 }  // namespace
 
 Result<StreamRequest> CheckStreamRequest(const StreamRequestFields& f) {
@@ -58,6 +68,7 @@ Result<StreamRequest> CheckStreamRequest(const StreamRequestFields& f) {
   MW_ASSIGN_OR_RETURN(r.region, ParseRegionFields(f));
   if (r.region && f.order) return InvalidArgument("order and a region: ask for one of them");
   if (f.held) r.held = std::string(*f.held);
+  MW_ASSIGN_OR_RETURN(r.container, CheckContainer(f.container));
   if (r.units() && f.from) {
     return InvalidArgument(
         "from does not apply to a request for units (region, view or held): name the units "
@@ -68,16 +79,18 @@ Result<StreamRequest> CheckStreamRequest(const StreamRequestFields& f) {
 
 Result<StreamRequest> ParseStreamQuery(const QueryParams& query) {
   MW_RETURN_IF_ERROR(query.CheckAllowed(
-      {"order", "budget", "max_level", "from", "region", "view", "screen_error", "held"}));
+      {"order", "budget", "max_level", "from", "region", "view", "screen_error", "held", "container"}));
   StreamRequestFields f;
   const auto order = query.Get("order");
   const auto region = query.Get("region");
   const auto view = query.Get("view");
   const auto held = query.Get("held");
+  const auto container = query.Get("container");
   if (order) f.order = *order;
   if (region) f.region = *region;
   if (view) f.view = *view;
   if (held) f.held = *held;
+  if (container) f.container = *container;
   MW_RETURN_IF_ERROR(QueryNumber(query, "budget", f.budget));
   MW_RETURN_IF_ERROR(QueryNumber(query, "max_level", f.max_level));
   MW_RETURN_IF_ERROR(QueryNumber(query, "from", f.from));
@@ -87,6 +100,13 @@ Result<StreamRequest> ParseStreamQuery(const QueryParams& query) {
     f.screen_error = *n;
   }
   return CheckStreamRequest(f);
+}
+
+Result<std::optional<std::string>> ParseContainerQuery(const QueryParams& query) {
+  MW_RETURN_IF_ERROR(query.CheckAllowed({"container"}));
+  const auto container = query.Get("container");
+  if (!container) return std::optional<std::string>();
+  return CheckContainer(std::string_view(*container));
 }
 
 }  // namespace meshwave

@@ -71,6 +71,7 @@ Both Request(const std::vector<std::pair<std::string, std::string>>& fields) {
     if (key == "view") r->set_view(value);
     if (key == "screen_error") r->set_screen_error(std::stod(value));
     if (key == "held") r->set_held(value);
+    if (key == "container") r->set_container(value);
   }
   return b;
 }
@@ -89,6 +90,7 @@ TEST(StreamRequestTest, TheQueryAndTheMessageGiveTheSameRequest) {
       {{"region", "0.1,0.2,0,0.3"}, {"budget", "20000"}, {"held", "AQ"}},
       {{"view", "0,0,3,0,0,-1,45,1280,720"}, {"screen_error", "0.75"}, {"max_level", "1"}},
       {{"held", "Aw"}, {"order", "rd"}},
+      {{"from", "4"}, {"container", std::string(64, 'c')}},
   };
   for (const auto& fields : cases) {
     const Both b = Request(fields);
@@ -104,6 +106,7 @@ TEST(StreamRequestTest, TheQueryAndTheMessageGiveTheSameRequest) {
     EXPECT_EQ(http->from, ws->from) << b.query;
     EXPECT_EQ(http->region, ws->region) << b.query;
     EXPECT_EQ(http->held, ws->held) << b.query;
+    EXPECT_EQ(http->container, ws->container) << b.query;
     EXPECT_EQ(http->units(), ws->units()) << b.query;
   }
 }
@@ -122,6 +125,9 @@ TEST(StreamRequestTest, TheQueryAndTheMessageRefuseAlikeSayingTheSame) {
       {{"region", "0,0,0,1"}, {"order", "rd"}},
       {{"held", "AQ"}, {"from", "3"}},
       {{"region", "0,0,0,1"}, {"from", "3"}},
+      {{"container", "0123"}},                          // too short
+      {{"container", std::string(64, 'C')}},            // upper case
+      {{"container", std::string(63, 'c') + "g"}},      // not hex
   };
   for (const auto& fields : cases) {
     Both b = Request(fields);
@@ -147,6 +153,27 @@ TEST(StreamRequestTest, AnOrderNameIsEchoedQuotedAndCleaned) {
   ASSERT_FALSE(q.ok());
   EXPECT_EQ(q.status().message(),
             "unknown order \"<b>best??" + std::string(31, 'z') + "...\" (quality, resolution, rd)");
+}
+
+// docs/API.md, "Re-encoded meshes": the other mesh endpoints take the
+// container alone.
+TEST(StreamRequestTest, TheOtherEndpointsTakeAContainerAlone) {
+  auto target = ParseRequestTarget("/h?container=" + std::string(64, 'e'));
+  ASSERT_TRUE(target.ok());
+  auto pin = ParseContainerQuery(target->query);
+  ASSERT_TRUE(pin.ok()) << pin.status().ToString();
+  EXPECT_EQ(*pin, std::string(64, 'e'));
+  target = ParseRequestTarget("/h");
+  ASSERT_TRUE(target.ok());
+  pin = ParseContainerQuery(target->query);
+  ASSERT_TRUE(pin.ok());
+  EXPECT_FALSE(pin->has_value());
+  for (const std::string& q : {std::string("container=abc"), std::string("budget=3"),
+                              "container=" + std::string(64, 'e') + "&x=1"}) {
+    target = ParseRequestTarget("/h?" + q);
+    ASSERT_TRUE(target.ok()) << q;
+    EXPECT_EQ(ParseContainerQuery(target->query).status().code(), StatusCode::kInvalidArgument) << q;
+  }
 }
 
 }  // namespace

@@ -344,7 +344,7 @@ TEST_F(ServerHttpTest, IfRangeDecidesBetweenPartAndWhole) {
   EXPECT_EQ(r.status, 304u);
 }
 
-TEST_F(ServerHttpTest, ImmutableResourcesAnswerIfNoneMatch) {
+TEST_F(ServerHttpTest, MeshResourcesAnswerIfNoneMatch) {
   const std::string id = ids_.at("holes_copy");
   for (const std::string suffix : {"/header", "/container", "/packets/0",
                                    "/stream?order=quality&budget=9000", ""}) {
@@ -354,7 +354,8 @@ TEST_F(ServerHttpTest, ImmutableResourcesAnswerIfNoneMatch) {
     const std::string etag = r.Header("etag");
     ASSERT_FALSE(etag.empty()) << target;
     EXPECT_EQ(etag.front(), '"');  // strong
-    EXPECT_EQ(r.Header("cache-control"), "public, max-age=31536000, immutable");
+    // Not pinned to a container: a re-encode may change the bytes.
+    EXPECT_EQ(r.Header("cache-control"), "public, max-age=60");
     HttpReply again = HttpGet(port_, target, {{"If-None-Match", etag}});
     EXPECT_EQ(again.status, 304u) << target;
     EXPECT_TRUE(again.body.empty());
@@ -369,6 +370,44 @@ TEST_F(ServerHttpTest, ImmutableResourcesAnswerIfNoneMatch) {
   const auto a = HttpGet(port_, "/v1/meshes/" + id + "/stream?budget=4000").Header("etag");
   const auto b = HttpGet(port_, "/v1/meshes/" + id + "/stream?budget=6000").Header("etag");
   EXPECT_NE(a, b);
+}
+
+// docs/API.md, "Re-encoded meshes": every mesh response names its
+// container; a request naming it is immutable, one naming another is a 409
+// that names both, and a malformed one a 400.
+TEST_F(ServerHttpTest, RequestsPinnedToTheirContainer) {
+  const std::string id = ids_.at("holes_copy");
+  const std::string digest = HttpGet(port_, "/v1/meshes/" + id + "/header").Header("x-meshwave-container");
+  ASSERT_EQ(digest.size(), 64u);
+  const std::string other(64, 'a');
+  for (const std::string suffix : {"/header?", "/container?", "/packets/0?",
+                                   "/stream?order=quality&budget=9000&",
+                                   "/stream?from=3&", "/stream?order=rd&held=&", "?"}) {
+    const std::string target = "/v1/meshes/" + id + suffix;
+    HttpReply r = HttpGet(port_, target + "container=" + digest);
+    ASSERT_EQ(r.status, 200u) << target << ": " << r.body;
+    EXPECT_EQ(r.Header("x-meshwave-container"), digest) << target;
+    EXPECT_EQ(r.Header("cache-control"), "public, max-age=31536000, immutable") << target;
+    const HttpReply unpinned = HttpGet(port_, target.substr(0, target.size() - 1));
+    EXPECT_EQ(unpinned.body, r.body) << target;
+    EXPECT_EQ(unpinned.Header("x-meshwave-container"), digest) << target;
+
+    r = HttpGet(port_, target + "container=" + other);
+    EXPECT_EQ(r.status, 409u) << target;
+    EXPECT_EQ(r.Header("cache-control"), "no-store");
+    EXPECT_EQ(r.Header("x-meshwave-container"), digest);
+    EXPECT_NE(r.body.find("was re-encoded"), std::string::npos) << r.body;
+    EXPECT_NE(r.body.find(digest), std::string::npos) << r.body;
+    EXPECT_NE(r.body.find(other), std::string::npos) << r.body;
+
+    for (const std::string& bad : {std::string("abc"), digest.substr(1) + "G", std::string(64, 'A')}) {
+      r = HttpGet(port_, target + "container=" + bad);
+      EXPECT_EQ(r.status, 400u) << target << bad;
+      EXPECT_NE(r.body.find("64 lowercase hex digits"), std::string::npos) << r.body;
+    }
+  }
+  // The other endpoints still take no other parameter.
+  EXPECT_EQ(HttpGet(port_, "/v1/meshes/" + id + "/header?budget=3").status, 400u);
 }
 
 // Repeated GETs of the mesh endpoints come from the response cache: the

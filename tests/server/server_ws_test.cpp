@@ -355,6 +355,49 @@ TEST_F(ServerWsTest, ResumeContinuesAfterAReconnect) {
           .body);
 }
 
+// docs/API.md, "Re-encoded meshes": the start names the container served;
+// a resume naming it continues, one naming another gets CONFLICT naming
+// both, and the connection stays usable.
+TEST_F(ServerWsTest, AResumeNamesItsContainer) {
+  const std::string& id = Id("holes");
+  WsTestClient c(port());
+  ASSERT_TRUE(c.open());
+  std::string digest;
+  ASSERT_TRUE(c.Send(StartMessage(id, "quality", 6000)));
+  for (const auto& m : c.ReadUntilDone()) {
+    if (m.has_start()) digest = m.start().container();
+  }
+  EXPECT_EQ(digest, HttpGet(port(), "/v1/meshes/" + id + "/header").Header("x-meshwave-container"));
+  ASSERT_EQ(digest.size(), 64u);
+
+  proto::ClientMessage resume = ResumeMessage(id, "quality", 3, 4000);
+  resume.mutable_resume()->set_container(digest);
+  Received r = Exchange(c, resume);
+  ASSERT_FALSE(r.error.has_value()) << r.error->message();
+  EXPECT_EQ(r.Payloads(), Stream(id, "order=quality&from=3&budget=4000").body);
+
+  const std::string other(64, '0');
+  resume.mutable_resume()->set_container(other);
+  ASSERT_TRUE(c.Send(resume));
+  auto refused = c.Read();
+  ASSERT_TRUE(refused && refused->has_error());
+  EXPECT_EQ(refused->error().code(), proto::Error::CONFLICT);
+  EXPECT_NE(refused->error().message().find(digest), std::string::npos) << refused->error().message();
+  EXPECT_NE(refused->error().message().find(other), std::string::npos);
+
+  resume.mutable_resume()->set_container("not a digest");
+  ASSERT_TRUE(c.Send(resume));
+  refused = c.Read();
+  ASSERT_TRUE(refused && refused->has_error());
+  EXPECT_EQ(refused->error().code(), proto::Error::BAD_REQUEST);
+
+  proto::ClientMessage start = StartMessage(id, "quality", 3000);
+  start.mutable_start()->set_container(digest);
+  r = Exchange(c, start);
+  EXPECT_TRUE(r.done.has_value());
+  EXPECT_FALSE(r.error.has_value());
+}
+
 TEST_F(ServerWsTest, BadRequestsGetErrorsAndTheConnectionStaysUsable) {
   const std::string& id = Id("holes");
   WsTestClient c(port());

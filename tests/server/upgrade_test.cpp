@@ -331,6 +331,84 @@ TEST_P(UpgradeTest, AServerCanReencodeInTheBackground) {
   EXPECT_EQ(server.Stop(), 0);
 }
 
+// A client's saved state across a re-encode (docs/API.md, "Re-encoded
+// meshes"): `meshwave refine` names the container its packets came from,
+// hears that the mesh was re-encoded, says so and starts over from the new
+// container, over HTTP and over WebSocket.
+TEST_P(UpgradeTest, AClientHoldingTheOldContainerStartsOver) {
+  std::string id;
+  {
+    auto catalog = OpenCatalog();
+    ASSERT_TRUE(catalog);
+    ASSERT_NO_FATAL_FAILURE(AddOldMesh(*catalog, kOldMeshes[0]));
+    auto rows = catalog->List(10, 0);
+    ASSERT_TRUE(rows.ok() && rows->size() == 1u);
+    id = rows->front().id;
+  }
+  const auto work = tmp_ / "work";
+  std::filesystem::create_directories(work);
+  std::ofstream(work / "server.conf") << "catalog_poll_milliseconds: 100\n";
+  std::vector<std::string> extra = {"--config", (work / "server.conf").string()};
+  std::vector<std::string> store_args;
+  if (!store().empty()) store_args = {"--store", store().string()};
+  extra.insert(extra.end(), store_args.begin(), store_args.end());
+  ServerProcess server(location(), work, {}, extra);
+  ASSERT_TRUE(server.running()) << ReadBytes(server.log());
+  const std::string base = "http://127.0.0.1:" + std::to_string(server.port()) + "/v1/meshes/" + id;
+  const std::string old_digest = HttpGet(server.port(), "/v1/meshes/" + id + "/header")
+                                     .Header("x-meshwave-container");
+  ASSERT_EQ(old_digest.size(), 64u);
+  const std::vector<std::string> urls = {base, "ws" + base.substr(4)};
+  for (size_t i = 0; i < urls.size(); ++i) {
+    const std::string state = (work / ("held-" + std::to_string(i) + ".mwv")).string();
+    const CliResult fetched = RunCli({"fetch", urls[i], "--budget", "3000", "--state", state,
+                                      "--out", (work / "first.ply").string()});
+    ASSERT_EQ(fetched.exit_code, 0) << fetched.err;
+    EXPECT_NE(ReadBytes(state + ".session").find(old_digest), std::string::npos);
+  }
+
+  std::vector<std::string> reencode = {"reencode", "--catalog", location()};
+  reencode.insert(reencode.end(), store_args.begin(), store_args.end());
+  const pid_t job = SpawnServer(reencode, work / "reencode.log");
+  ASSERT_EQ(WaitExit(job, std::chrono::seconds(300)), 0) << ReadBytes(work / "reencode.log");
+  std::string new_digest = old_digest;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  while (new_digest == old_digest && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    new_digest = HttpGet(server.port(), "/v1/meshes/" + id + "/header").Header("x-meshwave-container");
+  }
+  ASSERT_NE(new_digest, old_digest) << ReadBytes(server.log());
+  // The old container's continuation is refused, naming both.
+  const HttpReply refused =
+      HttpGet(server.port(), "/v1/meshes/" + id + "/stream?from=2&container=" + old_digest);
+  EXPECT_EQ(refused.status, 409u);
+  EXPECT_NE(refused.body.find(new_digest), std::string::npos) << refused.body;
+
+  for (size_t i = 0; i < urls.size(); ++i) {
+    SCOPED_TRACE(urls[i]);
+    const std::string state = (work / ("held-" + std::to_string(i) + ".mwv")).string();
+    const auto out = work / ("refined-" + std::to_string(i) + ".ply");
+    const CliResult refined =
+        RunCli({"refine", state, "--more", "4000", "--out", out.string()});
+    ASSERT_EQ(refined.exit_code, 0) << refined.err;
+    EXPECT_NE(refined.err.find("was re-encoded"), std::string::npos) << refined.err;
+    EXPECT_NE(refined.err.find("starting over"), std::string::npos) << refined.err;
+    // The state now holds the new container's packets, and names it.
+    EXPECT_NE(ReadBytes(state + ".session").find(new_digest), std::string::npos);
+    const std::string held_bytes = ReadBytes(state);
+    auto held = ParseContainer(held_bytes);
+    ASSERT_TRUE(held.ok()) << held.status().ToString();
+    EXPECT_EQ(held->header.format_version, kStreamFormatVersion);
+    EXPECT_GT(held->ids.size(), 0u);
+    EXPECT_GT(std::filesystem::file_size(out), 0u);
+    // A second refine continues without starting over.
+    const CliResult again = RunCli({"refine", state, "--more", "2000", "--out", out.string()});
+    ASSERT_EQ(again.exit_code, 0) << again.err;
+    EXPECT_EQ(again.err.find("starting over"), std::string::npos) << again.err;
+  }
+  EXPECT_EQ(server.Stop(), 0) << ReadBytes(server.log());
+}
+
 INSTANTIATE_TEST_SUITE_P(Backends, UpgradeTest,
                          ::testing::Values(CatalogBackend::kSqlite, CatalogBackend::kPostgres),
                          CatalogBackendName);

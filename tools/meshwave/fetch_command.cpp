@@ -1,5 +1,6 @@
 // meshwave fetch URL --out FILE: a mesh from a meshwave-server at a budget.
 #include <iostream>
+#include <memory>
 
 #include "cli_util.h"
 #include "client_options.h"
@@ -56,6 +57,7 @@ Status SaveSessionState(const std::string& path, const client::MeshUrl& url,
   state.cursor = session.progress().packets;
   state.budget_bytes = session.budget_bytes();
   state.container = session.Container();
+  state.served_container = session.ServedContainer();
   return client::SaveState(path, state);
 }
 
@@ -85,9 +87,16 @@ Status Run(const FetchArgs& args) {
                               : std::nullopt,
                           /*budget_counts_header=*/true, *output, args.state);
   }
-  client::BlockingSession blocking(url, options, transport);
-  const Status fetched = blocking.Fetch(budget, output->Handler());
-  client::Session& session = blocking.session();
+  auto blocking = std::make_unique<client::BlockingSession>(url, options, transport);
+  Status fetched = blocking->Fetch(budget, output->Handler());
+  if (fetched.code() == StatusCode::kStale) {
+    // Re-encoded between two requests of this fetch: once more, from the
+    // new container.
+    std::cerr << "meshwave fetch: " << fetched.message() << "\nmeshwave fetch: starting over\n";
+    blocking = std::make_unique<client::BlockingSession>(url, options, transport);
+    fetched = blocking->Fetch(budget, output->Handler());
+  }
+  client::Session& session = blocking->session();
   if (!fetched.ok()) {
     // Keep what arrived intact: `meshwave refine` continues from it.
     if (!args.state.empty() && session.has_header() &&

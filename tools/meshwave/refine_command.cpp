@@ -1,5 +1,7 @@
 // meshwave refine STATE --more SIZE: the next packets of a fetched mesh.
 #include <filesystem>
+#include <iostream>
+#include <memory>
 
 #include "cli_util.h"
 #include "client_options.h"
@@ -20,6 +22,14 @@ struct RefineArgs {
   RegionRequestArgs region;
 };
 
+// The mesh was re-encoded since the state was saved: what it holds cannot
+// be continued (docs/API.md, "Re-encoded meshes").
+void ReportStartingOver(const Status& stale, const std::string& state_path) {
+  std::cerr << "meshwave refine: " << stale.message() << "\n"
+            << "meshwave refine: " << state_path
+            << " belongs to the old container: starting over from the new one\n";
+}
+
 // A session of units, or one of packets asked for a region: the units the
 // region (given, or the state's last) puts first, `more` bytes of them.
 Status RunUnits(const RefineArgs& args, const client::LocalState& state,
@@ -33,14 +43,23 @@ Status RunUnits(const RefineArgs& args, const client::LocalState& state,
     if (!kept.ok()) return kept.status().WithContext("state " + args.state);
     region = *kept;
   }
-  client::RegionSession session(state.url, options, transport);
-  Status restored = session.Restore(state.container, state.parts);
-  if (restored.ok() && state.units && session.HeldText() != state.held) {
-    restored = ParseError("the held units differ from what its files hold (they do not belong together)");
+  {
+    client::RegionSession session(state.url, options, transport);
+    Status restored = session.Restore(state.container, state.parts);
+    if (restored.ok() && state.units && session.HeldText() != state.held) {
+      restored = ParseError("the held units differ from what its files hold (they do not belong together)");
+    }
+    if (!restored.ok()) return restored.WithContext("state " + args.state);
+    if (!state.served_container.empty()) session.PinContainer(state.served_container);
+    const Status s = RunRegionFetch(session, state.url, region, more,
+                                    /*budget_counts_header=*/false, output, args.state);
+    if (s.code() != StatusCode::kStale) return s;
+    ReportStartingOver(s, args.state);
   }
-  if (!restored.ok()) return restored.WithContext("state " + args.state);
-  return RunRegionFetch(session, state.url, region, more, /*budget_counts_header=*/false, output,
-                        args.state);
+  // What was held, and the more asked for, from the new container.
+  client::RegionSession fresh(state.url, options, transport);
+  return RunRegionFetch(fresh, state.url, region, state.budget_bytes + more,
+                        /*budget_counts_header=*/false, output, args.state);
 }
 
 Status Run(const RefineArgs& args) {
@@ -61,19 +80,26 @@ Status Run(const RefineArgs& args) {
   if (state.units || args.region.given()) {
     return RunUnits(args, state, options, transport, more, *output);
   }
-  client::BlockingSession blocking(state.url, options, transport);
-  client::Session& session = blocking.session();
-  Status restored = session.Restore(state.container, state.budget_bytes);
+  auto blocking = std::make_unique<client::BlockingSession>(state.url, options, transport);
+  Status restored = blocking->session().Restore(state.container, state.budget_bytes);
   if (!restored.ok()) return restored.WithContext("state " + args.state);
+  if (!state.served_container.empty()) blocking->session().PinContainer(state.served_container);
 
   // The budget grows by --more: refining after a fetch of B gives what a
   // fetch of B + more gives, and the packets held are never asked for.
-  const Status fetched = blocking.Fetch(
-      client::Budget::Bytes(state.budget_bytes + more), output->Handler());
+  const client::Budget budget = client::Budget::Bytes(state.budget_bytes + more);
+  Status fetched = blocking->Fetch(budget, output->Handler());
+  if (fetched.code() == StatusCode::kStale) {
+    ReportStartingOver(fetched, args.state);
+    blocking = std::make_unique<client::BlockingSession>(state.url, options, transport);
+    fetched = blocking->Fetch(budget, output->Handler());
+  }
+  client::Session& session = blocking->session();
   state.cursor = session.progress().packets;
   state.budget_bytes =
       fetched.ok() ? session.budget_bytes() : state.budget_bytes;
   state.container = session.Container();
+  state.served_container = session.ServedContainer();
   MW_RETURN_IF_ERROR(client::SaveState(args.state, state));
   if (!fetched.ok()) return fetched.WithContext(state.url.ToString());
   return output->Finish(session, state.url.ToString(), args.state);

@@ -72,7 +72,9 @@ Status RunRegionFetch(client::RegionSession& session, const client::MeshUrl& url
   const Status fetched =
       session.FetchBlocking(region, budget, budget_counts_header, output.Handler());
   const client::Progress p = session.progress();
-  if (!state_path.empty() && session.has_header() && (fetched.ok() || p.packets > 0)) {
+  // A stale state (the mesh re-encoded) is the caller's to start over.
+  const bool stale = fetched.code() == StatusCode::kStale;
+  if (!state_path.empty() && session.has_header() && !stale && (fetched.ok() || p.packets > 0)) {
     client::LocalState state;
     state.url = url;
     state.order = session.options().order;
@@ -83,6 +85,7 @@ Status RunRegionFetch(client::RegionSession& session, const client::MeshUrl& url
     state.parts = session.Parts();
     state.held = session.HeldText();
     state.region = RegionStateText(region);
+    state.served_container = session.ServedContainer();
     const Status saved = client::SaveState(state_path, state);
     if (!fetched.ok() && saved.ok()) {
       std::cerr << "meshwave: kept the " << p.packets << " units received in " << state_path

@@ -14,6 +14,7 @@ const char* StatusCodeName(StatusCode code) {
     case StatusCode::kNotSemiRegular: return "not semi-regular";
     case StatusCode::kNotManifold: return "not manifold";
     case StatusCode::kInternal: return "internal error";
+    case StatusCode::kStale: return "stale";
   }
   return "unknown";
 }

@@ -19,6 +19,12 @@ bool IsValidMeshId(std::string_view id);
 // The id of a container with this SHA-256 (64 lowercase hex digits).
 std::string MeshIdFromSha256(std::string_view sha256_hex);
 
+inline constexpr size_t kContainerDigestLength = 64;
+
+// A container's digest as the server names it (X-Meshwave-Container, a
+// `container` parameter): its SHA-256, exactly 64 characters of [0-9a-f].
+bool IsValidContainerDigest(std::string_view digest);
+
 }  // namespace meshwave
 
 #endif  // MESHWAVE_MESH_ID_H_

@@ -32,6 +32,9 @@ struct StreamRequest {
   uint64_t from = 0;                // cursor into the order (below 2^32)
   std::optional<Region> region;     // a sphere or a view (with its screen error)
   std::optional<std::string> held;  // the held bitmap's text, unchecked
+  // The container the client's state belongs to (IsValidContainerDigest):
+  // a mesh re-encoded since is refused, not mixed with what it holds.
+  std::optional<std::string> container;
   // A region request: units selected from what the client holds.
   bool units() const { return region.has_value() || held.has_value(); }
 };
@@ -47,23 +50,29 @@ struct StreamRequestFields {
   std::optional<std::string_view> view;
   std::optional<double> screen_error;      // pixels
   std::optional<std::string_view> held;
+  std::optional<std::string_view> container;
 };
 
 // kInvalidArgument, with a message for the client, for an unknown order
 // (quoted as meshwave's messages quote untrusted text), a budget above
 // kMaxBudget, max_level above kMaxLevelLimit, from at or above 2^32; a
 // region or view that does not parse, both at once, a screen error without
-// a view, an order beside a region or view, and `from` in a request for
-// units (one with a region, a view or held units). Limits that depend on
+// a view, an order beside a region or view, `from` in a request for
+// units (one with a region, a view or held units), and a container that is
+// not a digest. Limits that depend on
 // the mesh (levels, order length, the held bitmap) are the server's to
 // check.
 Result<StreamRequest> CheckStreamRequest(const StreamRequestFields& fields);
 
 // GET /v1/meshes/{id}/stream's query: order, budget, max_level, from,
-// region, view, screen_error, held. kInvalidArgument for any other
+// region, view, screen_error, held, container. kInvalidArgument for any other
 // parameter, for numbers that are not plain decimal integers (ParseUnsigned)
 // and for what CheckStreamRequest refuses.
 Result<StreamRequest> ParseStreamQuery(const QueryParams& query);
+
+// The `container` parameter of the other mesh endpoints (header, packets,
+// container, the description), which take no other: absent, or a digest.
+Result<std::optional<std::string>> ParseContainerQuery(const QueryParams& query);
 
 }  // namespace meshwave
 

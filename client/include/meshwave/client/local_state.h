@@ -32,6 +32,10 @@ struct LocalState {
   std::string parts;
   std::string held;
   std::string region;
+  // The container the server served them from (Session::ServedContainer),
+  // empty when it did not say: a refine names it, and starts over when the
+  // mesh has been re-encoded since.
+  std::string served_container;
 };
 
 // FILE.session.

@@ -65,6 +65,12 @@ class RegionSession {
   // Unit records (stream_units.h) of every other unit held, in an order
   // that decodes after the container.
   std::string Parts() const;
+  // The container (SHA-256, 64 hex digits) what is held came from, empty
+  // when the server did not say (Transport::served_container); keep it with
+  // a saved state and give it back to PinContainer after Restore: a mesh
+  // re-encoded since then is refused with kStale, never mixed.
+  const std::string& ServedContainer() const;
+  void PinContainer(std::string digest);
 
  private:
   struct Impl;

@@ -90,6 +90,12 @@ class Session {
   // The packets held as a valid container ("meshwave decode" reads it);
   // empty before the header.
   std::string Container() const;
+  // The container (SHA-256, 64 hex digits) what is held came from, empty
+  // when the server did not say (Transport::served_container); keep it with
+  // a saved state and give it back to PinContainer after Restore: a mesh
+  // re-encoded since then is refused with kStale, never mixed.
+  const std::string& ServedContainer() const;
+  void PinContainer(std::string digest);
 
  private:
   struct Impl;

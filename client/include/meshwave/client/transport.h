@@ -125,12 +125,23 @@ class Transport {
   // the Session fetches the first packet by id (HTTP: /stream from cursor 0
   // always starts with the header).
   virtual bool CanStreamPayloadsFromStart() const { return false; }
+  // The container (its SHA-256, 64 hex digits) the responses so far came
+  // from, empty before the first or from a server that does not say. Once
+  // known, every request names it, and a mesh re-encoded since is refused
+  // with kStale (docs/API.md, "Re-encoded meshes"): start over.
+  virtual const std::string& served_container() const { return pinned_; }
+  // Names `digest` in every request from now on: what a restored state was
+  // fetched from.
+  virtual void PinContainer(std::string digest) { pinned_ = std::move(digest); }
   // Units of a region request, each handed to `sink` as it arrives.
   virtual net::awaitable<Status> StreamUnits(const UnitStreamRequest& request, UnitSink& sink) {
     (void)request;
     (void)sink;
     co_return Status(StatusCode::kUnsupported, "this transport has no region requests");
   }
+
+ protected:
+  std::string pinned_;  // the container named in requests; empty: none yet
 };
 
 // HTTP/1.1 (http:// or https:// with certificate and host name

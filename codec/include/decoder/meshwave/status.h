@@ -21,6 +21,7 @@ enum class StatusCode {
   kNotSemiRegular,   // a mesh lacks subdivision connectivity
   kNotManifold,      // an operation needs a manifold mesh
   kInternal,         // a broken invariant of our own
+  kStale,            // state held belongs to data that has since changed
 };
 
 const char* StatusCodeName(StatusCode code);
