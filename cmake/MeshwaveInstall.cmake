@@ -5,7 +5,7 @@ include(CMakePackageConfigHelpers)
 include(GNUInstallDirs)
 
 # Include directories as seen from the build tree and from an install.
-foreach(_mw_lib meshwave_decoder meshwave_codec)
+foreach(_mw_lib meshwave_decoder meshwave_codec meshwave_asset)
   set_property(TARGET ${_mw_lib} PROPERTY INTERFACE_INCLUDE_DIRECTORIES
     "$<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/codec/include>"
     "$<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>")
@@ -20,6 +20,7 @@ set_property(TARGET meshwave_client_proto PROPERTY INTERFACE_INCLUDE_DIRECTORIES
 
 set_target_properties(meshwave_decoder PROPERTIES EXPORT_NAME decoder)
 set_target_properties(meshwave_codec PROPERTIES EXPORT_NAME codec)
+set_target_properties(meshwave_asset PROPERTIES EXPORT_NAME asset)
 set_target_properties(meshwave_proto PROPERTIES EXPORT_NAME proto)
 set_target_properties(meshwave_client PROPERTIES EXPORT_NAME client)
 set_target_properties(meshwave_client_proto PROPERTIES EXPORT_NAME client_proto)
@@ -27,7 +28,7 @@ set_target_properties(meshwave_client_proto PROPERTIES EXPORT_NAME client_proto)
 # warning flags of meshwave_options do not reach consumers.
 set_target_properties(meshwave_options PROPERTIES EXPORT_NAME options)
 
-install(TARGETS meshwave_decoder meshwave_codec meshwave_proto meshwave_client meshwave_client_proto
+install(TARGETS meshwave_decoder meshwave_codec meshwave_asset meshwave_proto meshwave_client meshwave_client_proto
                 meshwave_options
   EXPORT meshwaveTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}

@@ -1,0 +1,36 @@
+# meshwave_asset (included from codec/CMakeLists.txt): mesh assets with
+# their attributes, materials and images (meshwave/mesh_asset.h,
+# meshwave/file_set.h): the glTF 2.0 reader (tinygltf), the OBJ + MTL
+# reader, texture decoding (libpng, libjpeg-turbo, libwebp) and file sets.
+# Standard C++ and Debian's libraries; meshwave_codec links it (its ReadMesh
+# reads glTF geometry through it) and adds the entry points that also need
+# the geometry readers (src/asset/mesh_asset_io.cpp: PLY colours, OFF).
+find_package(PNG REQUIRED)
+find_package(PkgConfig REQUIRED)
+pkg_check_modules(TurboJpeg REQUIRED IMPORTED_TARGET GLOBAL libturbojpeg)
+pkg_check_modules(WebP REQUIRED IMPORTED_TARGET GLOBAL libwebp)
+find_package(nlohmann_json 3.9 REQUIRED GLOBAL)
+# tinygltf: the header only. Its implementation is compiled into
+# meshwave_asset (src/asset/tiny_gltf_impl.cpp, with the switches of
+# src/asset/tiny_gltf_config.h), not linked from Debian's libtinygltf.so.
+pkg_check_modules(TinyGltf REQUIRED tinygltf>=2.7)
+find_path(MESHWAVE_TINY_GLTF_INCLUDE_DIR tiny_gltf.h HINTS ${TinyGltf_INCLUDE_DIRS} REQUIRED)
+
+add_library(meshwave_asset STATIC
+  src/asset/file_set.cpp
+  src/image/image_decoder.cpp
+  src/image/png_decoder.cpp
+  src/image/jpeg_decoder.cpp
+  src/image/webp_decoder.cpp
+)
+target_include_directories(meshwave_asset
+  PUBLIC include
+  PRIVATE src)
+target_include_directories(meshwave_asset SYSTEM PRIVATE ${MESHWAVE_TINY_GLTF_INCLUDE_DIR})
+target_link_libraries(meshwave_asset
+  PUBLIC meshwave_decoder Eigen3::Eigen
+  PRIVATE PNG::PNG PkgConfig::TurboJpeg PkgConfig::WebP meshwave_options
+    # Header-only: needed to build, not by what links the installed library.
+    $<BUILD_INTERFACE:nlohmann_json::nlohmann_json>)
+
+target_link_libraries(meshwave_codec PUBLIC meshwave_asset)
