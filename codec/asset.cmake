@@ -18,11 +18,28 @@ find_path(MESHWAVE_TINY_GLTF_INCLUDE_DIR tiny_gltf.h HINTS ${TinyGltf_INCLUDE_DI
 
 add_library(meshwave_asset STATIC
   src/asset/file_set.cpp
+  src/asset/weld.cpp
+  src/asset/asset_image.cpp
+  src/asset/asset_summary.cpp
+  src/asset/glb_container.cpp
+  src/asset/gltf_gate.cpp
+  src/asset/gltf_loader.cpp
+  src/asset/gltf_accessor.cpp
+  src/asset/gltf_scene.cpp
+  src/asset/gltf_materials.cpp
+  src/asset/gltf_notes.cpp
+  src/asset/gltf_reader.cpp
+  src/asset/tiny_gltf_impl.cpp
+  src/asset/mtl_reader.cpp
+  src/asset/obj_asset_reader.cpp
   src/image/image_decoder.cpp
   src/image/png_decoder.cpp
   src/image/jpeg_decoder.cpp
   src/image/webp_decoder.cpp
 )
+# tinygltf's implementation must see TINYGLTF_IMPLEMENTATION before any
+# other inclusion of its header: never in a unity batch.
+set_source_files_properties(src/asset/tiny_gltf_impl.cpp PROPERTIES SKIP_UNITY_BUILD_INCLUSION ON)
 target_include_directories(meshwave_asset
   PUBLIC include
   PRIVATE src)
@@ -33,4 +50,5 @@ target_link_libraries(meshwave_asset
     # Header-only: needed to build, not by what links the installed library.
     $<BUILD_INTERFACE:nlohmann_json::nlohmann_json>)
 
+target_sources(meshwave_codec PRIVATE src/asset/mesh_asset_io.cpp)
 target_link_libraries(meshwave_codec PUBLIC meshwave_asset)
