@@ -153,7 +153,7 @@ void AddEncodeCommand(CLI::App& app, int& exit_code) {
   CLI::App* cmd = app.add_subcommand(
       "encode", "Encode a mesh into an embedded .mwv stream (irregular meshes "
                 "are remeshed first)");
-  cmd->add_option("in", args->in, "Mesh file (.ply, .obj, .off)")->required();
+  cmd->add_option("in", args->in, "Mesh file (.ply, .obj, .off, .glb, .gltf)")->required();
   cmd->add_option("out", args->out, "Output stream (.mwv)")->required();
   AddTransformOptions(cmd, args->predictor, args->update, args->levels,
                       args->precision);

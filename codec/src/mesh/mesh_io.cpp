@@ -11,10 +11,13 @@
 #include <string>
 #include <utility>
 
+#include "asset/asset_readers.h"
 #include "core/durable_file.h"
 #include "mesh/mesh_readers.h"
+#include "meshwave/file_set.h"
 #include "meshwave/gltf.h"
 #include "meshwave/mesh.h"
+#include "meshwave/mesh_asset.h"
 
 namespace meshwave {
 namespace {
@@ -42,6 +45,32 @@ class FdCloser {
   int fd_;
 };
 
+// The files beside a glTF given as bytes alone: none.
+class NoOtherFiles final : public FileSet {
+ public:
+  explicit NoOtherFiles(std::string_view name) : name_(name) {}
+  Result<std::string_view> Read(std::string_view file) override {
+    return Status(StatusCode::kNotFound,
+                  name_ + " refers to " + std::string(file) +
+                      ", which is not available here (read the file from its "
+                      "folder: ReadMesh, or ParseMeshAsset with its files)");
+  }
+  bool Contains(std::string_view) const override { return false; }
+  std::string Describe() const override { return "no files"; }
+
+ private:
+  std::string name_;
+};
+
+Result<TriMesh> GltfGeometry(std::string_view bytes, FileSet& files,
+                             std::string_view name) {
+  GltfReadOptions options;
+  options.load_images = false;
+  MW_ASSIGN_OR_RETURN(MeshAsset asset,
+                      ParseGltfAsset(bytes, files, name, AssetLimits{}, options));
+  return std::move(asset.mesh);
+}
+
 }  // namespace
 
 Result<MeshFormat> FormatFromPath(const std::filesystem::path& path) {
@@ -51,9 +80,10 @@ Result<MeshFormat> FormatFromPath(const std::filesystem::path& path) {
   if (ext == ".ply") return MeshFormat::kPly;
   if (ext == ".obj") return MeshFormat::kObj;
   if (ext == ".off") return MeshFormat::kOff;
+  if (ext == ".glb" || ext == ".gltf") return MeshFormat::kGltf;
   return InvalidArgument(path.string() + ": unknown mesh format \"" +
                          path.extension().string() +
-                         "\" (expected .ply, .obj or .off)");
+                         "\" (expected .ply, .obj, .off, .glb or .gltf)");
 }
 
 Result<TriMesh> ParseMesh(std::string_view bytes, MeshFormat format,
@@ -66,6 +96,10 @@ Result<TriMesh> ParseMesh(std::string_view bytes, MeshFormat format,
         return ParseObj(bytes, name);
       case MeshFormat::kOff:
         return ParseOff(bytes, name);
+      case MeshFormat::kGltf: {
+        NoOtherFiles none(std::string{name});
+        return GltfGeometry(bytes, none, name);
+      }
     }
     return InvalidArgument(std::string(name) + ": unknown mesh format");
   }();
@@ -78,6 +112,15 @@ Result<TriMesh> ParseMesh(std::string_view bytes, MeshFormat format,
 
 Result<TriMesh> ReadMesh(const std::filesystem::path& path) {
   MW_ASSIGN_OR_RETURN(MeshFormat format, FormatFromPath(path));
+  if (format == MeshFormat::kGltf) {
+    // A .gltf's buffers are files beside it: read through the folder.
+    DirectoryFileSet files(path.has_parent_path() ? path.parent_path()
+                                                  : std::filesystem::path("."));
+    const std::string name = path.filename().string();
+    MW_ASSIGN_OR_RETURN(const std::string_view bytes, files.Read(name));
+    MW_ASSIGN_OR_RETURN(TriMesh mesh, GltfGeometry(bytes, files, name));
+    return mesh;
+  }
   int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd < 0) return ErrnoError(path, "open", errno);
   FdCloser closer(fd);
@@ -122,6 +165,8 @@ Status WriteMesh(const TriMesh& mesh, const std::filesystem::path& path) {
     case MeshFormat::kObj:
       return WriteFileDurably(path, SerializeObj(mesh));
     case MeshFormat::kOff:
+      break;
+    case MeshFormat::kGltf:  // handled above (GltfFormFromPath)
       break;
   }
   return Status(
