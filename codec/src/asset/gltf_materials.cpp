@@ -4,11 +4,13 @@
 #include <cmath>
 #include <set>
 
+#include "asset/float_range.h"
+
 namespace meshwave {
 namespace {
 
 bool IsFiniteNumber(const tinygltf::Value& v) {
-  return v.IsNumber() && std::isfinite(v.GetNumberAsDouble());
+  return v.IsNumber() && FitsFloat(v.GetNumberAsDouble());
 }
 
 // A number array of exactly `n` finite entries.
@@ -104,9 +106,10 @@ class MaterialConverter {
       if ((t.Has("offset") && !NumberArray(t.Get("offset"), 2, offset)) ||
           (t.Has("scale") && !NumberArray(t.Get("scale"), 2, scale)) ||
           (t.Has("rotation") && !IsFiniteNumber(t.Get("rotation")))) {
-        return Error(where +
-                     ": KHR_texture_transform needs finite numbers (offset "
-                     "[2], rotation, scale [2])");
+        return Error(
+            where +
+            ": KHR_texture_transform needs finite numbers (float range: offset "
+            "[2], rotation, scale [2])");
       }
       if (t.Has("rotation")) rotation = t.Get("rotation").GetNumberAsDouble();
       // KHR_texture_transform: uv' = T * R * S * uv, with
@@ -165,7 +168,7 @@ class MaterialConverter {
     Material m;
     m.name = g.name;
     const tinygltf::PbrMetallicRoughness& pbr = g.pbrMetallicRoughness;
-    auto finite = [](double v) { return std::isfinite(v); };
+    auto finite = [](double v) { return FitsFloat(v); };
     if (pbr.baseColorFactor.size() != 4 || !finite(pbr.baseColorFactor[0]) ||
         !finite(pbr.baseColorFactor[1]) || !finite(pbr.baseColorFactor[2]) ||
         !finite(pbr.baseColorFactor[3])) {
@@ -177,7 +180,7 @@ class MaterialConverter {
     if (!finite(pbr.metallicFactor) || !finite(pbr.roughnessFactor) ||
         !finite(g.normalTexture.scale) ||
         !finite(g.occlusionTexture.strength) || !finite(g.alphaCutoff)) {
-      return Error(who + ": a factor is not a finite number");
+      return Error(who + ": a factor is not a finite number in float range");
     }
     m.metallic_factor = static_cast<float>(pbr.metallicFactor);
     m.roughness_factor = static_cast<float>(pbr.roughnessFactor);

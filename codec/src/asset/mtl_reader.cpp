@@ -5,6 +5,7 @@
 #include <set>
 #include <utility>
 
+#include "asset/float_range.h"
 #include "mesh/mesh_readers.h"
 #include "mesh/text_scanner.h"
 
@@ -83,7 +84,7 @@ class MtlParser {
     *count = 0;
     while (tokens.Next(&token)) {
       if (*count == max) break;
-      if (!ParseDouble(token, &out[*count]) || !std::isfinite(out[*count])) {
+      if (!ParseDouble(token, &out[*count]) || !FitsFloat(out[*count])) {
         return Error(std::string(keyword) + ": bad number " + Quoted(token) +
                      (token == "spectral" || token == "xyz"
                           ? " (only RGB colours are supported)"
@@ -143,7 +144,7 @@ class MtlParser {
       if (option == "-o" || option == "-s" || option == "-bm") {
         for (int k = 0; k < taken; ++k) {
           double v = 0.0;
-          if (!ParseDouble(args[k], &v) || !std::isfinite(v)) {
+          if (!ParseDouble(args[k], &v) || !FitsFloat(v)) {
             return Error(std::string(keyword) + ": option " + Quoted(option) +
                          " needs numbers, got " + Quoted(args[k]));
           }

@@ -13,6 +13,7 @@
 
 #include "asset/asset_image.h"
 #include "asset/asset_readers.h"
+#include "asset/float_range.h"
 #include "asset/mtl_reader.h"
 #include "asset/srgb.h"
 #include "asset/weld.h"
@@ -118,7 +119,7 @@ class ObjAssetParser {
     std::string_view token;
     int read = 0;
     for (; read < 2 && tokens.Next(&token); ++read) {
-      if (!ParseDouble(token, &uv[read]) || !std::isfinite(uv[read])) {
+      if (!ParseDouble(token, &uv[read]) || !FitsFloat(uv[read])) {
         return Error("bad texture coordinate " + Quoted(token));
       }
     }

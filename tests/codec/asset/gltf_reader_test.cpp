@@ -288,6 +288,14 @@ TEST(GltfReaderTest, ConvertsMaterialsTexturesAndTheirTransforms) {
   EXPECT_EQ(asset->images[1].name, "tex/other.png");
 }
 
+TEST(GltfReaderTest, RefusesMaterialFactorsBeyondFloatRange) {
+  GltfBuilder b = OneTriangle();
+  b.doc["materials"] = {
+      {{"pbrMetallicRoughness", {{"baseColorFactor", {1e300, 1, 1, 1}}}}}};
+  EXPECT_THAT(ErrorOf(ParseGlb(b)),
+              HasSubstr("m.glb: material 0: baseColorFactor needs 4 finite numbers"));
+}
+
 TEST(GltfReaderTest, NotesWhatItDoesNotCarry) {
   GltfBuilder b = OneTriangle();
   auto& prim = b.doc["meshes"][0]["primitives"][0];

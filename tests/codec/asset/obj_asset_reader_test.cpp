@@ -169,6 +169,9 @@ TEST(ObjAssetReaderTest, RefusesNanCoordinatesAndEmptyMeshes) {
       HasSubstr("m.obj: line 2: coordinate \"nan\" is NaN or infinite"));
   EXPECT_THAT(ErrorOf(ParseObj("v 0 0 0\nvt 0 inf\n")),
               HasSubstr("m.obj: line 2: bad texture coordinate \"inf\""));
+  // Finite as a double, infinite as the float a UV is (found by fuzzing).
+  EXPECT_THAT(ErrorOf(ParseObj("v 0 0 0\nvt 1e300 0\n")),
+              HasSubstr("m.obj: line 2: bad texture coordinate \"1e300\""));
   EXPECT_THAT(ErrorOf(ParseObj("v 0 0 0\n")),
               HasSubstr("m.obj: no faces (1 vertices)"));
 }
