@@ -42,7 +42,9 @@ Result<MeshFormat> FormatFromPath(const std::filesystem::path& path);
 // glTF: a .glb, or a .gltf whose buffers are data URIs (a file that refers
 // to others needs them: ReadMesh, or ParseMeshAsset of meshwave/
 // mesh_asset.h); the default scene's triangles with node transforms
-// applied, positions welded; images are not read.
+// applied, positions welded; images are not read. AssetLimits' defaults
+// hold (16.7 M triangles counted per drawing node: instancing is a way to
+// make a small file decode to a huge mesh).
 // Rejects NaN/Inf coordinates, out-of-range indices, truncated data and empty
 // meshes. Polygons with fewer than 3 corners are an error.
 Result<TriMesh> ParseMesh(std::string_view bytes, MeshFormat format,

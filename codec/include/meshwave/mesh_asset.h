@@ -128,10 +128,12 @@ struct AssetLimits {
   // Decoded RGBA bytes of all images together (four 8192² textures).
   uint64_t max_image_bytes = uint64_t{1} << 30;
   // Triangles of the whole asset, after instancing (a glTF mesh drawn by
-  // many nodes counts once per node) and strip/fan conversion.
-  uint64_t max_triangles = uint64_t{1} << 26;
-  // Vertex records read from all primitives (glTF), or v/vt lines (OBJ).
-  uint64_t max_vertices = uint64_t{1} << 26;
+  // many nodes counts once per node) and strip/fan conversion; and vertex
+  // records read from all primitives (glTF), or v and vt lines (OBJ).
+  // 16.7 M each: photogrammetry scans are 1-10 M triangles, and an asset
+  // at the limit takes some 2 GB (faces, index triples, values, positions).
+  uint64_t max_triangles = uint64_t{1} << 24;
+  uint64_t max_vertices = uint64_t{1} << 24;
   // Depth of the glTF node tree.
   uint32_t max_node_depth = 64;
   // Bytes of glTF JSON (the .gltf file or the GLB JSON chunk: data URIs
