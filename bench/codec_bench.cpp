@@ -13,9 +13,12 @@
 
 #include "meshwave/encoder.h"
 #include "meshwave/mesh.h"
+#include "meshwave/mesh_clean.h"
+#include "meshwave/mesh_io.h"
 #include "meshwave/progression.h"
 #include "meshwave/progressive_decoder.h"
 #include "meshwave/semiregular.h"
+#include "meshwave/subdivision.h"
 
 namespace meshwave {
 namespace {

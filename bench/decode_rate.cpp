@@ -1,6 +1,7 @@
 // decode_rate: the packet decoder's CPU cost per payload byte, in memory, on
 // one core: what "decode keeps up with a 100 Mbit/s stream" is measured by
-// (docs/BENCHMARKS.md, issue 6). No network, no set-up in the figure.
+// (docs/BENCHMARKS.md, "Client: first mesh and decode rate"). No network,
+// no set-up in the figure.
 //
 //   decode_rate FILE.mwv [--runs 9] [--setup-threads 1]
 //

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "meshwave/mesh.h"
+#include "meshwave/mesh_io.h"
 
 namespace meshwave {
 namespace {

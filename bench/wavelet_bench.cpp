@@ -8,7 +8,10 @@
 #include <string>
 
 #include "meshwave/mesh.h"
+#include "meshwave/mesh_clean.h"
+#include "meshwave/mesh_io.h"
 #include "meshwave/semiregular.h"
+#include "meshwave/subdivision.h"
 #include "meshwave/wavelet.h"
 
 namespace meshwave {

@@ -1,15 +1,14 @@
-# `cmake --install`: the decoder, codec and client libraries, their public headers,
-# the generated protobuf headers they include, and a CMake package so that
-# another project can find_package(meshwave) and link meshwave::client.
+# `cmake --install`: the decoder, codec, asset, protocol and client
+# libraries, their public headers, the generated protobuf headers they
+# include, and a CMake
+# package so that another project can find_package(meshwave) and link
+# meshwave::client. A build configured with MESHWAVE_DECODER_ONLY installs
+# the decoder alone (cmake/MeshwaveDecoderInstall.cmake).
 include(CMakePackageConfigHelpers)
 include(GNUInstallDirs)
 
-# Include directories as seen from the build tree and from an install.
-foreach(_mw_lib meshwave_decoder meshwave_codec meshwave_asset)
-  set_property(TARGET ${_mw_lib} PROPERTY INTERFACE_INCLUDE_DIRECTORIES
-    "$<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/codec/include>"
-    "$<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>")
-endforeach()
+# Include directories as seen from the build tree and from an install (the
+# libraries' own set them: codec/CMakeLists.txt, protocol/CMakeLists.txt).
 set_property(TARGET meshwave_proto PROPERTY INTERFACE_INCLUDE_DIRECTORIES
   "$<BUILD_INTERFACE:${PROJECT_BINARY_DIR}/proto>"
   "$<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>")
@@ -21,6 +20,8 @@ set_property(TARGET meshwave_client_proto PROPERTY INTERFACE_INCLUDE_DIRECTORIES
 set_target_properties(meshwave_decoder PROPERTIES EXPORT_NAME decoder)
 set_target_properties(meshwave_codec PROPERTIES EXPORT_NAME codec)
 set_target_properties(meshwave_asset PROPERTIES EXPORT_NAME asset)
+set_target_properties(meshwave_core PROPERTIES EXPORT_NAME core)
+set_target_properties(meshwave_protocol PROPERTIES EXPORT_NAME protocol)
 set_target_properties(meshwave_proto PROPERTIES EXPORT_NAME proto)
 set_target_properties(meshwave_client PROPERTIES EXPORT_NAME client)
 set_target_properties(meshwave_client_proto PROPERTIES EXPORT_NAME client_proto)
@@ -28,13 +29,15 @@ set_target_properties(meshwave_client_proto PROPERTIES EXPORT_NAME client_proto)
 # warning flags of meshwave_options do not reach consumers.
 set_target_properties(meshwave_options PROPERTIES EXPORT_NAME options)
 
-install(TARGETS meshwave_decoder meshwave_codec meshwave_asset meshwave_proto meshwave_client meshwave_client_proto
-                meshwave_options
+install(TARGETS meshwave_decoder meshwave_core meshwave_codec meshwave_asset meshwave_protocol
+                meshwave_proto meshwave_client meshwave_client_proto meshwave_options
   EXPORT meshwaveTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
   INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-install(DIRECTORY ${PROJECT_SOURCE_DIR}/codec/include/meshwave
-  DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} FILES_MATCHING PATTERN "*.h")
+foreach(_mw_include codec/include/decoder codec/include/encoder protocol/include)
+  install(DIRECTORY ${PROJECT_SOURCE_DIR}/${_mw_include}/meshwave
+    DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} FILES_MATCHING PATTERN "*.h")
+endforeach()
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/client/include/meshwave
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} FILES_MATCHING PATTERN "*.h")
 install(DIRECTORY ${PROJECT_BINARY_DIR}/proto/ ${PROJECT_BINARY_DIR}/client/

@@ -1,10 +1,13 @@
-# meshwave_asset (included from codec/CMakeLists.txt): mesh assets with
-# their attributes, materials and images (meshwave/mesh_asset.h,
-# meshwave/file_set.h): the glTF 2.0 reader (tinygltf), the OBJ + MTL
-# reader, texture decoding (libpng, libjpeg-turbo, libwebp) and file sets.
-# Standard C++ and Debian's libraries; meshwave_codec links it (its ReadMesh
-# reads glTF geometry through it) and adds the entry points that also need
-# the geometry readers (src/asset/mesh_asset_io.cpp: PLY colours, OFF).
+# meshwave_asset (meshwave::asset, included from codec/CMakeLists.txt;
+# headers in include/encoder/meshwave: reading input is the encoder's side):
+# mesh assets with their attributes, materials and images
+# (meshwave/mesh_asset.h, meshwave/file_set.h): the glTF 2.0 reader
+# (tinygltf), the OBJ + MTL reader, texture decoding (libpng, libjpeg-turbo,
+# libwebp) and file sets.
+# Standard C++ and Debian's libraries; meshwave_codec links it and adds the
+# entry points that also need the geometry readers: ReadMesh and ParseMesh,
+# which read glTF geometry through it (src/asset/mesh_read.cpp), and
+# ParseMeshAsset's PLY colours and OFF (src/asset/mesh_asset_io.cpp).
 find_package(PNG REQUIRED)
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(TurboJpeg REQUIRED IMPORTED_TARGET GLOBAL libturbojpeg)
@@ -41,14 +44,15 @@ add_library(meshwave_asset STATIC
 # other inclusion of its header: never in a unity batch.
 set_source_files_properties(src/asset/tiny_gltf_impl.cpp PROPERTIES SKIP_UNITY_BUILD_INCLUSION ON)
 target_include_directories(meshwave_asset
-  PUBLIC include
+  PUBLIC $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include/encoder>
+         $<INSTALL_INTERFACE:include>
   PRIVATE src)
 target_include_directories(meshwave_asset SYSTEM PRIVATE ${MESHWAVE_TINY_GLTF_INCLUDE_DIR})
 target_link_libraries(meshwave_asset
   PUBLIC meshwave_decoder Eigen3::Eigen
-  PRIVATE PNG::PNG PkgConfig::TurboJpeg PkgConfig::WebP meshwave_options
+  PRIVATE PNG::PNG PkgConfig::TurboJpeg PkgConfig::WebP $<BUILD_INTERFACE:meshwave_options>
     # Header-only: needed to build, not by what links the installed library.
     $<BUILD_INTERFACE:nlohmann_json::nlohmann_json>)
 
-target_sources(meshwave_codec PRIVATE src/asset/mesh_asset_io.cpp)
+target_sources(meshwave_codec PRIVATE src/asset/mesh_read.cpp src/asset/mesh_asset_io.cpp)
 target_link_libraries(meshwave_codec PUBLIC meshwave_asset)

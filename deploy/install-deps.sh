@@ -4,6 +4,8 @@
 #
 #   bash deploy/install-deps.sh          everything: build, tests, deployment tests
 #   bash deploy/install-deps.sh build    only what building the programs needs
+#                                        (the main job, tools/demo.sh: the viewer's
+#                                        decoder comes built in web/dist)
 #   bash deploy/install-deps.sh server   that and what the viewer's WebAssembly
 #                                        decoder is built with (the Dockerfile's
 #                                        build stage: the image serves /viewer/)
@@ -30,6 +32,7 @@ test=(
   libgtest-dev libgmock-dev libbenchmark-dev
   postgresql                   # catalog tests and the replica test start their own server
   nginx-light                  # the replica test's load balancer and cache
+  wrk                          # the upgrade test's HTTP load (tests/server/upgrade_test.cpp)
   docker-compose               # `docker-compose config`: compose file validation, no engine
   clang libclang-rt-14-dev     # the ASan + UBSan stage and the libFuzzer targets (tools/sanitize.sh)
   clang-tidy                   # tools/tidy.sh on the codec, in the Release stage
@@ -41,6 +44,7 @@ test=(
 bench=(
   draco jq bc                  # bench/: Draco 1.5, the baseline, and the tables' arithmetic
   wrk nginx-light              # bench/http_load.sh: the load generator and the nginx reference
+  time                         # /usr/bin/time: wall time and peak memory (bench/ingest_scale.sh)
 )
 
 case "${1:-all}" in

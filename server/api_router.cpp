@@ -3,8 +3,9 @@
 #include <spdlog/spdlog.h>
 
 #include "mesh_handlers.h"
-#include "mesh_id.h"
-#include "request_target.h"
+#include "meshwave/mesh_id.h"
+#include "meshwave/request_target.h"
+#include "original_handlers.h"
 #include "response.h"
 #include "upload_handler.h"
 #include "viewer_files.h"
@@ -68,6 +69,13 @@ Response Route(ServerContext& ctx, const Request& req, const RequestTarget& t) {
     return DescribeMesh(ctx, req, id);
   }
   const std::string& what = seg[3];
+  if (what == "original") {
+    if (!get) return MethodNotAllowed("GET, HEAD");
+    if (!t.query.empty()) return JsonError(http::status::bad_request, "unexpected query");
+    std::string file;
+    for (size_t i = 4; i < seg.size(); ++i) file += (i > 4 ? "/" : "") + seg[i];
+    return GetOriginal(ctx, req, id, file);
+  }
   const bool known = (seg.size() == 4 && (what == "header" || what == "stream" || what == "container")) ||
                      (seg.size() == 5 && what == "packets");
   if (!known) return JsonError(http::status::not_found, "no such endpoint");
@@ -80,6 +88,27 @@ Response Route(ServerContext& ctx, const Request& req, const RequestTarget& t) {
 }
 
 }  // namespace
+
+std::optional<std::string> ResponseCacheKey(const http::request_header<>& req) {
+  if (req.method() != http::verb::get && req.method() != http::verb::head) return std::nullopt;
+  const std::string_view target = req.target();
+  // The mesh endpoints: /v1/meshes/{id}[/...] (Route's seg.size() >= 3).
+  if (!target.starts_with("/v1/meshes/") || !req[http::field::if_none_match].empty()) {
+    return std::nullopt;
+  }
+  // The target, plus Range and If-Range when there are any: the only other
+  // request fields the mesh endpoints read.
+  std::string key(target);
+  const std::string_view range = req[http::field::range];
+  const std::string_view if_range = req[http::field::if_range];
+  if (!range.empty() || !if_range.empty()) {
+    key += '\n';
+    key.append(range.data(), range.size());
+    key += '\n';
+    key.append(if_range.data(), if_range.size());
+  }
+  return key;
+}
 
 HeaderDecision InspectHeader(const ServerContext& ctx, const http::request_header<>& header) {
   HeaderDecision d;

@@ -6,6 +6,7 @@
 
 #include <functional>
 #include <optional>
+#include <string>
 
 #include "server_context.h"
 #include "slices_body.h"
@@ -21,6 +22,15 @@ struct HeaderDecision {
 // Authentication of POST and DELETE happens here, so that a refused
 // upload's body is never read.
 HeaderDecision InspectHeader(const ServerContext& ctx, const http::request_header<>& header);
+
+// The key under which the response cache (response_cache.h) keeps the
+// answer to `req`, or nothing for a request whose answer must not be kept.
+// Declared with the routes: a route whose answer depends on more than the
+// target and the Range fields must say so here. Only the mesh endpoints'
+// GETs (and HEADs) plan cacheable responses (the others never set
+// body().mesh); a conditional GET (If-None-Match) is answered by the
+// handlers.
+std::optional<std::string> ResponseCacheKey(const http::request_header<>& req);
 
 // Handles a complete request. `done` runs once, on this thread for most
 // requests or later on the ingest worker for uploads.

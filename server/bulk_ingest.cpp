@@ -9,7 +9,7 @@
 #include <thread>
 
 #include "core/parallel_for.h"
-#include "request_target.h"
+#include "meshwave/request_target.h"
 
 namespace meshwave::server {
 namespace {
@@ -75,11 +75,15 @@ Result<Shard> ParseShard(const std::string& text) {
   return Shard{static_cast<uint32_t>(*index), static_cast<uint32_t>(*count)};
 }
 
+bool InShard(const std::string& key, Shard shard) {
+  return Fnv1a(key) % shard.count == shard.index;
+}
+
 std::vector<std::filesystem::path> FilesOfShard(const std::vector<std::filesystem::path>& files,
                                                 Shard shard) {
   std::vector<std::filesystem::path> out;
   for (const auto& f : files) {
-    if (Fnv1a(f.string()) % shard.count == shard.index) out.push_back(f);
+    if (InShard(f.string(), shard)) out.push_back(f);
   }
   return out;
 }

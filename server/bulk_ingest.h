@@ -31,8 +31,12 @@ struct Shard {
 // "I/N" with I < N (e.g. "3/8"). kInvalidArgument otherwise.
 Result<Shard> ParseShard(const std::string& text);
 
-// The files of `shard`: those whose path hashes (FNV-1a) to its index, so a
-// file's shard depends on its path alone, not on what else is listed.
+// Whether `key` (a file's path, a mesh id) falls in `shard`: its FNV-1a
+// hash modulo the count is the index, so it depends on the key alone.
+bool InShard(const std::string& key, Shard shard);
+
+// The files of `shard`: those whose path is InShard, so a file's shard
+// depends on its path alone, not on what else is listed.
 std::vector<std::filesystem::path> FilesOfShard(const std::vector<std::filesystem::path>& files,
                                                 Shard shard);
 

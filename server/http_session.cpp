@@ -70,9 +70,10 @@ void HttpSession::DoRead() {
   parser_.emplace();
   parser_->header_limit(config.header_limit_bytes());
   // Beast checks Content-Length against the limit while parsing the
-  // header, before we know whether this is an upload: start with the
-  // larger limit and lower it in OnHeader.
-  parser_->body_limit(std::max(config.body_limit_bytes(), config.upload_limit_bytes()));
+  // header, before we know whether this is an upload: no limit until
+  // OnHeader, which checks the length against the one that applies (and
+  // names it) before a byte of the body is read.
+  parser_->body_limit(boost::none);
   deadline_.ExpiresAfter(std::chrono::seconds(config.idle_timeout_seconds()));
   waiting_for_request_ = true;
   if (buffer_.size() > 0) return ParseHeader();  // a pipelined request is here
@@ -118,7 +119,12 @@ Response HttpSession::ParseFailure(beast::error_code ec) {
     return JsonError(http::status::request_header_fields_too_large, "request header too large");
   }
   if (ec == http::error::body_limit) {
-    return JsonError(http::status::payload_too_large, "request body too large");
+    const uint64_t limit =
+        upload_ ? ctx_.config().upload_limit_bytes() : ctx_.config().body_limit_bytes();
+    return JsonError(http::status::payload_too_large,
+                     std::string(upload_ ? "the upload" : "the request body") +
+                         " is larger than this server's limit of " + std::to_string(limit) +
+                         " bytes (" + (upload_ ? "upload_limit_bytes" : "body_limit_bytes") + ")");
   }
   return JsonError(http::status::bad_request, "malformed HTTP request: " + ec.message());
 }
@@ -136,6 +142,7 @@ void HttpSession::OnHeader(beast::error_code ec, size_t /*bytes*/) {
   const auto& header = parser_->get();
   version_ = header.version();
   head_ = header.method() == http::verb::head;
+  upload_ = false;
   if (over_capacity_) {
     Response r = JsonError(http::status::service_unavailable, "too many connections");
     r.set(http::field::retry_after, "1");
@@ -164,7 +171,18 @@ void HttpSession::OnHeader(beast::error_code ec, size_t /*bytes*/) {
     }
     parser_->body_limit(limit);  // for chunked bodies
   } else {
-    parser_->body_limit(ctx_.config().upload_limit_bytes());
+    const uint64_t limit = ctx_.config().upload_limit_bytes();
+    // Refused before a byte of the body is read (with Expect:
+    // 100-continue, before the client sends it).
+    if (const auto length = parser_->content_length(); length && *length > limit) {
+      return DoWrite(JsonError(http::status::payload_too_large,
+                               "the upload has " + std::to_string(*length) +
+                                   " bytes, more than this server's limit of " +
+                                   std::to_string(limit) + " bytes (upload_limit_bytes)"),
+                     true);
+    }
+    parser_->body_limit(limit);  // for chunked bodies
+    upload_ = true;
     // curl and others wait for this before sending a large body.
     if (beast::iequals(header[http::field::expect], "100-continue")) {
       continue_ = std::make_shared<http::response<http::empty_body>>(http::status::continue_, version_);
@@ -204,25 +222,11 @@ bool HttpSession::AnswerFromCache() {
   cacheable_ = false;
   ResponseCache& cache = ctx_.response_cache();
   if (!cache.enabled()) return false;
-  const auto& req = parser_->get();
-  if (req.method() != http::verb::get && req.method() != http::verb::head) return false;
-  const std::string_view target = req.target();
-  // Only the mesh endpoints plan responses that may be cached (the others
-  // never set body().mesh); a conditional GET is answered by the handlers.
-  if (!target.starts_with("/v1/meshes/") || !req[http::field::if_none_match].empty()) {
-    return false;
-  }
-  // The key: the target, plus Range and If-Range when there are any (the
-  // only other request fields the mesh endpoints read).
-  cache_key_.assign(target.data(), target.size());
-  const std::string_view range = req[http::field::range];
-  const std::string_view if_range = req[http::field::if_range];
-  if (!range.empty() || !if_range.empty()) {
-    cache_key_ += '\n';
-    cache_key_.append(range.data(), range.size());
-    cache_key_ += '\n';
-    cache_key_.append(if_range.data(), if_range.size());
-  }
+  // Which requests may be answered from the cache, and under what key:
+  // the routes' rule (api_router.h).
+  std::optional<std::string> key = ResponseCacheKey(parser_->get());
+  if (!key) return false;
+  cache_key_ = std::move(*key);
   cacheable_ = true;
   ResponseCache::Hit hit = cache.Get(cache_key_);
   if (!hit.response) return false;

@@ -83,6 +83,7 @@ class HttpSession : public Closable, public std::enable_shared_from_this<HttpSes
   std::chrono::steady_clock::time_point started_;
   unsigned version_ = 11;
   bool head_ = false;
+  bool upload_ = false;  // the request being read is an upload
   bool waiting_for_request_ = false;  // idle between requests
   bool shutting_down_ = false;
   // The response being written: its head (for responses not from the

@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -10,10 +11,12 @@
 #include <utility>
 
 #include "core/durable_file.h"
-#include "mesh_id.h"
+#include "mesh_identity.h"
+#include "meshwave/mesh_id.h"
 #include "meshwave/container.h"
 #include "meshwave/encoder.h"
 #include "meshwave/fidelity.h"
+#include "meshwave/mesh_io.h"
 #include "meshwave/progression.h"
 #include "meshwave/semiregular_input.h"
 #include "sha256.h"
@@ -21,66 +24,75 @@
 namespace meshwave::server {
 namespace {
 
+const OriginalPart* FindPart(const std::vector<OriginalPart>& parts, const std::string& name) {
+  for (const OriginalPart& p : parts) {
+    if (p.name == name) return &p;
+  }
+  return nullptr;
+}
+
+// Writes the original's files and the container, then inserts the row,
+// all under the ingest lock. `e` is complete but for created_unix.
+Result<IngestResult> Store(Catalog& catalog, CatalogEntry e, const std::string& container,
+                           const Original* original, const std::vector<OriginalPart>& parts) {
+  e.created_unix = NowUnix();
+  MW_ASSIGN_OR_RETURN(auto lock, catalog.LockIngest());
+  MW_ASSIGN_OR_RETURN(auto existing, catalog.Find(e.id));
+  if (existing) return IngestResult{*existing, true};
+  if (original) MW_RETURN_IF_ERROR(WriteOriginal(catalog.store_dir(), *original, parts));
+  MW_RETURN_IF_ERROR(WriteFileDurably(catalog.ContainerPath(e), container));
+  if (Status s = catalog.Insert(e, original); !s.ok()) {
+    // No row names the container (under the ingest lock, nobody else wrote
+    // it): remove it, or a full disk would keep the space and leave an
+    // orphan (found by FaultTest.DiskFullDuringIngest...). The original's
+    // blobs may be another original's too: RemoveOrphans sorts them out.
+    std::error_code ec;
+    std::filesystem::remove(catalog.ContainerPath(e), ec);
+    return s;
+  }
+  return IngestResult{e, false};
+}
+
+}  // namespace
+
 int64_t NowUnix() {
   return std::chrono::duration_cast<std::chrono::seconds>(
              std::chrono::system_clock::now().time_since_epoch())
       .count();
 }
 
-Result<IngestResult> Store(Catalog& catalog, const std::string& container,
-                           const StreamHeader& header, size_t packets,
-                           const std::string& name, const std::string& source) {
+CatalogEntry EntryFor(const EncodedMesh& encoded) {
   CatalogEntry e;
-  e.sha256 = Sha256Hex(container);
+  e.sha256 = Sha256Hex(encoded.container);
   e.id = MeshIdFromSha256(e.sha256);
-  e.name = name;
-  e.source = source;
-  e.vertices = header.vertices;
-  e.faces = header.faces;
-  e.levels = header.transform.levels;
-  e.packets = static_cast<uint32_t>(packets);
-  e.bytes = container.size();
+  e.vertices = encoded.header.vertices;
+  e.faces = encoded.header.faces;
+  e.levels = encoded.header.transform.levels;
+  e.packets = static_cast<uint32_t>(encoded.packets);
+  e.bytes = encoded.container.size();
   e.container = "containers/" + e.sha256 + ".mwv";
-  e.created_unix = NowUnix();
+  e.format_version = encoded.header.format_version;
+  return e;
+}
 
-  MW_ASSIGN_OR_RETURN(auto lock, catalog.LockIngest());
-  MW_ASSIGN_OR_RETURN(auto existing, catalog.Find(e.id));
-  if (existing) {
-    if (existing->sha256 != e.sha256) {
-      return Status(StatusCode::kInternal,
-                    "ingest: id " + e.id + " already names another container");
-    }
-    return IngestResult{*existing, true, false};
-  }
-  MW_RETURN_IF_ERROR(WriteFileDurably(catalog.ContainerPath(e), container));
-  if (Status s = catalog.Insert(e); !s.ok()) {
-    // No row names the file (under the ingest lock, nobody else wrote it):
-    // remove it, or a full disk would keep the space and leave an orphan
-    // (found by FaultTest.DiskFullDuringIngest...).
-    std::error_code ec;
-    std::filesystem::remove(catalog.ContainerPath(e), ec);
-    return s;
-  }
-  return IngestResult{e, false, false};
+namespace {
+
+// Seconds since `start`, for the log of a long ingest.
+double Since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 }  // namespace
 
-Result<IngestResult> IngestContainer(Catalog& catalog, std::string container,
-                                     const std::string& name,
-                                     const std::string& source) {
-  MW_ASSIGN_OR_RETURN(ParsedContainer parsed, ParseContainer(container));
-  MW_RETURN_IF_ERROR(ValidateStreamHeader(parsed.header));
-  if (parsed.ids.size() != parsed.header.packets.length.size()) {
-    return ParseError("ingest: the container does not hold every packet");
-  }
-  return Store(catalog, container, parsed.header, parsed.ids.size(), name, source);
-}
-
-Result<IngestResult> IngestMeshBytes(Catalog& catalog, std::string_view bytes,
-                                     MeshFormat format, const std::string& name,
-                                     const std::string& source, const EncodeChoices& choices) {
-  MW_ASSIGN_OR_RETURN(TriMesh mesh, ParseMesh(bytes, format, source));
+Result<EncodedMesh> EncodeOriginal(const std::vector<OriginalPart>& parts, const std::string& main,
+                                   const std::string& name, const EncodeChoices& choices) {
+  const OriginalPart* file = FindPart(parts, main);
+  if (!file) return InvalidArgument("the mesh file '" + main + "' is not among the files");
+  MW_ASSIGN_OR_RETURN(MeshFormat format, FormatFromPath(main));
+  auto step = std::chrono::steady_clock::now();
+  MW_ASSIGN_OR_RETURN(TriMesh mesh, ParseMesh(file->bytes, format, main));
+  spdlog::info("{}: read {} vertices, {} faces in {:.1f} s", main, mesh.positions.size(),
+               mesh.faces.size(), Since(step));
   const bool fidelity = choices.fidelity_db > 0;
   const TriMesh original = fidelity ? mesh : TriMesh{};
   SemiRegularInputOptions input_options;
@@ -88,66 +100,141 @@ Result<IngestResult> IngestMeshBytes(Catalog& catalog, std::string_view bytes,
   input_options.max_vertex_ratio = choices.max_vertex_ratio;
   input_options.threads = choices.threads;
   input_options.force_remesh = choices.force_remesh;
+  step = std::chrono::steady_clock::now();
   MW_ASSIGN_OR_RETURN(SemiRegularInput input, ToSemiRegular(std::move(mesh), input_options));
-  for (const auto& w : input.warnings) spdlog::warn("{}: {}", source, w);
+  for (const auto& w : input.warnings) spdlog::warn("{}: {}", main, w);
+  spdlog::info("{}: {} in {:.1f} s ({} finest vertices, {} remesh attempt(s))", main,
+               input.remeshed ? "remeshed" : "semi-regular as it is", Since(step),
+               input.mesh.positions.size(), input.remesh_attempts);
+  const bool remeshed = input.remeshed;
   EncodeOptions options;
   options.name = name;
   options.threads = choices.threads;
   options.precinct_coefficients = choices.precinct_coefficients;
   options.split_bytes_per_precinct = choices.split_bytes_per_precinct;
   if (fidelity) options.precision = PrecisionForFidelity(choices.fidelity_db);
+  step = std::chrono::steady_clock::now();
   MW_ASSIGN_OR_RETURN(EncodedStream stream, EncodeMesh(input.mesh, options));
-  double reached = 0;
+  spdlog::info("{}: encoded {} packets in {:.1f} s", main, stream.packets.size(), Since(step));
+  input = SemiRegularInput{};  // the encoder's copy is what is left to use
+  EncodedMesh out;
   if (fidelity) {
-    MW_ASSIGN_OR_RETURN(reached, CompleteStreamPsnr(original, stream, choices.threads));
-    const auto level = reached >= choices.fidelity_db ? spdlog::level::info : spdlog::level::warn;
+    step = std::chrono::steady_clock::now();
+    MW_ASSIGN_OR_RETURN(out.fidelity_db, CompleteStreamPsnr(original, stream, choices.threads));
+    const auto level =
+        out.fidelity_db >= choices.fidelity_db ? spdlog::level::info : spdlog::level::warn;
     spdlog::log(level,
                 "{}: the complete stream is at {:.2f} dB against the upload (asked {:.2f} dB; "
-                "{} finest vertices after {} remesh attempt(s), precision {})",
-                source, reached, choices.fidelity_db, input.finest_vertices,
-                input.remesh_attempts, options.precision);
+                "{} finest vertices, precision {}; measured in {:.1f} s)",
+                main, out.fidelity_db, choices.fidelity_db, stream.mesh.positions.size(),
+                options.precision, Since(step));
   }
-  const std::string container = SerializeFullContainer(stream);
-  MW_ASSIGN_OR_RETURN(IngestResult result,
-                      Store(catalog, container, stream.header, stream.packets.size(), name, source));
-  result.remeshed = input.remeshed;
-  result.fidelity_db = reached;
+  out.container = SerializeFullContainer(stream);
+  out.header = std::move(stream.header);
+  out.packets = stream.packets.size();
+  out.remeshed = remeshed;
+  return out;
+}
+
+Result<IngestResult> IngestOriginal(Catalog& catalog, const std::vector<OriginalPart>& parts,
+                                    const std::string& main, const std::string& name,
+                                    const EncodeChoices& choices) {
+  MW_ASSIGN_OR_RETURN(Original original, DescribeOriginal(parts, main));
+  const std::string settings = FormatEncodeSettings(choices);
+  const std::string id = MeshIdOf(original.digest, settings, name);
+  // The same upload, settings and name: nothing to encode.
+  MW_ASSIGN_OR_RETURN(auto existing, catalog.Find(id));
+  if (existing) return IngestResult{*existing, true};
+  MW_ASSIGN_OR_RETURN(EncodedMesh encoded, EncodeOriginal(parts, main, name, choices));
+  CatalogEntry e = EntryFor(encoded);
+  e.id = id;
+  e.name = name;
+  e.source = main;
+  e.original = original.digest;
+  e.settings = settings;
+  MW_ASSIGN_OR_RETURN(IngestResult result, Store(catalog, std::move(e), encoded.container,
+                                                 &original, parts));
+  result.remeshed = encoded.remeshed;
+  result.fidelity_db = encoded.fidelity_db;
   return result;
 }
 
-Result<IngestResult> IngestMeshFile(Catalog& catalog,
-                                    const std::filesystem::path& path,
+Result<IngestResult> IngestMeshBytes(Catalog& catalog, std::string_view bytes,
+                                     const std::string& name, const std::string& source,
+                                     const EncodeChoices& choices) {
+  return IngestOriginal(catalog, {{source, bytes}}, source, name, choices);
+}
+
+Result<IngestResult> IngestMeshFile(Catalog& catalog, const std::filesystem::path& path,
                                     const std::string& name, const EncodeChoices& choices) {
-  MW_ASSIGN_OR_RETURN(MeshFormat format, FormatFromPath(path));
+  MW_RETURN_IF_ERROR(FormatFromPath(path).status());
   std::ifstream in(path, std::ios::binary);
   if (!in) return IoError("cannot read " + path.string());
   std::stringstream ss;
   ss << in.rdbuf();
   if (!in && !in.eof()) return IoError("cannot read " + path.string());
-  return IngestMeshBytes(catalog, ss.str(), format,
-                         name.empty() ? path.stem().string() : name,
+  return IngestMeshBytes(catalog, ss.str(), name.empty() ? path.stem().string() : name,
                          path.filename().string(), choices);
 }
 
-Result<CleanupReport> RemoveOrphans(Catalog& catalog) {
-  MW_ASSIGN_OR_RETURN(auto lock, catalog.LockIngest());
-  MW_ASSIGN_OR_RETURN(std::vector<std::string> paths, catalog.ContainerPaths());
-  std::set<std::filesystem::path> known;
-  for (const auto& p : paths) known.insert(catalog.store_dir() / p);
-  CleanupReport report;
+Result<IngestResult> IngestContainer(Catalog& catalog, std::string container,
+                                     const std::string& name, const std::string& source) {
+  MW_ASSIGN_OR_RETURN(ParsedContainer parsed, ParseContainer(container));
+  MW_RETURN_IF_ERROR(ValidateStreamHeader(parsed.header));
+  if (parsed.ids.size() != parsed.header.packets.length.size()) {
+    return ParseError("ingest: the container does not hold every packet");
+  }
+  EncodedMesh encoded;
+  encoded.header = std::move(parsed.header);
+  encoded.packets = parsed.ids.size();
+  encoded.container = std::move(container);
+  CatalogEntry e = EntryFor(encoded);
+  e.name = name;
+  e.source = source;
+  return Store(catalog, std::move(e), encoded.container, nullptr, {});
+}
+
+namespace {
+
+// Removes the files of `dir` whose path is not in `keep`, counting
+// temporary files apart.
+Status SweepFolder(const std::filesystem::path& dir, const std::set<std::filesystem::path>& keep,
+                   size_t& orphans, size_t& temps) {
   std::error_code ec;
-  for (const auto& f : std::filesystem::directory_iterator(catalog.containers_dir(), ec)) {
-    if (known.count(f.path())) continue;
+  if (!std::filesystem::exists(dir, ec)) return Status::Ok();
+  size_t removed = 0;
+  for (const auto& f : std::filesystem::directory_iterator(dir, ec)) {
+    if (keep.count(f.path())) continue;
     const bool temp = f.path().filename().string().starts_with(kDurableTempPrefix);
     std::error_code rm;
     std::filesystem::remove(f.path(), rm);
     if (rm) return IoError("cannot remove " + f.path().string() + ": " + rm.message());
-    ++(temp ? report.temp_files : report.orphan_files);
+    ++(temp ? temps : orphans);
+    ++removed;
   }
-  if (ec) return IoError("cannot list " + catalog.containers_dir().string() + ": " + ec.message());
-  if (report.orphan_files + report.temp_files > 0) {
-    MW_RETURN_IF_ERROR(SyncDirectory(catalog.containers_dir()));
-  }
+  if (ec) return IoError("cannot list " + dir.string() + ": " + ec.message());
+  if (removed > 0) MW_RETURN_IF_ERROR(SyncDirectory(dir));
+  return Status::Ok();
+}
+
+}  // namespace
+
+Result<CleanupReport> RemoveOrphans(Catalog& catalog, int64_t retired_seconds) {
+  MW_ASSIGN_OR_RETURN(auto lock, catalog.LockIngest());
+  CleanupReport report;
+  MW_ASSIGN_OR_RETURN(std::vector<std::string> expired,
+                      catalog.ExpireRetired(NowUnix() - retired_seconds));
+  report.expired_containers = expired.size();  // their files go with the orphans below
+  MW_ASSIGN_OR_RETURN(std::vector<std::string> paths, catalog.ContainerPaths());
+  std::set<std::filesystem::path> keep;
+  for (const auto& p : paths) keep.insert(catalog.store_dir() / p);
+  MW_RETURN_IF_ERROR(
+      SweepFolder(catalog.containers_dir(), keep, report.orphan_files, report.temp_files));
+  MW_ASSIGN_OR_RETURN(std::vector<std::string> blobs, catalog.OriginalBlobs());
+  keep.clear();
+  for (const auto& b : blobs) keep.insert(OriginalBlobPath(catalog.store_dir(), b));
+  MW_RETURN_IF_ERROR(SweepFolder(catalog.store_dir() / "originals", keep, report.orphan_originals,
+                                 report.temp_files));
   return report;
 }
 
@@ -155,11 +242,29 @@ Result<bool> RemoveEntry(Catalog& catalog, const std::string& id) {
   MW_ASSIGN_OR_RETURN(auto lock, catalog.LockIngest());
   MW_ASSIGN_OR_RETURN(auto entry, catalog.Find(id));
   if (!entry) return false;
+  std::optional<Original> original;
+  if (!entry->original.empty()) {
+    MW_ASSIGN_OR_RETURN(original, catalog.FindOriginal(entry->original));
+  }
   MW_ASSIGN_OR_RETURN(bool removed, catalog.Remove(id));
   if (!removed) return false;
   std::error_code ec;
-  std::filesystem::remove(catalog.ContainerPath(*entry), ec);
-  if (ec) spdlog::warn("cannot remove {}: {}", entry->container, ec.message());
+  // Another row may name the same container (the same bytes made twice).
+  MW_ASSIGN_OR_RETURN(std::vector<std::string> containers, catalog.ContainerPaths());
+  if (std::find(containers.begin(), containers.end(), entry->container) == containers.end()) {
+    std::filesystem::remove(catalog.ContainerPath(*entry), ec);
+    if (ec) spdlog::warn("cannot remove {}: {}", entry->container, ec.message());
+  }
+  if (original) {
+    // The blobs no original of the catalog lists any more.
+    MW_ASSIGN_OR_RETURN(std::vector<std::string> blobs, catalog.OriginalBlobs());
+    const std::set<std::string> used(blobs.begin(), blobs.end());
+    for (const OriginalFile& f : original->files) {
+      if (used.count(f.sha256)) continue;
+      std::filesystem::remove(OriginalBlobPath(catalog.store_dir(), f.sha256), ec);
+      if (ec) spdlog::warn("cannot remove the original file {}: {}", f.name, ec.message());
+    }
+  }
   return true;
 }
 

@@ -1,5 +1,6 @@
 // meshwave-server: serves a catalog of progressive meshes over HTTP, and
 // `meshwave-server ingest` fills the catalog from mesh files.
+#include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
@@ -9,6 +10,8 @@
 
 #include "bulk_ingest.h"
 #include "ingest.h"
+#include "reencode.h"
+#include "upload_worker.h"
 #include "server.h"
 #include "server_config.h"
 
@@ -87,6 +90,81 @@ int Ingest(const IngestOptions& o) {
   return failed == 0 ? 0 : 1;
 }
 
+struct UploadCommand {
+  std::string catalog, store, name, source;
+  EncodeChoices choices;
+};
+
+// The worker process of an upload (worker_process.h): the mesh file on
+// standard input, the outcome on standard output (upload_worker.h).
+int IngestUpload(const UploadCommand& c) {
+  // Standard output carries the outcome alone; log lines go to the server.
+  spdlog::set_default_logger(spdlog::stderr_color_mt("ingest-upload"));
+  std::string bytes;
+  char buffer[1 << 16];
+  for (size_t n; (n = std::fread(buffer, 1, sizeof buffer, stdin)) > 0;) bytes.append(buffer, n);
+  auto catalog = Catalog::Open(c.catalog, c.store);
+  Result<IngestResult> result =
+      catalog.ok() ? IngestMeshBytes(**catalog, bytes, c.name, c.source, c.choices)
+                   : Result<IngestResult>(catalog.status());
+  std::fputs(FormatUploadOutcome(result).c_str(), stdout);
+  std::fflush(stdout);
+  return result.ok() ? 0 : 3;
+}
+
+struct ReencodeCommand {
+  std::string catalog, store, shard = "0/1";
+  ReencodeOptions options;
+  int64_t keep_retired_seconds = kDefaultRetiredSeconds;
+};
+
+const char* ActionText(ReencodeAction a) {
+  switch (a) {
+    case ReencodeAction::kCurrent: return "current";
+    case ReencodeAction::kReencoded: return "re-encoded";
+    case ReencodeAction::kNoOriginal: return "kept as it is";
+    case ReencodeAction::kWouldReencode: return "would be re-encoded";
+    case ReencodeAction::kChanged: return "left alone";
+    case ReencodeAction::kFailed: return "failed";
+  }
+  return "?";
+}
+
+int Reencode(ReencodeCommand c) {
+  auto shard = ParseShard(c.shard);
+  if (!shard.ok()) return Fail(" reencode", shard.status());
+  c.options.shard = *shard;
+  auto catalog = Catalog::Open(c.catalog, c.store);
+  if (!catalog.ok()) return Fail(" reencode", catalog.status());
+  if (!c.options.dry_run) {
+    auto cleanup = RemoveOrphans(**catalog, c.keep_retired_seconds);
+    if (!cleanup.ok()) return Fail(" reencode", cleanup.status());
+  }
+  auto report = ReencodeCatalog(
+      **catalog, c.options, [](size_t i, size_t n, const ReencodeStep& step) {
+        const CatalogEntry& e = step.before;
+        if (step.action == ReencodeAction::kCurrent) return;
+        std::printf("[%zu/%zu] %s %s: %s", i + 1, n, e.id.c_str(), e.name.c_str(),
+                    ActionText(step.action));
+        if (step.action == ReencodeAction::kReencoded) {
+          std::printf(" in %.1f s (%llu -> %llu bytes, format version %u)", step.seconds,
+                      static_cast<unsigned long long>(e.bytes),
+                      static_cast<unsigned long long>(step.after.bytes),
+                      step.after.format_version);
+        }
+        if (!step.why.empty()) std::printf(": %s", step.why.c_str());
+        std::printf("\n");
+        std::fflush(stdout);
+      });
+  if (!report.ok()) return Fail(" reencode", report.status());
+  std::printf("reencode: %zu meshes: %zu %s, %zu current, %zu without an original, %zu changed "
+              "meanwhile, %zu failed\n",
+              report->meshes, report->reencoded,
+              c.options.dry_run ? "would be re-encoded" : "re-encoded", report->current,
+              report->no_original, report->changed, report->failed);
+  return report->failed == 0 ? 0 : 1;
+}
+
 }  // namespace
 }  // namespace meshwave::server
 
@@ -161,6 +239,56 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   ingest->add_option("--name", ingest_options.name, "Name of the entry (one file only; default: "
                                                     "the file's stem)");
+  ReencodeCommand reencode_command;
+  CLI::App* reencode = app.add_subcommand(
+      "reencode",
+      "Re-encode the meshes whose container is of an older stream format version (or was made "
+      "with other settings than given here) from their originals, swapping each new container "
+      "in atomically while the old one is served; safe to interrupt and run again");
+  reencode->add_option("--catalog", reencode_command.catalog, "Catalog directory or postgres:// URI")
+      ->envname("MESHWAVE_CATALOG")
+      ->required();
+  reencode->add_option("--store", reencode_command.store, "Container store (postgres:// only)")
+      ->envname("MESHWAVE_STORE");
+  SettingsChange& change = reencode_command.options.change;
+  reencode->add_option("--fidelity", change.fidelity_db,
+                       "Re-encode every mesh to this fidelity (dB; ingest --fidelity)")
+      ->check(CLI::Range(0.0, 200.0));
+  reencode->add_option("--max-vertex-ratio", change.max_vertex_ratio,
+                       "Densest remesh --fidelity may make (ingest --max-vertex-ratio)")
+      ->check(CLI::Range(1.0, 64.0));
+  reencode->add_option("--precinct-size", change.precinct_coefficients,
+                       "Re-encode every mesh with this precinct size (ingest --precinct-size)")
+      ->check(CLI::Range(0u, 1u << 30));
+  reencode->add_option("--split-bytes", change.split_bytes_per_precinct,
+                       "Re-encode every mesh with this split size (ingest --split-bytes)")
+      ->check(CLI::Range(1u, 1u << 20));
+  reencode->add_option("--threads", reencode_command.options.threads,
+                       "Threads encoding each mesh (0: the machine's cores)")
+      ->check(CLI::Range(0, 64))
+      ->capture_default_str();
+  reencode->add_option("--keep-retired", reencode_command.keep_retired_seconds,
+                       "Seconds a replaced container stays on disk for readers that may still "
+                       "open it (other replicas) before a later run removes it")
+      ->check(CLI::Range(int64_t{0}, int64_t{1} << 40))
+      ->capture_default_str();
+  reencode->add_option("--shard", reencode_command.shard,
+                       "I/N: only the meshes of shard I of N, by a hash of their id (one per "
+                       "worker of a Job)")
+      ->capture_default_str();
+  reencode->add_flag("--dry-run", reencode_command.options.dry_run,
+                     "Say what would be re-encoded and why, change nothing");
+  UploadCommand upload_command;
+  CLI::App* upload = app.add_subcommand(
+      "ingest-upload", "The server's upload worker: ingests the mesh file on standard input");
+  upload->group("");  // run by the server (worker_process.h), not by people
+  upload->add_option("--catalog", upload_command.catalog)->required();
+  upload->add_option("--store", upload_command.store);
+  upload->add_option("--name", upload_command.name)->required();
+  upload->add_option("--source", upload_command.source)->required();
+  upload->add_option("--fidelity", upload_command.choices.fidelity_db);
+  upload->add_option("--max-vertex-ratio", upload_command.choices.max_vertex_ratio);
+  upload->add_option("--threads", upload_command.choices.threads);
   app.require_subcommand(0, 1);
   CLI11_PARSE(app, argc, argv);
   spdlog::set_level(spdlog::level::from_str(log_level));
@@ -172,6 +300,8 @@ int main(int argc, char** argv) {
     }
     return Ingest(ingest_options);
   }
+  if (*reencode) return Reencode(reencode_command);
+  if (*upload) return IngestUpload(upload_command);
   if (catalog.empty()) {
     std::fprintf(stderr, "meshwave-server: --catalog is required (see --help)\n");
     return 2;

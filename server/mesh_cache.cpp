@@ -15,8 +15,18 @@ Result<std::shared_ptr<const ServedMesh>> MeshCache::Get(const std::string& id) 
   // at once, which only wastes a little work.
   MW_ASSIGN_OR_RETURN(auto entry, catalog_.Find(id));
   if (!entry) return std::shared_ptr<const ServedMesh>();
-  const auto path = catalog_.ContainerPath(*entry);
-  MW_ASSIGN_OR_RETURN(auto mesh, ServedMesh::Load(std::move(*entry), path));
+  auto loaded = ServedMesh::Load(*entry, catalog_.ContainerPath(*entry));
+  if (!loaded.ok()) {
+    // The row may have got another container between the read and the
+    // load (a re-encode), and the one it named been removed since: the
+    // row as it is now decides.
+    MW_ASSIGN_OR_RETURN(auto again, catalog_.Find(id));
+    if (!again) return std::shared_ptr<const ServedMesh>();
+    if (again->sha256 == entry->sha256) return loaded.status();
+    loaded = ServedMesh::Load(*again, catalog_.ContainerPath(*again));
+    if (!loaded.ok()) return loaded.status();
+  }
+  auto mesh = std::move(*loaded);
   std::lock_guard lock(mutex_);
   auto it = index_.find(id);
   if (it != index_.end()) return it->second->second;
@@ -37,6 +47,24 @@ void MeshCache::Evict(const std::string& id) {
   it->second->second->Retire();
   lru_.erase(it->second);
   index_.erase(it);
+}
+
+bool MeshCache::EvictIf(const std::string& id, const std::string& sha256) {
+  std::lock_guard lock(mutex_);
+  auto it = index_.find(id);
+  if (it == index_.end() || it->second->second->entry().sha256 != sha256) return false;
+  it->second->second->Retire();
+  lru_.erase(it->second);
+  index_.erase(it);
+  return true;
+}
+
+std::vector<std::pair<std::string, std::string>> MeshCache::Snapshot() const {
+  std::lock_guard lock(mutex_);
+  std::vector<std::pair<std::string, std::string>> out;
+  out.reserve(lru_.size());
+  for (const auto& [id, mesh] : lru_) out.emplace_back(id, mesh->entry().sha256);
+  return out;
 }
 
 size_t MeshCache::size() const {

@@ -9,6 +9,8 @@
 #include <mutex>
 #include <string>
 #include <unordered_map>
+#include <utility>
+#include <vector>
 
 #include "catalog.h"
 #include "served_mesh.h"
@@ -25,6 +27,11 @@ class MeshCache {
   Result<std::shared_ptr<const ServedMesh>> Get(const std::string& id);
   // Forgets `id` (after a DELETE).
   void Evict(const std::string& id);
+  // Forgets `id` if it is open with the container `sha256` (not if it was
+  // loaded again since); true when it was.
+  bool EvictIf(const std::string& id, const std::string& sha256);
+  // The open meshes: id and container SHA-256.
+  std::vector<std::pair<std::string, std::string>> Snapshot() const;
   size_t size() const;
 
  private:

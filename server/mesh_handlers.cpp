@@ -3,12 +3,12 @@
 #include "byte_range.h"
 #include "etag.h"
 #include "meshwave/container.h"
-#include "response.h"
-#include "stream_plan.h"
-#include "sha256.h"
-#include "stream_query.h"
-#include "unit_plan.h"
+#include "meshwave/region_text.h"
+#include "meshwave/stream_request.h"
 #include "meshwave/stream_units.h"
+#include "response.h"
+#include "sha256.h"
+#include "stream_cursor.h"
 
 namespace meshwave::server {
 namespace {
@@ -56,38 +56,31 @@ Response Binary(const std::shared_ptr<const ServedMesh>& mesh, const std::string
 // A region request (docs/API.md, "Region requests"): unit records of what
 // the client lacks, in the region's (or the uniform order's) order.
 Response GetUnits(const Request& req, const std::shared_ptr<const ServedMesh>& mesh,
-                  const StreamQuery& q) {
+                  const StreamRequest& q) {
   const ServedMesh& m = *mesh;
-  auto table = m.units();
-  if (!table.ok()) return StatusError(table.status());
-  HeldUnits held = (*table)->nothing_held();
-  if (q.held) {
-    if (Status s = DecodeHeldUnits(*q.held, (*table)->numbering(), held); !s.ok()) {
-      return StatusError(s);
-    }
-  }
-  auto plan = PlanUnits(m, **table, held,
-                        UnitRequest{q.region, q.order, q.max_level, q.budget});
-  if (!plan.ok()) return StatusError(plan.status());
+  StreamCursor cursor;
+  // The header is never in the body: the budget counts payloads.
+  auto s = cursor.Start(mesh, q, /*with_header=*/false);
+  if (!s.ok()) return StatusError(s.status());
   // The bytes depend on what is held, the order or region, the level limit
   // and how many units fitted.
+  const size_t units = s->next - s->from;
   const std::string key =
       std::string(ProgressionName(q.order)) + "|" + (q.region ? FormatRegionShape(*q.region) : "") +
-      "|" + std::to_string(q.max_level) + "|" + q.held.value_or("") + "|" +
-      std::to_string(plan->units.size());
+      "|" + std::to_string(q.max_level) + "|" + q.held.value_or("") + "|" + std::to_string(units);
   const std::string etag = StrongEtag(m.entry().sha256, "u-" + Sha256Hex(key).substr(0, 32));
   Response r;
   if (!NotModified(req, etag, r)) {
     r = Binary(mesh, etag);
     r.set(http::field::content_type, "application/vnd.meshwave.units");
     std::string& body = r.body().owned;
-    body.reserve(plan->bytes + 12 * plan->units.size());
-    for (const StreamUnit& u : plan->units) {
-      AppendUnitRecord(body, u, (*table)->Payload(m.payload(u.id), u));
+    body.reserve(s->bytes + 12 * units);
+    for (auto u = cursor.Peek(); u; cursor.Advance(), u = cursor.Peek()) {
+      AppendUnitRecord(body, u->unit, u->payload);
     }
   }
-  r.set("X-Meshwave-Units", std::to_string(plan->units.size()));
-  r.set("X-Meshwave-Complete", plan->complete ? "true" : "false");
+  r.set("X-Meshwave-Units", std::to_string(units));
+  r.set("X-Meshwave-Complete", s->complete ? "true" : "false");
   return r;
 }
 
@@ -104,6 +97,9 @@ void ToProto(const CatalogEntry& e, proto::MeshSummary& out) {
   out.set_bytes(e.bytes);
   out.set_sha256(e.sha256);
   out.set_created_unix(e.created_unix);
+  out.set_format_version(e.format_version);
+  out.set_settings(e.settings);
+  out.set_has_original(!e.original.empty());
 }
 
 Response ListMeshes(ServerContext& ctx, const Request& req, const QueryParams& query) {
@@ -184,26 +180,31 @@ Response GetStream(ServerContext& ctx, const Request& req, const std::string& id
   if (!l.mesh) return std::move(l.error);
   if (q->units()) return GetUnits(req, l.mesh, *q);
   const ServedMesh& m = *l.mesh;
-  auto plan = PlanStream(m, q->order, q->max_level, q->from, q->budget, q->from == 0);
-  if (!plan.ok()) return StatusError(plan.status());
-  const Selection& s = plan->selection;
+  StreamCursor cursor;
+  // From cursor 0 the body is a container: the budget counts its header.
+  auto s = cursor.Start(l.mesh, *q, /*with_header=*/q->from == 0);
+  if (!s.ok()) return StatusError(s.status());
   // The response bytes depend only on these four numbers.
   const std::string variant = std::string("s-") + ProgressionName(q->order) + "-" +
                               (q->max_level < 0 ? std::string("all") : std::to_string(q->max_level)) + "-" + std::to_string(q->from) +
-                              "-" + std::to_string(s.next_cursor);
+                              "-" + std::to_string(s->next);
   const std::string etag = StrongEtag(m.entry().sha256, variant);
   Response r;
   if (!NotModified(req, etag, r)) {
     r = Binary(l.mesh, etag);
+    std::vector<uint32_t> ids;
+    for (auto u = cursor.Peek(); u; cursor.Advance(), u = cursor.Peek()) {
+      ids.push_back(u->unit.id);
+      r.body().AddSlice(u->payload);
+    }
     if (q->from == 0) {
       r.set(http::field::content_type, "application/vnd.meshwave.mwv");
-      r.body().owned = SerializeContainerHead(m.header_bytes(), s.ids);
+      r.body().owned = SerializeContainerHead(m.header_bytes(), ids);
     }
-    for (uint32_t id_k : s.ids) r.body().AddSlice(m.payload(id_k));
   }
-  r.set("X-Meshwave-Packets", std::to_string(s.ids.size()));
-  r.set("X-Meshwave-Next-Cursor", std::to_string(s.next_cursor));
-  r.set("X-Meshwave-Complete", plan->complete() ? "true" : "false");
+  r.set("X-Meshwave-Packets", std::to_string(s->next - s->from));
+  r.set("X-Meshwave-Next-Cursor", std::to_string(s->next));
+  r.set("X-Meshwave-Complete", s->complete ? "true" : "false");
   return r;
 }
 

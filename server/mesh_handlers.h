@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "request_target.h"
+#include "meshwave/request_target.h"
 #include "server_context.h"
 #include "catalog_api.pb.h"
 #include "slices_body.h"

@@ -4,7 +4,7 @@
 #include <charconv>
 #include <climits>
 
-#include "mesh_id.h"
+#include "meshwave/mesh_id.h"
 #include "postgres_migrations.h"
 
 namespace meshwave::server {
@@ -13,6 +13,10 @@ namespace {
 // pg_advisory_lock key of the ingest lock (any constant every replica
 // shares; postgres_migrations.cpp uses the next one).
 constexpr char kIngestLockKey[] = "4270537001";
+
+// Every change bumps the generation (catalog.h, Generation).
+constexpr char kBumpGeneration[] =
+    "UPDATE catalog_generation SET generation = generation + 1";
 
 template <class T>
 T Number(const std::string& text) {
@@ -34,6 +38,9 @@ CatalogEntry ReadRow(const PgResult& r, int row) {
   e.container = r.Text(row, 8);
   e.sha256 = r.Text(row, 9);
   e.created_unix = Number<int64_t>(r.Text(row, 10));
+  e.format_version = Number<uint32_t>(r.Text(row, 11));
+  e.original = r.Text(row, 12);
+  e.settings = r.Text(row, 13);
   return e;
 }
 
@@ -88,22 +95,54 @@ Result<std::unique_ptr<IngestGuard>> PostgresCatalog::LockIngest() {
   return std::unique_ptr<IngestGuard>(new AdvisoryLockGuard(std::move(conn)));
 }
 
-Status PostgresCatalog::Insert(const CatalogEntry& e) {
+Status PostgresCatalog::InTransaction(const std::function<Status(PostgresConnection&)>& body) {
+  std::lock_guard lock(mutex_);
+  if (conn_->broken()) MW_RETURN_IF_ERROR(conn_->Reset());
+  MW_RETURN_IF_ERROR(conn_->ExecScript("BEGIN"));
+  Status s = body(*conn_);
+  if (s.ok()) s = conn_->ExecScript("COMMIT");
+  if (!s.ok()) (void)conn_->ExecScript("ROLLBACK");
+  return s;
+}
+
+Status PostgresCatalog::Insert(const CatalogEntry& e, const Original* original) {
   if (!IsValidMeshId(e.id)) return InvalidArgument("catalog: invalid id '" + e.id + "'");
-  PgError error;
-  // One statement: its own transaction, committed (synchronous_commit on
-  // the server decides durability) before this returns.
-  auto r = Run(std::string("INSERT INTO meshes (") + kCatalogColumns +
-                   ") VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $9, $10, $11)",
-               {e.id, e.name, e.source, std::to_string(e.vertices), std::to_string(e.faces),
-                std::to_string(e.levels), std::to_string(e.packets), std::to_string(e.bytes),
-                e.container, e.sha256, std::to_string(e.created_unix)},
-               /*read_only=*/false, &error);
-  if (!r.ok()) {
-    if (error.sqlstate == "23505") return InvalidArgument("catalog: id " + e.id + " exists");
-    return r.status();
+  if (original && original->digest != e.original) {
+    return Status(StatusCode::kInternal, "catalog: the original is not the entry's");
   }
-  return Status::Ok();
+  return InTransaction([&](PostgresConnection& conn) -> Status {
+    if (original) {
+      MW_ASSIGN_OR_RETURN(
+          PgResult r,
+          conn.Exec("INSERT INTO originals (digest, main, format, bytes, created) "
+                    "VALUES ($1, $2, $3, $4, $5) ON CONFLICT (digest) DO NOTHING",
+                    {original->digest, original->main, original->format,
+                     std::to_string(original->bytes), std::to_string(e.created_unix)}));
+      if (r.affected() > 0) {
+        for (const OriginalFile& f : original->files) {
+          MW_RETURN_IF_ERROR(conn.Exec("INSERT INTO original_files (original, name, sha256, "
+                                       "bytes) VALUES ($1, $2, $3, $4)",
+                                       {original->digest, f.name, f.sha256,
+                                        std::to_string(f.bytes)})
+                                 .status());
+        }
+      }
+    }
+    PgError error;
+    auto r = conn.Exec(std::string("INSERT INTO meshes (") + kCatalogColumns +
+                           ") VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $9, $10, $11, $12, $13, $14)",
+                       {e.id, e.name, e.source, std::to_string(e.vertices),
+                        std::to_string(e.faces), std::to_string(e.levels),
+                        std::to_string(e.packets), std::to_string(e.bytes), e.container, e.sha256,
+                        std::to_string(e.created_unix), std::to_string(e.format_version),
+                        e.original, e.settings},
+                       &error);
+    if (!r.ok()) {
+      if (error.sqlstate == "23505") return InvalidArgument("catalog: id " + e.id + " exists");
+      return r.status();
+    }
+    return conn.Exec(kBumpGeneration).status();
+  });
 }
 
 Result<std::optional<CatalogEntry>> PostgresCatalog::Find(const std::string& id) {
@@ -136,17 +175,122 @@ Result<uint64_t> PostgresCatalog::Count() {
 
 Result<bool> PostgresCatalog::Remove(const std::string& id) {
   if (!IsValidMeshId(id)) return InvalidArgument("catalog: invalid id");
-  MW_ASSIGN_OR_RETURN(PgResult r,
-                      Run("DELETE FROM meshes WHERE id = $1", {id}, /*read_only=*/false));
-  return r.affected() > 0;
+  bool removed = false;
+  if (Status done = InTransaction([&](PostgresConnection& conn) -> Status {
+    MW_ASSIGN_OR_RETURN(PgResult r,
+                        conn.Exec("DELETE FROM meshes WHERE id = $1 RETURNING original", {id}));
+    removed = r.rows() > 0;
+    if (!removed) return Status::Ok();
+    const std::string original = r.Text(0, 0);
+    if (!original.empty()) {
+      // The original goes with its last mesh (its blobs: ingest.h); its
+      // files by ON DELETE CASCADE.
+      MW_RETURN_IF_ERROR(conn.Exec("DELETE FROM originals WHERE digest = $1 AND NOT EXISTS "
+                                   "(SELECT 1 FROM meshes WHERE original = $1)",
+                                   {original})
+                             .status());
+    }
+    return conn.Exec(kBumpGeneration).status();
+  }); !done.ok()) {
+    return done;
+  }
+  return removed;
 }
 
-Result<std::vector<std::string>> PostgresCatalog::ContainerPaths() {
-  MW_ASSIGN_OR_RETURN(PgResult r, Run("SELECT container FROM meshes", {}, /*read_only=*/true));
+Result<std::vector<std::string>> PostgresCatalog::Strings(const std::string& sql) {
+  MW_ASSIGN_OR_RETURN(PgResult r, Run(sql, {}, /*read_only=*/true));
   std::vector<std::string> out;
   out.reserve(static_cast<size_t>(r.rows()));
   for (int i = 0; i < r.rows(); ++i) out.push_back(r.Text(i, 0));
   return out;
+}
+
+Result<std::vector<std::string>> PostgresCatalog::ContainerPaths() {
+  return Strings("SELECT container FROM meshes UNION SELECT container FROM retired_containers");
+}
+
+Result<std::vector<std::string>> PostgresCatalog::OriginalBlobs() {
+  return Strings("SELECT DISTINCT sha256 FROM original_files");
+}
+
+Result<std::optional<Original>> PostgresCatalog::FindOriginal(const std::string& digest) {
+  MW_ASSIGN_OR_RETURN(PgResult r, Run("SELECT main, format, bytes FROM originals WHERE digest = $1",
+                                      {digest}, /*read_only=*/true));
+  if (r.rows() == 0) return std::optional<Original>();
+  Original o;
+  o.digest = digest;
+  o.main = r.Text(0, 0);
+  o.format = r.Text(0, 1);
+  o.bytes = Number<uint64_t>(r.Text(0, 2));
+  MW_ASSIGN_OR_RETURN(PgResult files,
+                      Run("SELECT name, sha256, bytes FROM original_files WHERE original = $1 "
+                          "ORDER BY name COLLATE \"C\"",
+                          {digest}, /*read_only=*/true));
+  for (int i = 0; i < files.rows(); ++i) {
+    o.files.push_back({files.Text(i, 0), files.Text(i, 1), Number<uint64_t>(files.Text(i, 2))});
+  }
+  return std::optional<Original>(std::move(o));
+}
+
+Result<bool> PostgresCatalog::ReplaceContainer(const std::string& id,
+                                               const std::string& old_sha256,
+                                               const CatalogEntry& now, int64_t retired_unix) {
+  if (!IsValidMeshId(id)) return InvalidArgument("catalog: invalid id");
+  bool replaced = false;
+  if (Status done = InTransaction([&](PostgresConnection& conn) -> Status {
+    MW_ASSIGN_OR_RETURN(PgResult old, conn.Exec("SELECT container FROM meshes WHERE id = $1 AND "
+                                                "sha256 = $2 FOR UPDATE",
+                                                {id, old_sha256}));
+    if (old.rows() == 0) return Status::Ok();
+    const std::string old_container = old.Text(0, 0);
+    MW_RETURN_IF_ERROR(
+        conn.Exec("UPDATE meshes SET vertices = $1, faces = $2, levels = $3, packets = $4, "
+                  "bytes = $5, container = $6, sha256 = $7, format_version = $8, settings = $9 "
+                  "WHERE id = $10",
+                  {std::to_string(now.vertices), std::to_string(now.faces),
+                   std::to_string(now.levels), std::to_string(now.packets),
+                   std::to_string(now.bytes), now.container, now.sha256,
+                   std::to_string(now.format_version), now.settings, id})
+            .status());
+    if (old_container != now.container) {
+      MW_RETURN_IF_ERROR(conn.Exec("INSERT INTO retired_containers (container, retired) "
+                                   "VALUES ($1, $2) ON CONFLICT (container) DO UPDATE SET "
+                                   "retired = excluded.retired",
+                                   {old_container, std::to_string(retired_unix)})
+                             .status());
+    }
+    replaced = true;
+    return conn.Exec(kBumpGeneration).status();
+  }); !done.ok()) {
+    return done;
+  }
+  return replaced;
+}
+
+Result<std::vector<std::string>> PostgresCatalog::ExpireRetired(int64_t before_unix) {
+  std::vector<std::string> out;
+  if (Status done = InTransaction([&](PostgresConnection& conn) -> Status {
+    // A container a row names again (the same bytes made anew) stays.
+    MW_ASSIGN_OR_RETURN(
+        PgResult r,
+        conn.Exec("DELETE FROM retired_containers r WHERE retired < $1 RETURNING container, "
+                  "EXISTS (SELECT 1 FROM meshes m WHERE m.container = r.container)",
+                  {std::to_string(before_unix)}));
+    for (int i = 0; i < r.rows(); ++i) {
+      if (r.Text(i, 1) == "f") out.push_back(r.Text(i, 0));
+    }
+    return Status::Ok();
+  }); !done.ok()) {
+    return done;
+  }
+  return out;
+}
+
+Result<int64_t> PostgresCatalog::Generation() {
+  MW_ASSIGN_OR_RETURN(PgResult r, Run("SELECT generation FROM catalog_generation", {},
+                                      /*read_only=*/true));
+  if (r.rows() != 1) return Status(StatusCode::kInternal, "catalog: no generation row");
+  return Number<int64_t>(r.Text(0, 0));
 }
 
 }  // namespace meshwave::server

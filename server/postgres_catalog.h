@@ -22,12 +22,19 @@ class PostgresCatalog final : public Catalog {
 
   std::string Describe() const override;
   Result<std::unique_ptr<IngestGuard>> LockIngest() override;
-  Status Insert(const CatalogEntry& entry) override;
+  using Catalog::Insert;
+  Status Insert(const CatalogEntry& entry, const Original* original) override;
   Result<std::optional<CatalogEntry>> Find(const std::string& id) override;
   Result<std::vector<CatalogEntry>> List(uint64_t limit, uint64_t offset) override;
   Result<uint64_t> Count() override;
   Result<bool> Remove(const std::string& id) override;
   Result<std::vector<std::string>> ContainerPaths() override;
+  Result<std::optional<Original>> FindOriginal(const std::string& digest) override;
+  Result<std::vector<std::string>> OriginalBlobs() override;
+  Result<bool> ReplaceContainer(const std::string& id, const std::string& old_sha256,
+                                const CatalogEntry& now, int64_t retired_unix) override;
+  Result<std::vector<std::string>> ExpireRetired(int64_t before_unix) override;
+  Result<int64_t> Generation() override;
 
  private:
   PostgresCatalog(std::string uri, std::filesystem::path store,
@@ -38,6 +45,10 @@ class PostgresCatalog final : public Catalog {
   // failover) is retried once on a new connection.
   Result<PgResult> Run(const std::string& sql, const std::vector<std::string>& params,
                        bool read_only, PgError* error = nullptr);
+  // Runs `body` on the connection between BEGIN and COMMIT (ROLLBACK when
+  // it or the commit fails), under the mutex.
+  Status InTransaction(const std::function<Status(PostgresConnection&)>& body);
+  Result<std::vector<std::string>> Strings(const std::string& sql);
 
   const std::string uri_;
   std::unique_ptr<PostgresConnection> conn_;

@@ -8,19 +8,10 @@
 #include <vector>
 
 #include "meshwave/status.h"
+#include "migration.h"
 #include "postgres_connection.h"
 
 namespace meshwave::server {
-
-struct Migration {
-  int version;            // the file's number
-  std::string_view name;  // the file name
-  std::string_view sql;
-};
-
-// Every migration in the repository, by version (generated at build time
-// from server/migrations/postgres/ by cmake/EmbedMigrations.cmake).
-const std::vector<Migration>& PostgresMigrations();
 
 // Brings the database to the newest version of `migrations` (versions
 // must be 1, 2, 3, ...): in one transaction holding an advisory lock, so

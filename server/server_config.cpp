@@ -7,7 +7,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "request_target.h"
+#include "ingest.h"
+#include "meshwave/request_target.h"
 #include "viewer_files.h"
 
 namespace meshwave::server {
@@ -59,6 +60,12 @@ Status FinishServerConfig(proto::ServerConfig& c) {
   if (c.websocket_ping_seconds() == 0) c.set_websocket_ping_seconds(15);
   if (!c.has_response_cache_bytes()) c.set_response_cache_bytes(uint64_t{32} << 20);
   if (c.viewer_dir().empty()) c.set_viewer_dir(DefaultViewerDir().string());
+  if (!c.has_ingest_nice()) c.set_ingest_nice(10);
+  if (c.ingest_nice() > 19) return InvalidArgument("ingest_nice must be 0 to 19");
+  if (c.catalog_poll_milliseconds() == 0) c.set_catalog_poll_milliseconds(1000);
+  if (c.retired_container_seconds() == 0) {
+    c.set_retired_container_seconds(static_cast<uint32_t>(kDefaultRetiredSeconds));
+  }
   if (const char* token = std::getenv("MESHWAVE_UPLOAD_TOKEN"); token && *token) {
     c.set_upload_token(token);
   }

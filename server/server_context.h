@@ -5,9 +5,11 @@
 #define MESHWAVE_SERVER_SERVER_CONTEXT_H_
 
 #include <atomic>
+#include <filesystem>
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <string>
 #include <vector>
 
 #include "catalog.h"
@@ -45,6 +47,14 @@ class ServerContext {
   // Runs uploads (parse, remesh, encode, write) off the io threads: one at
   // a time, as remeshing already uses both cores.
   net::thread_pool& ingest_pool() { return ingest_pool_; }
+  // Where the catalog is, for the upload worker process (upload_worker.h)
+  // to open it too; empty: uploads are ingested in this process.
+  void set_catalog_location(std::string location, std::filesystem::path store) {
+    catalog_location_ = std::move(location);
+    store_location_ = std::move(store);
+  }
+  const std::string& catalog_location() const { return catalog_location_; }
+  const std::filesystem::path& store_location() const { return store_location_; }
 
   bool stopping() const { return stopping_.load(); }
   void Register(const std::shared_ptr<Closable>& session);
@@ -59,6 +69,8 @@ class ServerContext {
   RequestRateLimiter rate_limiter_;
   ResponseCache response_cache_;
   net::thread_pool ingest_pool_{1};
+  std::string catalog_location_;
+  std::filesystem::path store_location_;
   std::atomic<bool> stopping_{false};
   std::mutex sessions_mutex_;
   std::vector<std::weak_ptr<Closable>> sessions_;

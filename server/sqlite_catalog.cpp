@@ -4,27 +4,11 @@
 #include <utility>
 
 #include "ingest_lock.h"
-#include "mesh_id.h"
+#include "meshwave/mesh_id.h"
+#include "migration.h"
 
 namespace meshwave::server {
 namespace {
-
-constexpr char kSchema[] = R"sql(
-CREATE TABLE IF NOT EXISTS meshes (
-  id TEXT PRIMARY KEY NOT NULL,
-  name TEXT NOT NULL,
-  source TEXT NOT NULL,
-  vertices INTEGER NOT NULL,
-  faces INTEGER NOT NULL,
-  levels INTEGER NOT NULL,
-  packets INTEGER NOT NULL,
-  bytes INTEGER NOT NULL,
-  container TEXT NOT NULL,
-  sha256 TEXT NOT NULL,
-  created INTEGER NOT NULL
-);
-CREATE INDEX IF NOT EXISTS meshes_by_created ON meshes (created, id);
-)sql";
 
 // A prepared statement, finalized on scope exit.
 class Statement {
@@ -70,6 +54,9 @@ CatalogEntry ReadRow(Statement& st) {
   e.container = st.Text(8);
   e.sha256 = st.Text(9);
   e.created_unix = st.Int(10);
+  e.format_version = static_cast<uint32_t>(st.Int(11));
+  e.original = st.Text(12);
+  e.settings = st.Text(13);
   return e;
 }
 
@@ -104,7 +91,7 @@ Result<std::unique_ptr<SqliteCatalog>> SqliteCatalog::Open(const std::filesystem
   // space the file already has (a DELETE on a full disk still commits).
   MW_RETURN_IF_ERROR(catalog->Exec("PRAGMA wal_autocheckpoint=16;"));
   MW_RETURN_IF_ERROR(catalog->Exec("PRAGMA journal_size_limit=65536;"));
-  MW_RETURN_IF_ERROR(catalog->Exec(kSchema));
+  MW_RETURN_IF_ERROR(catalog->Migrate(SqliteMigrations()));
   catalog->KeepReserve();
   return catalog;
 }
@@ -141,36 +128,83 @@ Result<std::unique_ptr<IngestGuard>> SqliteCatalog::LockIngest() {
   return std::unique_ptr<IngestGuard>(std::move(guard));
 }
 
-Status SqliteCatalog::Insert(const CatalogEntry& e) {
+Status SqliteCatalog::Insert(const CatalogEntry& e, const Original* original) {
   if (!IsValidMeshId(e.id)) return InvalidArgument("catalog: invalid id '" + e.id + "'");
+  if (original && original->digest != e.original) {
+    return Status(StatusCode::kInternal, "catalog: the original is not the entry's");
+  }
   std::lock_guard lock(mutex_);
+  return InTransaction([&]() -> Status {
+    if (original) {
+      Statement known(db_, "SELECT 1 FROM originals WHERE digest = ?;");
+      if (!known.ok()) return SqlError(db_, "prepare original");
+      known.Bind(1, original->digest);
+      const int rc = known.Step();
+      if (rc != SQLITE_ROW && rc != SQLITE_DONE) return SqlError(db_, "find original");
+      if (rc == SQLITE_DONE) MW_RETURN_IF_ERROR(InsertOriginal(*original, e.created_unix));
+    }
+    Statement st(db_, (std::string("INSERT INTO meshes (") + kCatalogColumns +
+                       ") VALUES (?,?,?,?,?,?,?,?,?,?,?,?,?,?);").c_str());
+    if (!st.ok()) return SqlError(db_, "prepare insert");
+    st.Bind(1, e.id);
+    st.Bind(2, e.name);
+    st.Bind(3, e.source);
+    st.Bind(4, static_cast<int64_t>(e.vertices));
+    st.Bind(5, static_cast<int64_t>(e.faces));
+    st.Bind(6, static_cast<int64_t>(e.levels));
+    st.Bind(7, static_cast<int64_t>(e.packets));
+    st.Bind(8, static_cast<int64_t>(e.bytes));
+    st.Bind(9, e.container);
+    st.Bind(10, e.sha256);
+    st.Bind(11, e.created_unix);
+    st.Bind(12, static_cast<int64_t>(e.format_version));
+    st.Bind(13, e.original);
+    st.Bind(14, e.settings);
+    const int rc = st.Step();
+    if (rc != SQLITE_DONE) {
+      return rc == SQLITE_CONSTRAINT ? InvalidArgument("catalog: id " + e.id + " exists")
+                                     : SqlError(db_, "insert");
+    }
+    return BumpGeneration();
+  });
+}
+
+Status SqliteCatalog::InsertOriginal(const Original& o, int64_t created) {
+  Statement st(db_, "INSERT INTO originals (digest, main, format, bytes, created) "
+                    "VALUES (?,?,?,?,?);");
+  if (!st.ok()) return SqlError(db_, "prepare original insert");
+  st.Bind(1, o.digest);
+  st.Bind(2, o.main);
+  st.Bind(3, o.format);
+  st.Bind(4, static_cast<int64_t>(o.bytes));
+  st.Bind(5, created);
+  if (st.Step() != SQLITE_DONE) return SqlError(db_, "insert original");
+  for (const OriginalFile& f : o.files) {
+    Statement file(db_, "INSERT INTO original_files (original, name, sha256, bytes) "
+                        "VALUES (?,?,?,?);");
+    if (!file.ok()) return SqlError(db_, "prepare original file insert");
+    file.Bind(1, o.digest);
+    file.Bind(2, f.name);
+    file.Bind(3, f.sha256);
+    file.Bind(4, static_cast<int64_t>(f.bytes));
+    if (file.Step() != SQLITE_DONE) return SqlError(db_, "insert original file");
+  }
+  return Status::Ok();
+}
+
+Status SqliteCatalog::BumpGeneration() {
+  return Exec("UPDATE catalog_generation SET generation = generation + 1;");
+}
+
+Status SqliteCatalog::InTransaction(const std::function<Status()>& body) {
   MW_RETURN_IF_ERROR(Exec("BEGIN IMMEDIATE;"));
-  Statement st(db_, (std::string("INSERT INTO meshes (") + kCatalogColumns +
-                     ") VALUES (?,?,?,?,?,?,?,?,?,?,?);").c_str());
-  if (!st.ok()) {
+  Status s = body();
+  if (s.ok()) s = Exec("COMMIT;");
+  if (!s.ok()) {
+    failed_code_ = sqlite3_errcode(db_);  // before ROLLBACK overwrites it
     (void)Exec("ROLLBACK;");
-    return SqlError(db_, "prepare insert");
   }
-  st.Bind(1, e.id);
-  st.Bind(2, e.name);
-  st.Bind(3, e.source);
-  st.Bind(4, static_cast<int64_t>(e.vertices));
-  st.Bind(5, static_cast<int64_t>(e.faces));
-  st.Bind(6, static_cast<int64_t>(e.levels));
-  st.Bind(7, static_cast<int64_t>(e.packets));
-  st.Bind(8, static_cast<int64_t>(e.bytes));
-  st.Bind(9, e.container);
-  st.Bind(10, e.sha256);
-  st.Bind(11, e.created_unix);
-  const int rc = st.Step();
-  if (rc != SQLITE_DONE) {
-    Status s = rc == SQLITE_CONSTRAINT
-                   ? InvalidArgument("catalog: id " + e.id + " exists")
-                   : SqlError(db_, "insert");
-    (void)Exec("ROLLBACK;");
-    return s;
-  }
-  return Exec("COMMIT;");
+  return s;
 }
 
 Result<std::optional<CatalogEntry>> SqliteCatalog::Find(const std::string& id) {
@@ -212,18 +246,43 @@ Result<uint64_t> SqliteCatalog::Count() {
 Result<bool> SqliteCatalog::Remove(const std::string& id) {
   if (!IsValidMeshId(id)) return InvalidArgument("catalog: invalid id");
   std::lock_guard lock(mutex_);
+  bool removed = false;
   for (int attempt = 0;; ++attempt) {
-    Statement st(db_, "DELETE FROM meshes WHERE id = ?;");
-    if (!st.ok()) return SqlError(db_, "prepare delete");
-    st.Bind(1, id);
-    if (st.Step() == SQLITE_DONE) break;
+    Status s = InTransaction([&]() -> Status {
+      Statement st(db_, "DELETE FROM meshes WHERE id = ? RETURNING original;");
+      if (!st.ok()) return SqlError(db_, "prepare delete");
+      st.Bind(1, id);
+      std::string original;
+      int rc = st.Step();
+      if (rc == SQLITE_ROW) {
+        original = st.Text(0);
+        rc = st.Step();
+      }
+      if (rc != SQLITE_DONE) return SqlError(db_, "delete");
+      removed = sqlite3_changes(db_) > 0;
+      if (!removed) return Status::Ok();
+      if (!original.empty()) {
+        // The original goes with its last mesh (its blobs: ingest.h).
+        Statement files(db_, "DELETE FROM original_files WHERE original = ? AND NOT EXISTS "
+                             "(SELECT 1 FROM meshes WHERE original = ?);");
+        Statement row(db_, "DELETE FROM originals WHERE digest = ? AND NOT EXISTS "
+                           "(SELECT 1 FROM meshes WHERE original = ?);");
+        if (!files.ok() || !row.ok()) return SqlError(db_, "prepare original delete");
+        files.Bind(1, original);
+        files.Bind(2, original);
+        row.Bind(1, original);
+        row.Bind(2, original);
+        if (files.Step() != SQLITE_DONE || row.Step() != SQLITE_DONE) {
+          return SqlError(db_, "delete original");
+        }
+      }
+      return BumpGeneration();
+    });
+    if (s.ok()) break;
     // A full disk: the delete's WAL frames need a few pages. Give up the
     // reserve (deleting is how a user frees space) and try once more.
-    if (attempt > 0 || sqlite3_errcode(db_) != SQLITE_FULL || !ReleaseReserve()) {
-      return SqlError(db_, "delete");
-    }
+    if (attempt > 0 || failed_code_ != SQLITE_FULL || !ReleaseReserve()) return s;
   }
-  const bool removed = sqlite3_changes(db_) > 0;
   KeepReserve();
   return removed;
 }
@@ -249,15 +308,154 @@ bool SqliteCatalog::ReleaseReserve() {
   return std::filesystem::remove(reserve_path(), ec);
 }
 
-Result<std::vector<std::string>> SqliteCatalog::ContainerPaths() {
+Result<std::vector<std::string>> SqliteCatalog::Strings(const char* sql, const std::string& what) {
   std::lock_guard lock(mutex_);
-  Statement st(db_, "SELECT container FROM meshes;");
-  if (!st.ok()) return SqlError(db_, "prepare paths");
+  Statement st(db_, sql);
+  if (!st.ok()) return SqlError(db_, "prepare " + what);
   std::vector<std::string> out;
   int rc;
   while ((rc = st.Step()) == SQLITE_ROW) out.push_back(st.Text(0));
-  if (rc != SQLITE_DONE) return SqlError(db_, "paths");
+  if (rc != SQLITE_DONE) return SqlError(db_, what);
   return out;
+}
+
+Result<std::vector<std::string>> SqliteCatalog::ContainerPaths() {
+  return Strings("SELECT container FROM meshes UNION SELECT container FROM retired_containers;",
+                 "container paths");
+}
+
+Result<std::vector<std::string>> SqliteCatalog::OriginalBlobs() {
+  return Strings("SELECT DISTINCT sha256 FROM original_files;", "original blobs");
+}
+
+Result<std::optional<Original>> SqliteCatalog::FindOriginal(const std::string& digest) {
+  std::lock_guard lock(mutex_);
+  Statement st(db_, "SELECT main, format, bytes FROM originals WHERE digest = ?;");
+  if (!st.ok()) return SqlError(db_, "prepare original");
+  st.Bind(1, digest);
+  const int rc = st.Step();
+  if (rc == SQLITE_DONE) return std::optional<Original>();
+  if (rc != SQLITE_ROW) return SqlError(db_, "find original");
+  Original o;
+  o.digest = digest;
+  o.main = st.Text(0);
+  o.format = st.Text(1);
+  o.bytes = static_cast<uint64_t>(st.Int(2));
+  Statement files(db_, "SELECT name, sha256, bytes FROM original_files WHERE original = ? "
+                       "ORDER BY name;");
+  if (!files.ok()) return SqlError(db_, "prepare original files");
+  files.Bind(1, digest);
+  int frc;
+  while ((frc = files.Step()) == SQLITE_ROW) {
+    o.files.push_back({files.Text(0), files.Text(1), static_cast<uint64_t>(files.Int(2))});
+  }
+  if (frc != SQLITE_DONE) return SqlError(db_, "original files");
+  return std::optional<Original>(std::move(o));
+}
+
+Result<bool> SqliteCatalog::ReplaceContainer(const std::string& id, const std::string& old_sha256,
+                                             const CatalogEntry& now, int64_t retired_unix) {
+  if (!IsValidMeshId(id)) return InvalidArgument("catalog: invalid id");
+  std::lock_guard lock(mutex_);
+  bool replaced = false;
+  if (Status done = InTransaction([&]() -> Status {
+    Statement old(db_, "SELECT container FROM meshes WHERE id = ? AND sha256 = ?;");
+    if (!old.ok()) return SqlError(db_, "prepare swap");
+    old.Bind(1, id);
+    old.Bind(2, old_sha256);
+    const int rc = old.Step();
+    if (rc == SQLITE_DONE) return Status::Ok();
+    if (rc != SQLITE_ROW) return SqlError(db_, "swap");
+    const std::string old_container = old.Text(0);
+    Statement st(db_, "UPDATE meshes SET vertices = ?, faces = ?, levels = ?, packets = ?, "
+                      "bytes = ?, container = ?, sha256 = ?, format_version = ?, settings = ? "
+                      "WHERE id = ?;");
+    if (!st.ok()) return SqlError(db_, "prepare swap update");
+    st.Bind(1, static_cast<int64_t>(now.vertices));
+    st.Bind(2, static_cast<int64_t>(now.faces));
+    st.Bind(3, static_cast<int64_t>(now.levels));
+    st.Bind(4, static_cast<int64_t>(now.packets));
+    st.Bind(5, static_cast<int64_t>(now.bytes));
+    st.Bind(6, now.container);
+    st.Bind(7, now.sha256);
+    st.Bind(8, static_cast<int64_t>(now.format_version));
+    st.Bind(9, now.settings);
+    st.Bind(10, id);
+    if (st.Step() != SQLITE_DONE) return SqlError(db_, "swap update");
+    if (old_container != now.container) {
+      Statement retire(db_, "INSERT INTO retired_containers (container, retired) VALUES (?, ?) "
+                            "ON CONFLICT (container) DO UPDATE SET retired = excluded.retired;");
+      if (!retire.ok()) return SqlError(db_, "prepare retire");
+      retire.Bind(1, old_container);
+      retire.Bind(2, retired_unix);
+      if (retire.Step() != SQLITE_DONE) return SqlError(db_, "retire");
+    }
+    replaced = true;
+    return BumpGeneration();
+  }); !done.ok()) {
+    return done;
+  }
+  return replaced;
+}
+
+Result<std::vector<std::string>> SqliteCatalog::ExpireRetired(int64_t before_unix) {
+  std::lock_guard lock(mutex_);
+  std::vector<std::string> expired;
+  if (Status done = InTransaction([&]() -> Status {
+    Statement st(db_, "DELETE FROM retired_containers WHERE retired < ? RETURNING container;");
+    if (!st.ok()) return SqlError(db_, "prepare expire");
+    st.Bind(1, before_unix);
+    int rc;
+    while ((rc = st.Step()) == SQLITE_ROW) expired.push_back(st.Text(0));
+    if (rc != SQLITE_DONE) return SqlError(db_, "expire");
+    return Status::Ok();
+  }); !done.ok()) {
+    return done;
+  }
+  // A container a row names again (the same bytes made anew) stays.
+  std::vector<std::string> out;
+  for (std::string& path : expired) {
+    Statement used(db_, "SELECT 1 FROM meshes WHERE container = ?;");
+    if (!used.ok()) return SqlError(db_, "prepare expire check");
+    used.Bind(1, path);
+    const int rc = used.Step();
+    if (rc == SQLITE_DONE) out.push_back(std::move(path));
+    else if (rc != SQLITE_ROW) return SqlError(db_, "expire check");
+  }
+  return out;
+}
+
+Result<int64_t> SqliteCatalog::Generation() {
+  std::lock_guard lock(mutex_);
+  Statement st(db_, "SELECT generation FROM catalog_generation;");
+  if (!st.ok() || st.Step() != SQLITE_ROW) return SqlError(db_, "generation");
+  return st.Int(0);
+}
+
+Status SqliteCatalog::Migrate(const std::vector<Migration>& migrations) {
+  // Several processes may open a catalog at once: each migration runs in
+  // a write transaction that reads the version again.
+  for (const Migration& m : migrations) {
+    if (Status done = InTransaction([&]() -> Status {
+      Statement version(db_, "PRAGMA user_version;");
+      if (!version.ok() || version.Step() != SQLITE_ROW) return SqlError(db_, "schema version");
+      const int64_t current = version.Int(0);
+      const int newest = migrations.back().version;
+      if (current > newest) {
+        return Status(StatusCode::kUnsupported,
+                      "catalog: the schema of " + (store_dir() / "catalog.db").string() +
+                          " is at version " + std::to_string(current) +
+                          ", newer than this server knows (" + std::to_string(newest) +
+                          "): upgrade meshwave-server");
+      }
+      if (current >= m.version) return Status::Ok();
+      MW_RETURN_IF_ERROR(Exec(std::string(m.sql).c_str()).WithContext(std::string(m.name)));
+      return Exec(("PRAGMA user_version = " + std::to_string(m.version) + ";").c_str());
+    }); !done.ok()) {
+      return done;
+    }
+  }
+  return Status::Ok();
 }
 
 Result<std::string> SqliteCatalog::JournalMode() {

@@ -6,9 +6,11 @@
 
 #include <sqlite3.h>
 
+#include <functional>
 #include <mutex>
 
 #include "catalog.h"
+#include "migration.h"
 
 namespace meshwave::server {
 
@@ -21,18 +23,32 @@ class SqliteCatalog final : public Catalog {
 
   std::string Describe() const override { return "sqlite " + store_dir().string(); }
   Result<std::unique_ptr<IngestGuard>> LockIngest() override;
-  Status Insert(const CatalogEntry& entry) override;
+  using Catalog::Insert;
+  Status Insert(const CatalogEntry& entry, const Original* original) override;
   Result<std::optional<CatalogEntry>> Find(const std::string& id) override;
   Result<std::vector<CatalogEntry>> List(uint64_t limit, uint64_t offset) override;
   Result<uint64_t> Count() override;
   Result<bool> Remove(const std::string& id) override;
   Result<std::vector<std::string>> ContainerPaths() override;
+  Result<std::optional<Original>> FindOriginal(const std::string& digest) override;
+  Result<std::vector<std::string>> OriginalBlobs() override;
+  Result<bool> ReplaceContainer(const std::string& id, const std::string& old_sha256,
+                                const CatalogEntry& now, int64_t retired_unix) override;
+  Result<std::vector<std::string>> ExpireRetired(int64_t before_unix) override;
+  Result<int64_t> Generation() override;
   // "wal" once open.
   Result<std::string> JournalMode();
 
  private:
   SqliteCatalog(std::filesystem::path dir, sqlite3* db) : Catalog(std::move(dir)), db_(db) {}
   Status Exec(const char* sql);
+  // Runs `body` between BEGIN IMMEDIATE and COMMIT (ROLLBACK when it or
+  // the commit fails). The caller holds mutex_.
+  Status InTransaction(const std::function<Status()>& body);
+  Status InsertOriginal(const Original& original, int64_t created);
+  Status BumpGeneration();
+  Status Migrate(const std::vector<Migration>& migrations);
+  Result<std::vector<std::string>> Strings(const char* sql, const std::string& what);
   // DIR/catalog.reserve, kReserveBytes of written zeros: room that a
   // DELETE on a full disk takes for its WAL frames (SQLite otherwise
   // answers "database or disk is full" to the request that would free
@@ -44,6 +60,7 @@ class SqliteCatalog final : public Catalog {
 
   sqlite3* db_;
   std::mutex mutex_;
+  int failed_code_ = SQLITE_OK;  // of the last transaction that failed
 };
 
 }  // namespace meshwave::server

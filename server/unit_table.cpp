@@ -8,7 +8,7 @@ namespace meshwave::server {
 
 UnitTable::UnitTable(StreamPrecincts precincts, const StreamHeader& header)
     : precincts_(std::move(precincts)),
-      nothing_held_(header, precincts_),
+      nothing_held_(header, precincts_.parents()),
       numbering_(nothing_held_) {}
 
 Result<std::unique_ptr<const UnitTable>> UnitTable::Build(

@@ -41,7 +41,7 @@ class UnitTable {
  private:
   UnitTable(StreamPrecincts precincts, const StreamHeader& header);
   StreamPrecincts precincts_;
-  HeldUnits nothing_held_;  // points into precincts_
+  HeldUnits nothing_held_;
   UnitNumbering numbering_;
   std::vector<std::vector<uint32_t>> part_lengths_;
   std::vector<std::vector<uint32_t>> part_offsets_;  // from the payload's start

@@ -4,9 +4,11 @@
 #include <spdlog/spdlog.h>
 
 #include "ingest.h"
+#include "upload_worker.h"
 #include "mesh_handlers.h"
-#include "request_target.h"
+#include "meshwave/request_target.h"
 #include "response.h"
+#include "meshwave/mesh_io.h"
 
 namespace meshwave::server {
 namespace {
@@ -34,6 +36,24 @@ Result<MeshFormat> UploadFormat(const QueryParams& query, std::string_view body)
     if (head.starts_with(off)) return MeshFormat::kOff;
   }
   return MeshFormat::kObj;
+}
+
+// The upload's ingest: in a worker process at lower priority when the
+// server knows where its catalog is (always, but for the fuzz harness),
+// else here.
+Result<UploadOutcome> Ingest(ServerContext& ctx, std::string_view bytes, const std::string& name,
+                             const std::string& source, const EncodeChoices& choices) {
+  if (!ctx.catalog_location().empty()) {
+    WorkerOptions options;
+    options.nice = static_cast<int>(ctx.config().ingest_nice());
+    options.memory_limit_bytes = ctx.config().ingest_memory_limit_bytes();
+    return IngestInWorker(ctx.catalog_location(), ctx.store_location(), bytes, name, source,
+                          choices, options);
+  }
+  MW_ASSIGN_OR_RETURN(IngestResult result,
+                      IngestMeshBytes(ctx.catalog(), bytes, name, source, choices));
+  return UploadOutcome{result.entry.id, result.already_present, result.remeshed,
+                       result.fidelity_db};
 }
 
 Status CheckName(const std::string& name) {
@@ -97,24 +117,31 @@ void UploadMesh(ServerContext& ctx, Request req, const QueryParams& query,
   auto format = UploadFormat(query, req.body());
   if (!format.ok()) return done(StatusError(format.status()));
   const char* ext = *format == MeshFormat::kPly ? ".ply" : *format == MeshFormat::kOff ? ".off" : ".obj";
-  net::post(ctx.ingest_pool(), [&ctx, req = std::move(req), name, format = *format, ext, choices,
+  net::post(ctx.ingest_pool(), [&ctx, req = std::move(req), name, ext, choices,
                                 done = std::move(done)]() mutable {
     Response r;
     try {
-      auto result = IngestMeshBytes(ctx.catalog(), req.body(), format, name, name + ext, choices);
-      if (!result.ok()) {
-        const auto code = result.status().code();
+      auto outcome = Ingest(ctx, req.body(), name, name + ext, choices);
+      Result<std::optional<CatalogEntry>> entry =
+          outcome.ok() ? ctx.catalog().Find(outcome->id) : outcome.status();
+      if (entry.ok() && !*entry) {
+        entry = Status(StatusCode::kInternal, "the ingested mesh " + outcome->id +
+                                                  " is not in the catalog");
+      }
+      if (!entry.ok()) {
+        const auto code = entry.status().code();
         r = code == StatusCode::kIoError || code == StatusCode::kInternal
-                ? JsonError(http::status::internal_server_error, result.status().message())
-                : JsonError(http::status::unprocessable_entity, result.status().message());
+                ? JsonError(http::status::internal_server_error, entry.status().message())
+                : JsonError(http::status::unprocessable_entity, entry.status().message());
       } else {
+        const CatalogEntry& e = **entry;
         proto::MeshSummary summary;
-        ToProto(result->entry, summary);
-        r = Message(req, summary, result->already_present ? http::status::ok
-                                                          : http::status::created);
-        r.set(http::field::location, "/v1/meshes/" + result->entry.id);
-        spdlog::info("uploaded {} as {} ({} bytes{})", name, result->entry.id,
-                     result->entry.bytes, result->remeshed ? ", remeshed" : "");
+        ToProto(e, summary);
+        r = Message(req, summary, outcome->already_present ? http::status::ok
+                                                           : http::status::created);
+        r.set(http::field::location, "/v1/meshes/" + e.id);
+        spdlog::info("uploaded {} as {} ({} bytes{})", name, e.id, e.bytes,
+                     outcome->remeshed ? ", remeshed" : "");
       }
     } catch (const std::exception& e) {  // e.g. bad_alloc on a huge mesh
       r = JsonError(http::status::internal_server_error, std::string("ingest failed: ") + e.what());

@@ -8,7 +8,7 @@
 #include <optional>
 #include <string>
 
-#include "request_target.h"
+#include "meshwave/request_target.h"
 #include "server_context.h"
 #include "slices_body.h"
 

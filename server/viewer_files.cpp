@@ -6,7 +6,7 @@
 #include <utility>
 
 #include "etag.h"
-#include "request_target.h"
+#include "meshwave/request_target.h"
 #include "response.h"
 #include "sha256.h"
 

@@ -5,10 +5,8 @@
 #include <array>
 
 #include "meshwave/container.h"
-#include "meshwave/stream_units.h"
+#include "meshwave/region_text.h"
 #include "response.h"
-#include "stream_plan.h"
-#include "stream_query.h"
 
 namespace meshwave::server {
 namespace {
@@ -30,12 +28,12 @@ std::string RemoteName(const tcp::socket& socket) {
   return ep.address().to_string() + ":" + std::to_string(ep.port());
 }
 
-proto::Selection ToProto(const StreamPlan& plan, size_t from) {
+proto::Selection ToProto(const StreamCursor::Selection& selection) {
   proto::Selection s;
-  s.set_from_cursor(static_cast<uint32_t>(from));
-  s.set_next_cursor(static_cast<uint32_t>(plan.selection.next_cursor));
-  s.set_order_packets(static_cast<uint32_t>(plan.order->size()));
-  s.set_bytes(plan.selection.bytes);
+  s.set_from_cursor(static_cast<uint32_t>(selection.from));
+  s.set_next_cursor(static_cast<uint32_t>(selection.next));
+  s.set_order_packets(static_cast<uint32_t>(selection.order_length));
+  s.set_bytes(selection.bytes);
   return s;
 }
 
@@ -172,42 +170,22 @@ void WsSession::StartStream(const ClientRequest& r) {
   }
   if (!*found)
     return SendError(proto::Error::NOT_FOUND, "no mesh with id " + r.mesh_id);
-  std::shared_ptr<const ServedMesh> mesh = std::move(*found);
-  if (r.units()) {
-    if (StartUnits(r, std::move(mesh))) SetPacing(r.rate);
-    return;
-  }
   const bool start = r.kind == ClientRequest::Kind::kStart;
-  uint64_t budget = r.budget.value_or(kMaxBudget);
-  // Exactly the header's container: no packet fits beside it.
-  if (r.header_only) budget = ContainerSize(mesh->header(), {});
-  const uint64_t from = start ? 0 : r.cursor;
-  auto plan = PlanStream(*mesh, r.order, r.max_level, from, budget, start);
-  if (!plan.ok())
-    return SendError(proto::Error::BAD_REQUEST, plan.status().message());
-
-  mesh_ = std::move(mesh);
-  order_ = plan->order;
-  max_level_ = r.max_level;
-  units_ = nullptr;
-  held_.reset();
-  selected_.clear();
-  cursor_ = from;
-  end_ = plan->selection.next_cursor;
-  done_at_.push_back({end_, plan->complete()});
+  auto selection = stream_.Start(std::move(*found), r.stream, start, r.header_only);
+  if (!selection.ok()) return SendError(selection.status());
   SetPacing(r.rate);
-  spdlog::info(
-      "ws {}: {} mesh {} order {} max_level {} from {} to {} ({} bytes) rate "
-      "{} B/s",
-      remote_, start ? "start" : "resume", mesh_->entry().id,
-      ProgressionName(r.order), r.max_level, from, end_, plan->selection.bytes,
-      r.rate);
+  const StreamRequest& q = r.stream;
+  spdlog::info("ws {}: {} mesh {} {} max_level {} from {} to {} ({} bytes) rate {} B/s", remote_,
+               start ? "start" : "resume", stream_.mesh()->entry().id,
+               q.region ? "region " + FormatRegionShape(*q.region)
+                        : std::string("order ") + ProgressionName(q.order),
+               q.max_level, selection->from, selection->next, selection->bytes, r.rate);
   proto::ServerMessage m;
   if (start) {
-    m.mutable_start()->set_header(mesh_->header_bytes());
-    *m.mutable_start()->mutable_selection() = ToProto(*plan, from);
+    m.mutable_start()->set_header(stream_.mesh()->header_bytes());
+    *m.mutable_start()->mutable_selection() = ToProto(*selection);
   } else {
-    *m.mutable_selection() = ToProto(*plan, from);
+    *m.mutable_selection() = ToProto(*selection);
   }
   Queue(m, start);
 }
@@ -223,137 +201,28 @@ void WsSession::SetPacing(uint64_t rate) {
   }
 }
 
-bool WsSession::StartUnits(const ClientRequest& r, std::shared_ptr<const ServedMesh> mesh) {
-  if (Status s = mesh->CheckLevelLimit(r.max_level); !s.ok()) {
-    SendError(proto::Error::BAD_REQUEST, s.message());
-    return false;
-  }
-  auto table = mesh->units();
-  if (!table.ok()) {
-    SendError(proto::Error::UNAVAILABLE, table.status().message());
-    return false;
-  }
-  HeldUnits held = (*table)->nothing_held();
-  if (r.held) {
-    if (Status s = DecodeHeldUnits(*r.held, (*table)->numbering(), held); !s.ok()) {
-      SendError(proto::Error::BAD_REQUEST, s.message());
-      return false;
-    }
-  }
-  const bool start = r.kind == ClientRequest::Kind::kStart;
-  // A start's budget counts the header, as a container's does.
-  const uint64_t header = start ? ContainerSize(mesh->header(), {}) : 0;
-  uint64_t budget = r.budget.value_or(kMaxBudget);
-  if (r.header_only) budget = header;
-  if (budget < header) {
-    SendError(proto::Error::BAD_REQUEST, "budget " + std::to_string(budget) +
-                                             " is smaller than the stream header (" +
-                                             std::to_string(header) + " bytes)");
-    return false;
-  }
-  mesh_ = std::move(mesh);
-  order_ = nullptr;
-  max_level_ = r.max_level;
-  units_ = *table;
-  held_.emplace(std::move(held));
-  unit_request_ = UnitRequest{r.region, r.order, r.max_level, 0};
-  selected_.clear();
-  cursor_ = end_ = 0;
-  const UnitPlan plan = SelectUnits(budget - header);
-  spdlog::info("ws {}: {} mesh {} {} max_level {}: {} units ({} bytes)", remote_,
-               start ? "start" : "resume", mesh_->entry().id,
-               r.region ? "region " + FormatRegionShape(*r.region)
-                        : std::string("order ") + ProgressionName(r.order),
-               r.max_level, plan.units.size(), plan.bytes);
-  proto::ServerMessage m;
-  if (start) {
-    m.mutable_start()->set_header(mesh_->header_bytes());
-    *m.mutable_start()->mutable_selection() = UnitSelection(0, plan, header + plan.bytes);
-  } else {
-    *m.mutable_selection() = UnitSelection(0, plan, plan.bytes);
-  }
-  Queue(m, start);
-  return true;
-}
-
-bool WsSession::SwitchToUnits() {
-  if (units_) return true;
-  auto table = mesh_->units();
-  if (!table.ok()) {
-    SendError(proto::Error::UNAVAILABLE, table.status().message());
-    return false;
-  }
-  units_ = *table;
-  held_.emplace(units_->nothing_held());
-  // Cursors keep counting messages: packets selected so far are units.
-  for (size_t k = 0; k < end_; ++k) {
-    selected_.push_back({(*order_)[k]});
-    held_->Add({(*order_)[k]});
-  }
-  unit_request_.max_level = max_level_;
-  order_ = nullptr;
-  return true;
-}
-
-UnitPlan WsSession::SelectUnits(uint64_t budget) {
-  unit_request_.budget = budget;
-  // The level limit was checked when the stream started.
-  UnitPlan plan = *PlanUnits(*mesh_, *units_, *held_, unit_request_);
-  for (const StreamUnit& u : plan.units) {
-    held_->Add(u);
-    selected_.push_back(u);
-  }
-  end_ = selected_.size();
-  done_at_.push_back({end_, plan.complete});
-  return plan;
-}
-
-proto::Selection WsSession::UnitSelection(size_t from, const UnitPlan& plan,
-                                          uint64_t bytes) const {
-  proto::Selection s;
-  s.set_from_cursor(static_cast<uint32_t>(from));
-  s.set_next_cursor(static_cast<uint32_t>(from + plan.units.size()));
-  s.set_order_packets(static_cast<uint32_t>(units_->UnitsBelow(max_level_)));
-  s.set_bytes(bytes);
-  return s;
-}
-
 void WsSession::RefineStream(const ClientRequest& r) {
-  if (!mesh_) {
-    return SendError(proto::Error::BAD_REQUEST,
-                     "nothing to refine: send start or resume first");
-  }
-  if (done_at_.size() >= kMaxPendingDone) {
+  if (stream_.pending() >= kMaxPendingDone) {
     return SendError(proto::Error::BAD_REQUEST,
                      std::to_string(kMaxPendingDone) +
                          " requests of this stream are still running: wait for a Done");
   }
-  const bool changes = r.region || r.refine_order;
-  if (changes || units_) {
-    if (!SwitchToUnits()) return;
-    if (changes) {
-      unit_request_.region = r.region;
-      unit_request_.order = r.order;
-    }
-    const size_t from = end_;
-    const UnitPlan plan = SelectUnits(r.extra_bytes);
-    proto::ServerMessage m;
-    *m.mutable_selection() = UnitSelection(from, plan, plan.bytes);
-    spdlog::debug("ws {}: refine {} bytes, {} units", remote_, r.extra_bytes, plan.units.size());
-    if (!streaming() && pacer_) pacer_->DropCredit(TokenBucket::Clock::now());
-    return Queue(m, false);
-  }
-  StreamPlan plan;
-  plan.order = order_;
-  plan.selection = SelectPayloads(mesh_->header(), *order_, r.extra_bytes, end_);
+  const bool was_streaming = streaming();
+  auto selection =
+      stream_.Refine(r.extra_bytes, r.stream.region,
+                     r.refine_order ? std::optional<Progression>(r.stream.order) : std::nullopt);
+  if (!selection.ok()) return SendError(selection.status());
   proto::ServerMessage m;
-  *m.mutable_selection() = ToProto(plan, end_);
-  spdlog::debug("ws {}: refine {} bytes, to {}", remote_, r.extra_bytes,
-                plan.selection.next_cursor);
-  end_ = plan.selection.next_cursor;
-  if (!streaming() && pacer_) pacer_->DropCredit(TokenBucket::Clock::now());
-  done_at_.push_back({end_, plan.complete()});
+  *m.mutable_selection() = ToProto(*selection);
+  spdlog::debug("ws {}: refine {} bytes, to {}", remote_, r.extra_bytes, selection->next);
+  if (!was_streaming && pacer_) pacer_->DropCredit(TokenBucket::Clock::now());
   Queue(m, false);
+}
+
+void WsSession::SendError(const Status& status) {
+  SendError(status.code() == StatusCode::kInvalidArgument ? proto::Error::BAD_REQUEST
+                                                          : proto::Error::UNAVAILABLE,
+            status.message());
 }
 
 void WsSession::SendError(proto::Error::Code code, const std::string& message) {
@@ -379,29 +248,25 @@ void WsSession::Pump() {
     if (queue_.size() < kMaxQueued / 2) DoRead();
     return write(net::buffer(in_flight_));
   }
-  // One Done per request, once the packets it selected are out.
-  if (!done_at_.empty() && cursor_ == done_at_.front().end) {
+  // One Done per request, once the units it selected are out.
+  if (const auto done = stream_.DoneDue()) {
     proto::ServerMessage m;
-    m.mutable_done()->set_next_cursor(static_cast<uint32_t>(cursor_));
-    m.mutable_done()->set_complete(done_at_.front().complete);
-    done_at_.pop_front();
+    m.mutable_done()->set_next_cursor(static_cast<uint32_t>(done->next));
+    m.mutable_done()->set_complete(done->complete);
+    stream_.TakeDone();
     in_flight_ = m.SerializeAsString();
     return write(net::buffer(in_flight_));
   }
-  if (mesh_ && cursor_ < end_) {
-    const StreamUnit unit = order_ ? StreamUnit{(*order_)[cursor_]} : selected_[cursor_];
-    std::string_view payload = mesh_->payload(unit.id);
-    std::optional<uint32_t> part;
-    if (!unit.whole()) {
-      payload = units_->Payload(payload, unit);
-      part = unit.part;
-    }
-    std::string prefix =
-        PacketMessagePrefix(static_cast<uint32_t>(cursor_), unit.id, payload.size(), part);
+  if (const auto next = stream_.Peek()) {
+    const std::string_view payload = next->payload;
+    const std::optional<uint32_t> part =
+        next->unit.whole() ? std::nullopt : std::optional<uint32_t>(next->unit.part);
+    std::string prefix = PacketMessagePrefix(static_cast<uint32_t>(next->cursor), next->unit.id,
+                                             payload.size(), part);
     if (!MayWriteNow(prefix.size() + payload.size())) return;
     in_flight_ = std::move(prefix);
-    in_flight_mesh_ = mesh_;
-    ++cursor_;
+    in_flight_mesh_ = stream_.shared_mesh();
+    stream_.Advance();
     ++packets_sent_;
     return write(std::array<net::const_buffer, 2>{
         net::buffer(in_flight_), net::buffer(payload.data(), payload.size())});

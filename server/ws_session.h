@@ -1,9 +1,11 @@
-// One WebSocket connection on GET /v1/ws (docs/API.md, WebSocket): reads
-// client messages (ParseClientMessage) and streams the packets they select
-// as binary messages, paced by a token bucket on a steady_timer. One write
-// in flight at a time and a short queue of small messages; when the queue is
-// full the session stops reading, so nothing grows without bound. Lives by
-// shared_from_this on the strand of the connection it was upgraded from.
+// One WebSocket connection on GET /v1/ws (docs/API.md, WebSocket): the
+// socket's role. Reads client messages (ParseClientMessage), hands their
+// requests to its StreamCursor, which selects the units, and sends them as
+// binary messages, paced by a token bucket on a steady_timer; pings a
+// silent client. One write in flight at a time and a short queue of small
+// messages; when the queue is full the session stops reading, so nothing
+// grows without bound. Lives by shared_from_this on the strand of the
+// connection it was upgraded from.
 #ifndef MESHWAVE_SERVER_WS_SESSION_H_
 #define MESHWAVE_SERVER_WS_SESSION_H_
 
@@ -12,13 +14,12 @@
 #include <memory>
 #include <optional>
 #include <string>
-#include <vector>
 
+#include "meshwave/client_message.h"
 #include "net.h"
-#include "served_mesh.h"
 #include "server_context.h"
+#include "stream_cursor.h"
 #include "token_bucket.h"
-#include "unit_plan.h"
 #include "ws_protocol.h"
 
 #pragma GCC diagnostic push
@@ -53,21 +54,13 @@ class WsSession : public Closable,
   void Handle(const ClientRequest& request);
   void StartStream(const ClientRequest& request);
   void RefineStream(const ClientRequest& request);
-  // A start or resume of a session counting units (docs/API.md, "Region
-  // requests"); `mesh` found, the pacing not yet set.
-  bool StartUnits(const ClientRequest& request, std::shared_ptr<const ServedMesh> mesh);
-  // Switches a session counting packets of order_ to counting units, the
-  // packets selected so far held. False (an error sent) when the mesh's
-  // units cannot be built.
-  bool SwitchToUnits();
-  // Selects what the held units lack in unit_request_'s order within
-  // `budget` payload bytes and marks it held.
-  UnitPlan SelectUnits(uint64_t budget);
-  proto::Selection UnitSelection(size_t from, const UnitPlan& plan, uint64_t bytes) const;
   void SetPacing(uint64_t rate);
   void SendError(proto::Error::Code code, const std::string& message);
+  // The cursor's refusal: BAD_REQUEST for the client's mistakes, else
+  // UNAVAILABLE (the mesh's units cannot be built).
+  void SendError(const Status& status);
   void Queue(const proto::ServerMessage& message, bool paced);
-  bool streaming() const { return !done_at_.empty(); }
+  bool streaming() const { return stream_.pending() > 0; }
 
   // Keep-alive: pings a client silent for websocket_ping_seconds and closes
   // one silent for twice that with a close frame (1008), then drops the
@@ -104,27 +97,8 @@ class WsSession : public Closable,
   bool closing_ = false;            // no more reads or writes
   bool close_after_write_ = false;  // Shutdown during a write
 
-  // The current stream: order[cursor_ .. end_) is still to send (counting
-  // packets), or selected_[cursor_ .. end_) (counting units: order_ null).
-  std::shared_ptr<const ServedMesh> mesh_;
-  const std::vector<uint32_t>* order_ = nullptr;
-  size_t cursor_ = 0;
-  size_t end_ = 0;
-  int max_level_ = -1;
-  // Counting units: the mesh's unit table, everything selected so far (the
-  // client holds it once sent), the order or region a refine continues,
-  // and the units selected, one Packet message each, by cursor.
-  const UnitTable* units_ = nullptr;
-  std::optional<HeldUnits> held_;
-  UnitRequest unit_request_;
-  std::vector<StreamUnit> selected_;
-  // The requests still owed a Done, in request order: each Done goes when
-  // the packets before its end cursor are sent.
-  struct Owed {
-    size_t end = 0;
-    bool complete = false;  // nothing of the stream left after it
-  };
-  std::deque<Owed> done_at_;
+  // What the client's requests selected and what is left to send.
+  StreamCursor stream_;
   std::optional<TokenBucket> pacer_;
 
   std::string remote_;

@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
-# The main job: installs dependencies, builds, runs the meshwave CLI on the
+# The main job: installs what building needs (deploy/install-deps.sh build:
+# no test tools, no browser, no emscripten), builds the CLI and the server
+# (the viewer's WebAssembly decoder comes built, web/dist), runs the meshwave CLI on the
 # shipped sample meshes (describe, subdivide, encode, decode at budgets,
 # compare), then starts meshwave-server on an embedded default catalog
 # (SQLite, in a temporary directory) holding the sample meshes, and streams
@@ -13,8 +15,14 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${DEMO_BUILD_DIR:-build}
 if [[ -z ${DEMO_BUILD_DIR:-} ]]; then
-  bash deploy/install-deps.sh
-  cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
+  bash deploy/install-deps.sh build
+  # The compiler cache when there is one (a machine that has run the
+  # tests); unity builds, as the tests build (tools/build_flags.sh): the
+  # headers most of the time goes into are parsed once per batch. No tests
+  # and, even where emscripten is installed, the shipped decoder module.
+  source tools/compiler_cache.sh
+  cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DMESHWAVE_TESTS=OFF \
+    -DMESHWAVE_WASM=OFF -DCMAKE_UNITY_BUILD=ON -DMESHWAVE_PCH=OFF
   cmake --build build -j2 --target meshwave meshwave-server
 fi
 cli=$build/tools/meshwave/meshwave

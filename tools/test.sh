@@ -12,8 +12,10 @@ source tools/compiler_cache.sh
 start=$SECONDS
 # Unity builds (tools/build_flags.sh): CI's time goes into compiling.
 source tools/build_flags.sh
+# MESHWAVE_TESTS and MESHWAVE_WASM explicitly: the main job (tools/demo.sh)
+# configures the same build directory without them.
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DMESHWAVE_WERROR=ON \
-  "${ci_build_flags[@]}"
+  -DMESHWAVE_TESTS=ON -DMESHWAVE_WASM=ON "${ci_build_flags[@]}"
 cmake --build build -j2
 built=$SECONDS
 ctest --test-dir build --output-on-failure -j2 --timeout 900

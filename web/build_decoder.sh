@@ -1,12 +1,20 @@
 #!/bin/sh
 # Builds the WebAssembly decoder with Debian's emscripten (3.1.6):
 #   web/build_decoder.sh [BUILD_DIR]        (default: build-wasm)
+#   web/build_decoder.sh --dist [BUILD_DIR] and copies it to web/dist/, the
+#                                           module shipped for builds without
+#                                           emscripten (wasm_dist_test)
 # The module is BUILD_DIR/web/decoder/meshwave_decoder.js (one ES module,
 # the wasm inlined): import createMeshwave from './meshwave_decoder.js'.
 set -eu
 if [ "${1:-}" = "-h" ] || [ "${1:-}" = "--help" ]; then
-  sed -n '2,5p' "$0" | sed 's/^# \{0,1\}//'
+  sed -n '2,8p' "$0" | sed 's/^# \{0,1\}//'
   exit 0
+fi
+dist=
+if [ "${1:-}" = "--dist" ]; then
+  dist=1
+  shift
 fi
 src=$(cd "$(dirname "$0")/.." && pwd)
 out=${1:-$src/build-wasm}
@@ -22,4 +30,10 @@ emcmake cmake -S "$src" -B "$out" -G Ninja -DCMAKE_BUILD_TYPE=Release \
   -DMESHWAVE_DECODER_ONLY=ON -DMESHWAVE_TESTS=OFF -DMESHWAVE_WERROR=ON -DMESHWAVE_PCH=OFF \
   -DEigen3_DIR=/usr/share/eigen3/cmake >/dev/null
 cmake --build "$out" --parallel "${MESHWAVE_JOBS:-2}" --target meshwave_decoder_js
-echo "$out/web/decoder/meshwave_decoder.js"
+if [ -n "$dist" ]; then
+  mkdir -p "$src/web/dist"
+  cp "$out/web/decoder/meshwave_decoder.js" "$src/web/dist/meshwave_decoder.js"
+  echo "$src/web/dist/meshwave_decoder.js"
+else
+  echo "$out/web/decoder/meshwave_decoder.js"
+fi

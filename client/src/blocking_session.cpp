@@ -1,6 +1,7 @@
 #include "meshwave/client/blocking_session.h"
 
 #include "net.h"
+#include "run_to_completion.h"
 
 namespace meshwave::client {
 
@@ -18,18 +19,7 @@ BlockingSession::~BlockingSession() {
 
 Status BlockingSession::Fetch(const Budget& budget,
                               const ProgressHandler& on_progress) {
-  Status result(StatusCode::kInternal, "the fetch did not finish");
-  bool finished = false;
-  session_->AsyncFetch(budget, on_progress, [&](Status s) {
-    result = std::move(s);
-    finished = true;
-  });
-  io_->restart();
-  // Until the fetch ends, not until the io_context runs dry: a WebSocket
-  // kept open for the next Fetch has its idle timer pending.
-  while (!finished && io_->run_one() > 0) {
-  }
-  return result;
+  return RunToCompletion(*io_, session_->Fetch(budget, on_progress));
 }
 
 }  // namespace meshwave::client

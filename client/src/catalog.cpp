@@ -1,6 +1,7 @@
 #include "meshwave/client/catalog.h"
 
 #include "http_client.h"
+#include "run_to_completion.h"
 
 namespace meshwave::client {
 namespace {
@@ -33,16 +34,8 @@ Result<proto::MeshList> ListCatalog(const ServerUrl& server,
                                     const TransportOptions& options) {
   net::io_context io(1);
   proto::MeshList list;
-  Status status(StatusCode::kInternal, "the listing did not finish");
-  {
-    HttpClient client(io.get_executor(), server, options);
-    net::co_spawn(
-        io, ListAll(client, list), [&](std::exception_ptr e, Status s) {
-          status = e ? Status(StatusCode::kInternal, "exception while listing")
-                     : std::move(s);
-        });
-    io.run();
-  }
+  HttpClient client(io.get_executor(), server, options);
+  const Status status = RunToCompletion(io, ListAll(client, list));
   if (!status.ok()) return status;
   return list;
 }

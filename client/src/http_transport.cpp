@@ -5,6 +5,7 @@
 #include "header_limit.h"
 #include "http_client.h"
 #include "meshwave/client/transport.h"
+#include "meshwave/region_text.h"
 #include "meshwave/stream_units.h"
 
 namespace meshwave::client {

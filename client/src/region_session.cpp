@@ -1,6 +1,5 @@
 #include "meshwave/client/region_session.h"
 
-#include <exception>
 #include <map>
 #include <utility>
 #include <vector>
@@ -8,10 +7,12 @@
 #include "co_status.h"
 #include "header_limit.h"
 #include "meshwave/container.h"
-#include "meshwave/region_order.h"
+#include "meshwave/held_units.h"
 #include "meshwave/stream_units.h"
 #include "net.h"
-#include "stream/packet_parts.h"
+#include "retry.h"
+#include "run_to_completion.h"
+#include "meshwave/packet_parts.h"
 
 namespace meshwave::client {
 
@@ -20,9 +21,9 @@ struct RegionSession::Impl : UnitSink {
   std::unique_ptr<Transport> transport;
   SessionOptions options;
   std::optional<StreamHeader> header;  // `present` cleared
+  // Holds the units received and the rules of what each needs
+  // (decoder->held()).
   std::unique_ptr<ProgressiveDecoder> decoder;
-  std::unique_ptr<StreamPrecincts> precincts;
-  std::optional<HeldUnits> held;
   std::optional<UnitNumbering> numbering;
   // What arrived, by (packet id, part or StreamUnit::kWholePacket).
   std::map<std::pair<uint32_t, uint32_t>, std::string> payloads;
@@ -57,8 +58,6 @@ struct RegionSession::Impl : UnitSink {
     header.reset();
     decoder.reset();
     numbering.reset();
-    held.reset();
-    precincts.reset();
     payloads.clear();
     units_held = 0;
     payload_bytes = 0;
@@ -71,14 +70,10 @@ struct RegionSession::Impl : UnitSink {
       return InvalidArgument("max_level " + std::to_string(options.max_level) + " exceeds the " +
                              std::to_string(h.transform.levels) + " levels of the mesh");
     }
-    auto p = StreamPrecincts::Create(h);
-    if (!p.ok()) return p.status().WithContext("the server's stream header");
     header = h;
     header->present.clear();
     decoder = std::move(*d);
-    precincts = std::make_unique<StreamPrecincts>(std::move(*p));
-    held.emplace(*header, *precincts);
-    numbering.emplace(*held);
+    numbering.emplace(decoder->held());
     Report();
     return Status::Ok();
   }
@@ -87,21 +82,21 @@ struct RegionSession::Impl : UnitSink {
   // (never twice, never before what it needs), then decoded.
   Status OnUnit(StreamUnit u, std::string_view payload) override {
     if (!header) return ParseError("a unit before the stream header");
+    const HeldUnits& held = decoder->held();
     const std::string what = u.whole() ? "packet " + std::to_string(u.id)
                                        : "part " + std::to_string(u.part) + " of packet " +
                                              std::to_string(u.id);
-    if (!held->Valid(u)) return ParseError("the server sent " + what + ", not in the stream");
-    if (held->Has(u)) return ParseError("the server sent " + what + " again");
-    if (!held->Ready(u)) return ParseError("the server sent " + what + " before what it needs");
+    if (!held.Valid(u)) return ParseError("the server sent " + what + ", not in the stream");
+    if (held.Has(u)) return ParseError("the server sent " + what + " again");
+    if (!held.Ready(u)) return ParseError("the server sent " + what + " before what it needs");
     if (remaining && payload.size() > *remaining) {
       return ParseError("the server sent more than the budget");
     }
     Status s = u.whole() ? decoder->AddPacket(u.id, payload)
                          : decoder->AddPacketPart(u.id, u.part, payload);
     if (!s.ok()) return s.WithContext(what);
-    const uint32_t parts = held->PartCount(u.id);
+    const uint32_t parts = held.PartCount(u.id);
     units_held += u.whole() && parts > 0 ? parts : 1;
-    held->Add(u);
     payloads[{u.id, u.part}] = std::string(payload);
     payload_bytes += payload.size();
     if (remaining) *remaining -= payload.size();
@@ -130,7 +125,7 @@ struct RegionSession::Impl : UnitSink {
       return it->second;
     }
     std::vector<std::string> parts;
-    for (uint32_t p = 0; p < held->PartCount(id); ++p) parts.push_back(payloads.at({id, p}));
+    for (uint32_t p = 0; p < decoder->PartCount(id); ++p) parts.push_back(payloads.at({id, p}));
     return JoinPacketParts(parts);
   }
 };
@@ -162,53 +157,39 @@ net::awaitable<Status> RegionSession::Fetch(std::optional<Region> region,
   s.report = true;
   s.remaining = budget;
   bool header_paid = !budget_counts_header || !budget;
-  int failures = 0;
-  net::steady_timer timer(s.transport->executor());
-  for (;;) {
-    const size_t before = s.units_held;
-    const bool had_header = s.header.has_value();
-    Status done;
+  // One try: the header if it is not held, else the units.
+  auto step = [&]() -> net::awaitable<Result<bool>> {
     if (!s.header) {
-      done = co_await s.GetHeader();
-      if (done.ok()) continue;
-    } else {
-      if (!header_paid) {
-        const uint64_t header = ContainerSize(*s.header, {});
-        if (*s.remaining < header) {
-          s.report = false;
-          co_return InvalidArgument("budget " + std::to_string(*s.remaining) +
-                                    " is smaller than the stream header (" +
-                                    std::to_string(header) + " bytes)");
-        }
-        *s.remaining -= header;
-        header_paid = true;
+      MWC_CO_RETURN_IF_ERROR(co_await s.GetHeader());
+      co_return false;
+    }
+    if (!header_paid) {
+      const uint64_t header = ContainerSize(*s.header, {});
+      if (*s.remaining < header) {
+        co_return InvalidArgument("budget " + std::to_string(*s.remaining) +
+                                  " is smaller than the stream header (" +
+                                  std::to_string(header) + " bytes)");
       }
-      UnitStreamRequest request;
-      request.region = region;
-      request.order = s.options.order;
-      request.max_level = s.options.max_level;
-      request.held = EncodeHeldUnits(*s.held, *s.numbering);
-      request.budget = s.remaining;
-      done = co_await s.transport->StreamUnits(request, s);
-      if (done.ok()) break;
+      *s.remaining -= header;
+      header_paid = true;
     }
-    if (done.code() != StatusCode::kIoError) {
-      s.transport->Close();
-      s.report = false;
-      co_return done;
-    }
-    // A transfer that delivered something starts the count again.
-    if (s.units_held > before || s.header.has_value() != had_header) failures = 0;
-    if (++failures >= s.options.retry.max_attempts) {
-      s.report = false;
-      co_return done.WithContext("gave up after " + std::to_string(failures) + " attempts");
-    }
-    ++s.retries;
-    timer.expires_after(BackoffDelay(s.options.retry, failures));
-    auto [ec] = co_await timer.async_wait(net::as_tuple(net::use_awaitable));
-    if (ec) co_return IoError("interrupted while waiting to retry");
-  }
+    UnitStreamRequest request;
+    request.region = region;
+    request.order = s.options.order;
+    request.max_level = s.options.max_level;
+    request.held = EncodeHeldUnits(s.decoder->held(), *s.numbering);
+    request.budget = s.remaining;
+    MWC_CO_RETURN_IF_ERROR(co_await s.transport->StreamUnits(request, s));
+    co_return true;
+  };
+  const Status status = co_await RetryWithBackoff(
+      s.transport->executor(), s.options.retry, s.retries, step,
+      [&s] { return std::make_pair(s.units_held, s.header.has_value()); });
   s.report = false;
+  if (!status.ok()) {
+    if (status.code() != StatusCode::kIoError) s.transport->Close();
+    co_return status;
+  }
   s.remaining.reset();
   co_return Status::Ok();
 }
@@ -217,24 +198,8 @@ Status RegionSession::FetchBlocking(std::optional<Region> region,
                                     std::optional<uint64_t> budget, bool budget_counts_header,
                                     const ProgressHandler& on_progress) {
   if (!impl_->io) return InvalidArgument("FetchBlocking needs the URL constructor");
-  Status result(StatusCode::kInternal, "the fetch did not finish");
-  bool finished = false;
-  net::co_spawn(*impl_->io, Fetch(std::move(region), budget, budget_counts_header, on_progress),
-                [&](std::exception_ptr e, Status s) {
-                  if (e) {
-                    try {
-                      std::rethrow_exception(e);
-                    } catch (const std::exception& ex) {
-                      s = Status(StatusCode::kInternal, ex.what());
-                    }
-                  }
-                  result = std::move(s);
-                  finished = true;
-                });
-  impl_->io->restart();
-  while (!finished && impl_->io->run_one() > 0) {
-  }
-  return result;
+  return RunToCompletion(*impl_->io,
+                         Fetch(std::move(region), budget, budget_counts_header, on_progress));
 }
 
 Status RegionSession::Restore(std::string_view container, std::string_view parts) {
@@ -265,7 +230,8 @@ uint64_t RegionSession::header_bytes() const {
   return impl_->header ? ContainerSize(*impl_->header, {}) : 0;
 }
 std::string RegionSession::HeldText() const {
-  return impl_->header ? EncodeHeldUnits(*impl_->held, *impl_->numbering) : std::string();
+  return impl_->header ? EncodeHeldUnits(impl_->decoder->held(), *impl_->numbering)
+                       : std::string();
 }
 
 std::string RegionSession::Container() const {
@@ -275,8 +241,9 @@ std::string RegionSession::Container() const {
   // needs all of a split dependency's parts): these form a valid container.
   std::vector<uint32_t> ids;
   std::string payloads;
-  for (uint32_t id = 0; id < s.held->packet_count(); ++id) {
-    if (!s.held->Has({id})) continue;
+  const HeldUnits& held = s.decoder->held();
+  for (uint32_t id = 0; id < held.packet_count(); ++id) {
+    if (!held.Has({id})) continue;
     ids.push_back(id);
     payloads += s.WholePayload(id);
   }
@@ -290,7 +257,7 @@ std::string RegionSession::Parts() const {
   // Unit numbers follow the packet ids: each part after what it needs.
   for (size_t n = 0; n < s.numbering->size(); ++n) {
     const StreamUnit u = s.numbering->unit(n);
-    if (u.whole() || s.held->Has({u.id}) || !s.held->Has(u)) continue;
+    if (u.whole() || s.decoder->HasPacket(u.id) || !s.decoder->held().Has(u)) continue;
     AppendUnitRecord(out, u, s.payloads.at({u.id, u.part}));
   }
   return out;

@@ -2,12 +2,15 @@
 
 #include <algorithm>
 #include <exception>
+#include <utility>
 #include <optional>
 
 #include "co_status.h"
 #include "header_limit.h"
 #include "meshwave/container.h"
 #include "net.h"
+#include "retry.h"
+#include "run_to_completion.h"
 #include "stream_splitter.h"
 
 namespace meshwave::client {
@@ -296,30 +299,13 @@ net::awaitable<Status> Session::Fetch(Budget budget,
                                       ProgressHandler on_progress) {
   Impl& s = *impl_;
   s.on_progress = std::move(on_progress);
-  int failures = 0;
-  net::steady_timer timer(s.transport->executor());
-  for (;;) {
-    const size_t before = s.cursor();
-    const bool had_header = s.header.has_value();
-    auto done = co_await s.Step(budget);
-    if (done.ok()) {
-      if (*done) break;
-      continue;
-    }
-    if (done.status().code() != StatusCode::kIoError) {
-      s.transport->Close();
-      co_return done.status();
-    }
-    // A transfer that delivered something starts the count again.
-    if (s.cursor() > before || s.header.has_value() != had_header) failures = 0;
-    if (++failures >= s.options.retry.max_attempts) {
-      co_return done.status().WithContext(
-          "gave up after " + std::to_string(failures) + " attempts");
-    }
-    ++s.retries;
-    timer.expires_after(BackoffDelay(s.options.retry, failures));
-    auto [ec] = co_await timer.async_wait(net::as_tuple(net::use_awaitable));
-    if (ec) co_return IoError("interrupted while waiting to retry");
+  Status status = co_await RetryWithBackoff(
+      s.transport->executor(), s.options.retry, s.retries,
+      [&s, &budget] { return s.Step(budget); },
+      [&s] { return std::make_pair(s.cursor(), s.header.has_value()); });
+  if (!status.ok()) {
+    if (status.code() != StatusCode::kIoError) s.transport->Close();
+    co_return status;
   }
   if (s.header) {
     const uint64_t reached = ContainerSize(*s.header, s.Held());
@@ -335,18 +321,9 @@ void Session::AsyncFetch(Budget budget, ProgressHandler on_progress,
   net::co_spawn(impl_->transport->executor(),
                 Fetch(budget, std::move(on_progress)),
                 [done = std::move(done)](std::exception_ptr e, Status s) {
-                  if (e) {
-                    // Only allocation failures and bugs throw: report, do not
-                    // crash.
-                    try {
-                      std::rethrow_exception(e);
-                    } catch (const std::exception& ex) {
-                      s = Status(StatusCode::kInternal, ex.what());
-                    } catch (...) {
-                      s = Status(StatusCode::kInternal, "unknown exception");
-                    }
-                  }
-                  if (done) done(std::move(s));
+                  // Only allocation failures and bugs throw: report, do not
+                  // crash.
+                  if (done) done(StatusOf(e, std::move(s)));
                 });
 }
 

@@ -8,6 +8,7 @@
 
 #include "co_status.h"
 #include "meshwave/client/transport.h"
+#include "meshwave/region_text.h"
 #include "net.h"
 #include "server_connection.h"
 #include "websocket.pb.h"

@@ -8,6 +8,7 @@
 
 #include <vector>
 
+#include "meshwave/mesh_io.h"
 #include "meshwave/metrics.h"
 #include "meshwave/semiregular_input.h"
 #include "test_data.h"

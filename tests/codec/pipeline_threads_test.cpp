@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "meshwave/encoder.h"
+#include "meshwave/mesh_io.h"
 #include "meshwave/remesh.h"
 #include "meshwave/semiregular_input.h"
 #include "test_data.h"

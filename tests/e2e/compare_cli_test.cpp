@@ -15,6 +15,8 @@
 #include "e2e/cli_runner.h"
 #include "meshwave.pb.h"
 #include "meshwave/mesh.h"
+#include "meshwave/mesh_io.h"
+#include "meshwave/mesh_stats.h"
 #include "test_data.h"
 
 namespace meshwave {

@@ -7,6 +7,7 @@
 
 #include "e2e/cli_runner.h"
 #include "meshwave.pb.h"
+#include "meshwave/mesh_io.h"
 #include "meshwave/metrics.h"
 #include "meshwave/mesh.h"
 #include "meshwave/semiregular.h"

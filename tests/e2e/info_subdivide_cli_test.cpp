@@ -6,6 +6,7 @@
 #include "e2e/cli_runner.h"
 #include "meshwave.pb.h"
 #include "meshwave/mesh.h"
+#include "meshwave/mesh_io.h"
 
 namespace meshwave {
 namespace {

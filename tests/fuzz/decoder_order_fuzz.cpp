@@ -17,7 +17,7 @@
 
 #include "fuzz_fixture_testonly.h"
 #include "meshwave/progressive_decoder.h"
-#include "stream/packet_parts.h"
+#include "meshwave/packet_parts.h"
 
 using namespace meshwave;
 

@@ -8,6 +8,7 @@
 
 #include "fuzz_fixture_testonly.h"
 #include "meshwave/mesh.h"
+#include "meshwave/mesh_io.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string_view bytes(reinterpret_cast<const char*>(data), size);

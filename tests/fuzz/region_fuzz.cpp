@@ -8,7 +8,7 @@
 #include <cstdlib>
 #include <string_view>
 
-#include "meshwave/region.h"
+#include "meshwave/region_text.h"
 
 namespace {
 

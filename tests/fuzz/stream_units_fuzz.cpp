@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "fuzz_fixture_testonly.h"
+#include "meshwave/region_order.h"
 #include "meshwave/stream_units.h"
 
 using namespace meshwave;
@@ -21,10 +22,10 @@ namespace {
 
 struct Units {
   StreamPrecincts precincts;
-  HeldUnits empty;  // points into precincts
+  HeldUnits empty;
   UnitNumbering numbering;
   explicit Units(StreamPrecincts p)
-      : precincts(std::move(p)), empty(fuzz::GetFixture().header, precincts), numbering(empty) {}
+      : precincts(std::move(p)), empty(fuzz::GetFixture().header, precincts.parents()), numbering(empty) {}
 };
 
 const Units& GetUnits() {

@@ -10,8 +10,8 @@
 #include <string_view>
 
 #include "fuzz_fixture_testonly.h"
-#include "mesh_id.h"
-#include "stream_query.h"
+#include "meshwave/client_message.h"
+#include "meshwave/mesh_id.h"
 #include "ws_protocol.h"
 
 using namespace meshwave;
@@ -27,14 +27,15 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const ClientRequest& q = *r;
     if (q.kind != ClientRequest::Kind::kRefine) {
       fuzz::Require(IsValidMeshId(q.mesh_id), "a request names a valid mesh id");
-      fuzz::Require(q.max_level >= -1 && q.max_level <= kMaxLevelLimit, "max_level in range");
-      fuzz::Require(!q.budget || *q.budget <= kMaxBudget, "budget in range");
+      fuzz::Require(q.stream.max_level >= -1 && q.stream.max_level <= kMaxLevelLimit,
+                    "max_level in range");
+      fuzz::Require(!q.stream.budget || *q.stream.budget <= kMaxBudget, "budget in range");
       fuzz::Require(q.rate <= kMaxRate, "rate in range");
       fuzz::Require(q.rate == 0 || q.rate >= kMinRate, "a paced rate is at least the minimum");
     } else {
       fuzz::Require(q.extra_bytes >= 1 && q.extra_bytes <= kMaxBudget, "extra_bytes in range");
     }
-    if (q.header_only) fuzz::Require(!q.budget, "header_only has no budget");
+    if (q.header_only) fuzz::Require(!q.stream.budget, "header_only has no budget");
   } else {
     fuzz::Require(!r.status().message().empty(), "a refusal says why");
   }

@@ -5,6 +5,9 @@
 #include "catalog.h"
 
 #include <gtest/gtest.h>
+#include <sqlite3.h>
+
+#include <algorithm>
 
 #include "postgres_connection.h"
 #include "postgres_migrations.h"
@@ -149,11 +152,156 @@ TEST_P(CatalogTest, IngestLockExcludesOtherHandles) {
   EXPECT_TRUE(acquired);
 }
 
+TEST_P(CatalogTest, KeepsOriginalsWithTheirMeshes) {
+  auto catalog = OpenCatalog();
+  ASSERT_TRUE(catalog);
+  const Original original =
+      DescribeOriginal({{"cow.obj", "v 0 0 0"}, {"tex/cow.png", "PNG"}}, "cow.obj").value();
+  CatalogEntry a = Entry("00000000000a", 1);
+  a.original = original.digest;
+  a.settings = "fidelity=84 max_vertex_ratio=4 remesh=auto precinct=4096 split=48";
+  a.format_version = 7;
+  CatalogEntry b = Entry("00000000000b", 2);
+  b.original = original.digest;  // the same upload under another name
+  ASSERT_TRUE(catalog->Insert(a, &original).ok());
+  ASSERT_TRUE(catalog->Insert(b, &original).ok());  // its rows are there already
+  CatalogEntry wrong = Entry("00000000000c", 3);
+  EXPECT_EQ(catalog->Insert(wrong, &original).code(), StatusCode::kInternal);  // not its original
+
+  auto found = catalog->Find(a.id);
+  ASSERT_TRUE(found.ok() && found->has_value());
+  EXPECT_EQ((*found)->original, original.digest);
+  EXPECT_EQ((*found)->settings, a.settings);
+  EXPECT_EQ((*found)->format_version, 7u);
+  auto back = catalog->FindOriginal(original.digest);
+  ASSERT_TRUE(back.ok() && back->has_value()) << back.status().ToString();
+  EXPECT_EQ((*back)->main, "cow.obj");
+  EXPECT_EQ((*back)->format, "obj");
+  EXPECT_EQ((*back)->bytes, original.bytes);
+  ASSERT_EQ((*back)->files.size(), 2u);
+  EXPECT_EQ((*back)->files[1].name, "tex/cow.png");
+  EXPECT_EQ((*back)->files[1].sha256, original.files[1].sha256);
+  EXPECT_EQ(catalog->OriginalBlobs()->size(), 2u);
+
+  // The original goes with its last mesh.
+  EXPECT_TRUE(*catalog->Remove(a.id));
+  EXPECT_TRUE(catalog->FindOriginal(original.digest)->has_value());
+  EXPECT_TRUE(*catalog->Remove(b.id));
+  EXPECT_FALSE(catalog->FindOriginal(original.digest)->has_value());
+  EXPECT_TRUE(catalog->OriginalBlobs()->empty());
+}
+
+TEST_P(CatalogTest, SwapsContainersAndKeepsTheOldOnesRetired) {
+  auto catalog = OpenCatalog();
+  auto other = OpenCatalog();  // another replica
+  ASSERT_TRUE(catalog && other);
+  const CatalogEntry before = Entry("00000000000a", 5);
+  ASSERT_TRUE(catalog->Insert(before).ok());
+  const int64_t g0 = *other->Generation();
+
+  CatalogEntry now = Entry("00000000000a", 99);
+  now.sha256 = std::string(64, 'f');
+  now.container = "containers/" + now.sha256 + ".mwv";
+  now.bytes = 4321;
+  now.format_version = 7;
+  now.settings = "fidelity=84 max_vertex_ratio=4 remesh=auto precinct=1024 split=48";
+  now.name = "ignored";  // the id, name, source, original and time stay
+  // Only when the row still names the container it was made from.
+  EXPECT_FALSE(*catalog->ReplaceContainer(before.id, std::string(64, '1'), now, 100));
+  EXPECT_EQ(*other->Generation(), g0);
+  EXPECT_TRUE(*catalog->ReplaceContainer(before.id, before.sha256, now, 100));
+  EXPECT_GT(*other->Generation(), g0);
+  auto row = other->Find(before.id);
+  ASSERT_TRUE(row.ok() && row->has_value());
+  EXPECT_EQ((*row)->sha256, now.sha256);
+  EXPECT_EQ((*row)->container, now.container);
+  EXPECT_EQ((*row)->bytes, 4321u);
+  EXPECT_EQ((*row)->format_version, 7u);
+  EXPECT_EQ((*row)->settings, now.settings);
+  EXPECT_EQ((*row)->name, before.name);
+  EXPECT_EQ((*row)->created_unix, 5);
+  // The old container stays among the paths to keep until it expires.
+  auto paths = other->ContainerPaths();
+  ASSERT_TRUE(paths.ok());
+  EXPECT_EQ(paths->size(), 2u);
+  EXPECT_NE(std::find(paths->begin(), paths->end(), before.container), paths->end());
+  EXPECT_TRUE(other->ExpireRetired(100)->empty());  // retired at 100: not before it
+  auto expired = other->ExpireRetired(101);
+  ASSERT_TRUE(expired.ok());
+  ASSERT_EQ(expired->size(), 1u);
+  EXPECT_EQ((*expired)[0], before.container);
+  EXPECT_EQ(other->ContainerPaths()->size(), 1u);
+  // A deleted mesh cannot be swapped.
+  EXPECT_TRUE(*catalog->Remove(before.id));
+  EXPECT_FALSE(*catalog->ReplaceContainer(before.id, now.sha256, before, 200));
+}
+
+TEST_P(CatalogTest, GenerationMovesWithEveryChange) {
+  auto catalog = OpenCatalog();
+  ASSERT_TRUE(catalog);
+  const int64_t g0 = *catalog->Generation();
+  ASSERT_TRUE(catalog->Insert(Entry("00000000000a", 1)).ok());
+  const int64_t g1 = *catalog->Generation();
+  EXPECT_GT(g1, g0);
+  EXPECT_FALSE(*catalog->Remove("00000000000b"));  // nothing removed
+  EXPECT_EQ(*catalog->Generation(), g1);
+  EXPECT_TRUE(*catalog->Remove("00000000000a"));
+  EXPECT_GT(*catalog->Generation(), g1);
+}
+
 INSTANTIATE_TEST_SUITE_P(Backends, CatalogTest,
                          ::testing::Values(CatalogBackend::kSqlite, CatalogBackend::kPostgres),
                          meshwave::testing::CatalogBackendName);
 
 // --- SQLite only --------------------------------------------------------
+
+// A catalog made before its schema was versioned (the meshes table alone,
+// user_version 0) is migrated on open, its rows kept.
+TEST(SqliteCatalogTest, MigratesACatalogFromBeforeVersionedSchemas) {
+  TempDir tmp;
+  std::filesystem::create_directories(tmp / "old");
+  {
+    sqlite3* db = nullptr;
+    ASSERT_EQ(sqlite3_open((tmp / "old/catalog.db").c_str(), &db), SQLITE_OK);
+    ASSERT_EQ(sqlite3_exec(db,
+                           "CREATE TABLE meshes (id TEXT PRIMARY KEY NOT NULL, name TEXT NOT NULL, "
+                           "source TEXT NOT NULL, vertices INTEGER NOT NULL, faces INTEGER NOT "
+                           "NULL, levels INTEGER NOT NULL, packets INTEGER NOT NULL, bytes "
+                           "INTEGER NOT NULL, container TEXT NOT NULL, sha256 TEXT NOT NULL, "
+                           "created INTEGER NOT NULL);"
+                           "INSERT INTO meshes VALUES ('00000000000a', 'old', 'old.off', 1, 2, 3, "
+                           "4, 5, 'containers/x.mwv', 'x', 6);",
+                           nullptr, nullptr, nullptr),
+              SQLITE_OK);
+    sqlite3_close(db);
+  }
+  auto catalog = SqliteCatalog::Open(tmp / "old");
+  ASSERT_TRUE(catalog.ok()) << catalog.status().ToString();
+  auto row = (*catalog)->Find("00000000000a");
+  ASSERT_TRUE(row.ok() && row->has_value());
+  EXPECT_EQ((*row)->name, "old");
+  EXPECT_EQ((*row)->format_version, 0u);  // not recorded then
+  EXPECT_TRUE((*row)->original.empty());
+  EXPECT_TRUE((*catalog)->Generation().ok());
+  catalog->reset();
+  // Opening again applies nothing twice.
+  EXPECT_TRUE(SqliteCatalog::Open(tmp / "old").ok());
+}
+
+TEST(SqliteCatalogTest, RefusesASchemaNewerThanTheBinary) {
+  TempDir tmp;
+  ASSERT_TRUE(SqliteCatalog::Open(tmp / "c").ok());
+  {
+    sqlite3* db = nullptr;
+    ASSERT_EQ(sqlite3_open((tmp / "c/catalog.db").c_str(), &db), SQLITE_OK);
+    ASSERT_EQ(sqlite3_exec(db, "PRAGMA user_version = 999;", nullptr, nullptr, nullptr), SQLITE_OK);
+    sqlite3_close(db);
+  }
+  auto catalog = SqliteCatalog::Open(tmp / "c");
+  ASSERT_FALSE(catalog.ok());
+  EXPECT_EQ(catalog.status().code(), StatusCode::kUnsupported);
+  EXPECT_NE(catalog.status().message().find("upgrade meshwave-server"), std::string::npos);
+}
 
 TEST(SqliteCatalogTest, CreatesMissingDirectoryInWalMode) {
   TempDir tmp;

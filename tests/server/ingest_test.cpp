@@ -12,7 +12,9 @@
 #include "core/durable_file.h"
 #include "e2e/cli_runner.h"
 #include "meshwave/container.h"
+#include "meshwave/mesh_io.h"
 #include "server/catalog_backends_testonly.h"
+#include "mesh_identity.h"
 #include "sha256.h"
 #include "test_data.h"
 
@@ -39,7 +41,17 @@ TEST_P(IngestTest, StoresAContentAddressedContainer) {
   EXPECT_EQ(e.name, "holes");
   EXPECT_EQ(e.source, "holes.off");
   EXPECT_EQ(e.container, "containers/" + e.sha256 + ".mwv");
-  EXPECT_EQ(e.id, e.sha256.substr(0, 12));
+  EXPECT_EQ(e.format_version, kStreamFormatVersion);
+  EXPECT_EQ(e.settings, FormatEncodeSettings(EncodeChoices{}));
+  // The original is kept, content-addressed, and names the mesh.
+  const std::string file = ReadBytes(SampleMesh("holes.off"));
+  auto original = catalog->FindOriginal(e.original);
+  ASSERT_TRUE(original.ok() && original->has_value());
+  EXPECT_EQ((*original)->main, "holes.off");
+  ASSERT_EQ((*original)->files.size(), 1u);
+  EXPECT_EQ((*original)->files[0].sha256, Sha256Hex(file));
+  EXPECT_EQ(ReadBytes(OriginalBlobPath(catalog->store_dir(), Sha256Hex(file))), file);
+  EXPECT_EQ(e.id, MeshIdOf(e.original, e.settings, "holes"));
   const std::string bytes = ReadBytes(catalog->ContainerPath(e));
   EXPECT_EQ(Sha256Hex(bytes), e.sha256);
   EXPECT_EQ(bytes.size(), e.bytes);
@@ -50,8 +62,7 @@ TEST_P(IngestTest, StoresAContentAddressedContainer) {
   EXPECT_TRUE(catalog->Find(e.id)->has_value());
 }
 
-// A remeshed mesh ingested on one thread and on three: the same container,
-// so the second finds the first's entry.
+// A remeshed mesh ingested on one thread and on three: the same container.
 TEST_P(IngestTest, ThreadCountDoesNotChangeTheContainer) {
   auto catalog = OpenCatalog();
   ASSERT_TRUE(catalog);
@@ -61,13 +72,19 @@ TEST_P(IngestTest, ThreadCountDoesNotChangeTheContainer) {
   // Under the sanitizers one remesh instead of the default fidelity's
   // repeated ones (the same parallel remesher; 48 s a backend under ASan).
   if (meshwave::testing::kUnderSanitizer) one.fidelity_db = three.fidelity_db = 0;
+  auto other = Catalog::Open((tmp_ / "other").string());
+  ASSERT_TRUE(other.ok());
   auto a = IngestMeshFile(*catalog, SampleMesh("elephant.off"), "", one);
-  auto b = IngestMeshFile(*catalog, SampleMesh("elephant.off"), "", three);
+  auto b = IngestMeshFile(**other, SampleMesh("elephant.off"), "", three);
   ASSERT_TRUE(a.ok() && b.ok());
   EXPECT_TRUE(a->remeshed);
-  EXPECT_FALSE(a->already_present);
-  EXPECT_TRUE(b->already_present);
+  EXPECT_FALSE(b->already_present);
   EXPECT_EQ(a->entry.sha256, b->entry.sha256);
+  EXPECT_EQ(a->entry.id, b->entry.id);
+  // In the same catalog, the same mesh is found without encoding it again.
+  auto c = IngestMeshFile(*catalog, SampleMesh("elephant.off"), "", three);
+  ASSERT_TRUE(c.ok());
+  EXPECT_TRUE(c->already_present);
 }
 
 TEST_P(IngestTest, SameFileTwiceGivesTheSameEntry) {
@@ -89,8 +106,8 @@ TEST_P(IngestTest, TwoHandlesIngestingTheSameMeshAtOnceMakeOneEntry) {
   const std::string bytes = ReadBytes(SampleMesh("holes.off"));
   Result<IngestResult> ra = Status(StatusCode::kInternal, "not run");
   Result<IngestResult> rb = ra;
-  std::thread t([&] { ra = IngestMeshBytes(*a, bytes, MeshFormat::kOff, "h", "h.off"); });
-  rb = IngestMeshBytes(*b, bytes, MeshFormat::kOff, "h", "h.off");
+  std::thread t([&] { ra = IngestMeshBytes(*a, bytes, "h", "h.off"); });
+  rb = IngestMeshBytes(*b, bytes, "h", "h.off");
   t.join();
   ASSERT_TRUE(ra.ok()) << ra.status().ToString();
   ASSERT_TRUE(rb.ok()) << rb.status().ToString();
@@ -112,8 +129,8 @@ TEST(IngestSqliteTest, RemeshesIrregularInput) {
 TEST_P(IngestTest, RejectsMalformedMeshLeavingNothing) {
   auto catalog = OpenCatalog();
   ASSERT_TRUE(catalog);
-  auto r = IngestMeshBytes(*catalog, "ply\nformat ascii 1.0\nelement vertex 99999999\n",
-                           MeshFormat::kPly, "bad", "bad.ply");
+  auto r = IngestMeshBytes(*catalog, "ply\nformat ascii 1.0\nelement vertex 99999999\n", "bad",
+                           "bad.ply");
   EXPECT_FALSE(r.ok());
   EXPECT_EQ(*catalog->Count(), 0u);
   EXPECT_EQ(CountFilesIn(catalog->containers_dir()), 0u);
@@ -131,13 +148,23 @@ TEST_P(IngestTest, RemovesOrphanAndTemporaryFiles) {
   const auto temp = catalog->containers_dir() / (std::string(kDurableTempPrefix) + "123-0-x.mwv");
   std::ofstream(orphan) << "orphan";
   std::ofstream(temp) << "half";
+  // The same for originals: a blob whose row never came, and a half write.
+  const auto orphan_blob = OriginalBlobPath(catalog->store_dir(), std::string(64, 'b'));
+  const auto temp_blob =
+      catalog->store_dir() / "originals" / (std::string(kDurableTempPrefix) + "9-0-y");
+  std::ofstream(orphan_blob) << "orphan";
+  std::ofstream(temp_blob) << "half";
   auto report = RemoveOrphans(*catalog);
   ASSERT_TRUE(report.ok());
   EXPECT_EQ(report->orphan_files, 1u);
-  EXPECT_EQ(report->temp_files, 1u);
+  EXPECT_EQ(report->orphan_originals, 1u);
+  EXPECT_EQ(report->temp_files, 2u);
   EXPECT_FALSE(std::filesystem::exists(orphan));
   EXPECT_FALSE(std::filesystem::exists(temp));
+  EXPECT_FALSE(std::filesystem::exists(orphan_blob));
+  EXPECT_FALSE(std::filesystem::exists(temp_blob));
   EXPECT_TRUE(std::filesystem::exists(catalog->ContainerPath(r->entry)));
+  EXPECT_EQ(CountFilesIn(catalog->store_dir() / "originals"), 1u);
 }
 
 TEST_P(IngestTest, RemoveEntryDeletesRowThenFile) {
@@ -148,7 +175,27 @@ TEST_P(IngestTest, RemoveEntryDeletesRowThenFile) {
   EXPECT_TRUE(*RemoveEntry(*catalog, r->entry.id));
   EXPECT_FALSE(catalog->Find(r->entry.id)->has_value());
   EXPECT_FALSE(std::filesystem::exists(catalog->ContainerPath(r->entry)));
+  EXPECT_EQ(CountFilesIn(catalog->store_dir() / "originals"), 0u);  // no other mesh used it
   EXPECT_FALSE(*RemoveEntry(*catalog, r->entry.id));
+}
+
+// The same upload under two names: two meshes, one original; deleting one
+// keeps the original for the other.
+TEST_P(IngestTest, AnOriginalSharedByTwoMeshesGoesWithTheLast) {
+  auto catalog = OpenCatalog();
+  ASSERT_TRUE(catalog);
+  auto a = IngestMeshFile(*catalog, SampleMesh("holes.off"), "first");
+  auto b = IngestMeshFile(*catalog, SampleMesh("holes.off"), "second");
+  ASSERT_TRUE(a.ok() && b.ok());
+  EXPECT_NE(a->entry.id, b->entry.id);
+  EXPECT_EQ(a->entry.original, b->entry.original);
+  EXPECT_EQ(CountFilesIn(catalog->store_dir() / "originals"), 1u);
+  EXPECT_TRUE(*RemoveEntry(*catalog, a->entry.id));
+  EXPECT_EQ(CountFilesIn(catalog->store_dir() / "originals"), 1u);
+  EXPECT_TRUE(catalog->FindOriginal(b->entry.original)->has_value());
+  EXPECT_TRUE(*RemoveEntry(*catalog, b->entry.id));
+  EXPECT_EQ(CountFilesIn(catalog->store_dir() / "originals"), 0u);
+  EXPECT_FALSE(catalog->FindOriginal(b->entry.original)->has_value());
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, IngestTest,

@@ -1,7 +1,7 @@
 // What a client of region requests keeps (docs/API.md, "Region requests"),
-// for the server tests: the header's precincts and units, the units held,
-// a decoder fed every unit as it arrives. Refuses a unit sent twice or
-// before what it needs.
+// for the server tests: a decoder fed every unit as it arrives, and the
+// units it holds (its held()). Refuses a unit sent twice or before what it
+// needs.
 #ifndef MESHWAVE_TESTS_SERVER_REGION_RECEIVER_TESTONLY_H_
 #define MESHWAVE_TESTS_SERVER_REGION_RECEIVER_TESTONLY_H_
 
@@ -13,7 +13,6 @@
 #include <string_view>
 
 #include "meshwave/progressive_decoder.h"
-#include "meshwave/region_order.h"
 #include "meshwave/stream_header.h"
 #include "meshwave/stream_units.h"
 
@@ -26,23 +25,19 @@ class RegionReceiver {
     auto h = ReadStreamHeader(header);
     EXPECT_TRUE(h.ok()) << h.status().ToString();
     header_ = *std::move(h);
-    auto precincts = StreamPrecincts::Create(header_);
-    EXPECT_TRUE(precincts.ok()) << precincts.status().ToString();
-    precincts_ = std::make_unique<StreamPrecincts>(*std::move(precincts));
-    held_.emplace(header_, *precincts_);
-    numbering_.emplace(*held_);
     auto d = ProgressiveDecoder::Create(header_);
     EXPECT_TRUE(d.ok()) << d.status().ToString();
     decoder_ = std::move(d).value();
+    numbering_.emplace(decoder_->held());
   }
 
   Status Receive(StreamUnit u, std::string_view payload) {
-    if (!held_->Valid(u)) return InvalidArgument("no such unit");
-    if (held_->Has(u)) return InvalidArgument("unit sent twice: packet " + std::to_string(u.id));
-    if (!held_->Ready(u)) return InvalidArgument("unit before what it needs");
+    const HeldUnits& held = decoder_->held();
+    if (!held.Valid(u)) return InvalidArgument("no such unit");
+    if (held.Has(u)) return InvalidArgument("unit sent twice: packet " + std::to_string(u.id));
+    if (!held.Ready(u)) return InvalidArgument("unit before what it needs");
     MW_RETURN_IF_ERROR(u.whole() ? decoder_->AddPacket(u.id, payload)
                                  : decoder_->AddPacketPart(u.id, u.part, payload));
-    held_->Add(u);
     ++units_;
     parts_ += !u.whole();
     return Status::Ok();
@@ -56,15 +51,15 @@ class RegionReceiver {
     return Status::Ok();
   }
 
-  std::string Held() const { return EncodeHeldUnits(*held_, *numbering_); }
+  std::string Held() const { return EncodeHeldUnits(decoder_->held(), *numbering_); }
   bool AllHeld() const {
     for (size_t n = 0; n < numbering_->size(); ++n) {
-      if (!held_->Has(numbering_->unit(n))) return false;
+      if (!decoder_->held().Has(numbering_->unit(n))) return false;
     }
     return true;
   }
   const StreamHeader& header() const { return header_; }
-  const HeldUnits& held() const { return *held_; }
+  const HeldUnits& held() const { return decoder_->held(); }
   const UnitNumbering& numbering() const { return *numbering_; }
   ProgressiveDecoder& decoder() { return *decoder_; }
   size_t units() const { return units_; }
@@ -72,8 +67,6 @@ class RegionReceiver {
 
  private:
   StreamHeader header_;
-  std::unique_ptr<StreamPrecincts> precincts_;
-  std::optional<HeldUnits> held_;
   std::optional<UnitNumbering> numbering_;
   std::unique_ptr<ProgressiveDecoder> decoder_;
   size_t units_ = 0;

@@ -10,6 +10,7 @@
 
 #include "catalog.h"
 #include "meshwave/container.h"
+#include "meshwave/mesh_io.h"
 #include "meshwave/metrics.h"
 #include "meshwave/progressive_decoder.h"
 #include "server_http_fixture_testonly.h"
@@ -105,9 +106,9 @@ TEST_F(ServerHttpTest, UploadWithAFidelityReachesItAgainstTheUpload) {
             204u);
 }
 
-// A catalog an older build wrote (docs/DEPLOY.md, "Upgrading across a
-// stream format version"): the row and the file are intact, but this build
-// reads another format version. That is the server's condition, not the
+// A container of a format version this build no longer reads (older than
+// the previous one, docs/DEPLOY.md "Upgrades"): the row and the file are
+// intact, but this build cannot read them. That is the server's condition, not the
 // client's: 500, naming both versions, and the other meshes still served.
 TEST_F(ServerHttpTest, AContainerOfAnotherFormatVersionAnswers500NamingBothVersions) {
   const std::string id = ids_.at("holes_copy");
@@ -122,7 +123,7 @@ TEST_F(ServerHttpTest, AContainerOfAnotherFormatVersionAnswers500NamingBothVersi
   ASSERT_TRUE(parsed.ok()) << parsed.status().ToString();
   proto::StreamHeader header;
   ASSERT_TRUE(header.ParseFromString(parsed->header.bytes_without_present));
-  const uint32_t older = kFormatVersion - 1;
+  const uint32_t older = kOldestReadFormatVersion - 1;
   header.set_format_version(older);
   std::string bytes = SerializeContainerHead(header.SerializeAsString(), parsed->ids);
   for (std::string_view payload : parsed->payloads) bytes += payload;
@@ -140,12 +141,67 @@ TEST_F(ServerHttpTest, AContainerOfAnotherFormatVersionAnswers500NamingBothVersi
     EXPECT_EQ(r.status, 500u) << target;
     EXPECT_TRUE(IsJsonError(r)) << r.body;
     EXPECT_NE(r.body.find("format version " + std::to_string(older) +
-                          " (this build reads version " + std::to_string(kFormatVersion) + ")"),
+                          " (this build reads versions " +
+                          std::to_string(kOldestReadFormatVersion) + " to " +
+                          std::to_string(kFormatVersion) + ")"),
               std::string::npos)
         << r.body;
   }
   EXPECT_EQ(HttpGet(port_, "/v1/meshes/" + ids_.at("holes") + "/stream?budget=5000").status,
             200u);
+}
+
+// The originals: what was uploaded comes back byte for byte to the holder
+// of the upload token, to nobody else, and no shared cache may keep it.
+TEST_F(ServerHttpTest, OriginalsGoToTheTokenHolderOnly) {
+  const std::pair<std::string, std::string> auth = {"Authorization", std::string("Bearer ") + kToken};
+  const std::string mesh = ReadBytes(SampleMesh("holes.off"));
+  HttpReply r = HttpConnection(port_).Send(http::verb::post, "/v1/meshes?name=mine", {auth}, mesh);
+  ASSERT_EQ(r.status, 201u) << r.body;
+  proto::MeshSummary summary;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(r.body, &summary).ok());
+  EXPECT_TRUE(summary.has_original());
+  const std::string base = "/v1/meshes/" + summary.id() + "/original";
+
+  EXPECT_EQ(HttpGet(port_, base).status, 401u);
+  EXPECT_EQ(HttpGet(port_, base + "/mine.off").status, 401u);
+  EXPECT_EQ(HttpGet(port_, base, {{"Authorization", "Bearer nope"}}).status, 403u);
+  r = HttpGet(port_, base, {auth});
+  ASSERT_EQ(r.status, 200u) << r.body;
+  EXPECT_EQ(r.Header("cache-control"), "private, no-store");
+  proto::OriginalInfo info;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(r.body, &info).ok()) << r.body;
+  EXPECT_EQ(info.mesh_id(), summary.id());
+  EXPECT_EQ(info.main(), "mine.off");
+  EXPECT_EQ(info.format(), "off");
+  ASSERT_EQ(info.files_size(), 1);
+  EXPECT_EQ(info.files(0).sha256(), Sha256Hex(mesh));
+  EXPECT_EQ(info.files(0).bytes(), mesh.size());
+  r = HttpGet(port_, base + "/mine.off", {auth});
+  ASSERT_EQ(r.status, 200u);
+  EXPECT_EQ(r.body, mesh);
+  EXPECT_EQ(r.Header("cache-control"), "private, no-store");
+  EXPECT_EQ(HttpGet(port_, base + "/other.off", {auth}).status, 404u);
+  // The catalog's own entries, ingested from files, kept theirs too.
+  r = HttpGet(port_, "/v1/meshes/" + ids_.at("holes") + "/original/holes.off", {auth});
+  ASSERT_EQ(r.status, 200u);
+  EXPECT_EQ(r.body, mesh);
+}
+
+// An upload larger than upload_limit_bytes is refused from its declared
+// length, before its body is sent, with a message naming the limit.
+TEST_F(ServerHttpTest, AnUploadOverTheLimitIsRefusedBeforeItIsRead) {
+  HttpConnection c(port_);
+  const HttpReply r = c.SendRaw(std::string("POST /v1/meshes?name=big HTTP/1.1\r\nHost: x\r\n") +
+                                "Authorization: Bearer " + kToken +
+                                "\r\nContent-Length: 1000000000\r\nExpect: 100-continue\r\n\r\n");
+  EXPECT_EQ(r.status, 413u);
+  EXPECT_TRUE(IsJsonError(r));
+  EXPECT_NE(r.body.find("1000000000 bytes, more than this server's limit of 67108864 bytes "
+                        "(upload_limit_bytes)"),
+            std::string::npos)
+      << r.body;
+  EXPECT_EQ(ParseList(HttpGet(port_, "/v1/meshes").body).total(), 4u);
 }
 
 }  // namespace

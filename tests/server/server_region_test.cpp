@@ -187,6 +187,8 @@ TEST_F(ServerRegionTest, HttpRefusesBadRegionsAndHeldSets) {
        {sphere + "&view=" + View(), sphere + "&screen_error=2", std::string("region=1,2,3,0"),
         std::string("view=0,0,1,0,0,0,45,800,600"), sphere + "&from=3", sphere + "&held=a+b",
         sphere + "&held=_____________________________________________________", sphere + "&max_level=9",
+        sphere + "&held=AQ==",  // base64url without padding
+        sphere + "&order=rd",   // an order beside a region
         "view=" + View() + "&screen_error=-1"}) {
     const HttpReply r = Stream(q);
     EXPECT_EQ(r.status, 400u) << q << ": " << r.body;
@@ -201,6 +203,14 @@ TEST_F(ServerRegionTest, HttpRefusesBadRegionsAndHeldSets) {
   const HttpReply r = Stream("order=rd&held=" + text);
   EXPECT_EQ(r.status, 400u) << r.body;
   EXPECT_NE(r.body.find("depends on"), std::string::npos) << r.body;
+  // At most ceil(units / 8) bytes: trailing zero bytes within that are
+  // accepted, one more (even zero) is refused.
+  std::string first((rx.numbering().size() + 7) / 8, '\0');
+  first[0] = 1;
+  EXPECT_EQ(Stream("order=rd&held=" + Base64Url(first)).status, 200u);
+  first.push_back('\0');
+  const HttpReply longer = Stream("order=rd&held=" + Base64Url(first));
+  EXPECT_EQ(longer.status, 400u) << longer.body;
 }
 
 // --- WebSocket ---
@@ -316,6 +326,101 @@ TEST_F(ServerRegionTest, WebSocketStartSelectsWhatGetStreamSelects) {
     EXPECT_EQ(by_ws.Held(), by_http.Held()) << payload;
     EXPECT_EQ(by_ws.units(), by_http.units());
   }
+}
+
+// docs/API.md, WebSocket: a start's budget for units counts the header's
+// container (8 bytes of magic and length, then the header) and the units'
+// payloads; Selection.bytes counts the same (the header at a start, the
+// payloads; no message framing and, unlike GET /stream's Content-Length,
+// no record heads); a resume on a new connection starts its cursors at 0.
+TEST_F(ServerRegionTest, WebSocketUnitBudgetsSelectionBytesAndCursorsAreAsDocumented) {
+  RegionReceiver probe(*header_);
+  const uint64_t header_cost = ContainerSize(probe.header(), {});
+  EXPECT_EQ(header_cost, 8 + header_->size());
+  // What GET /stream sends for a payload budget: its units' payload bytes.
+  const HttpReply r = Stream("region=" + Sphere() + "&budget=" + Share(0.1));
+  uint64_t payloads = 0, records = 0;
+  UnitRecordReader reader(uint64_t{1} << 32, [&](StreamUnit, std::string_view p) {
+    payloads += p.size();
+    ++records;
+    return Status::Ok();
+  });
+  ASSERT_TRUE(reader.Feed(r.body).ok());
+  ASSERT_GT(records, 3u);
+  EXPECT_GT(r.body.size(), payloads);  // Content-Length counts the record heads too
+  for (const uint64_t budget : {header_cost + payloads, header_cost + payloads - 1}) {
+    WsTestClient c(server_->port());
+    ASSERT_TRUE(c.open());
+    ASSERT_TRUE(c.Send(Start(*id_, Sphere(), budget)));
+    proto::Selection selection;
+    uint64_t got = 0;
+    size_t packets = 0;
+    for (const auto& m : c.ReadUntilDone()) {
+      ASSERT_FALSE(m.has_error()) << m.error().message();
+      if (m.has_start()) selection = m.start().selection();
+      if (m.has_packet()) {
+        got += m.packet().payload().size();
+        ++packets;
+      }
+    }
+    if (budget == header_cost + payloads) {
+      EXPECT_EQ(packets, records);  // exactly what fits with the header
+      EXPECT_EQ(got, payloads);
+    } else {
+      EXPECT_LT(packets, records);  // one byte less: the last unit does not fit
+    }
+    EXPECT_EQ(selection.bytes(), header_cost + got);
+  }
+  // A refine counts payloads; a resume on a new connection, held units
+  // named, starts its cursors at 0.
+  RegionReceiver rx(*header_);
+  {
+    WsTestClient c(server_->port());
+    ASSERT_TRUE(c.open());
+    Take(c, Start(*id_, Sphere(), header_cost + payloads), &rx);
+    proto::ClientMessage refine;
+    refine.mutable_refine()->set_extra_bytes(payload_ / 20);
+    ASSERT_TRUE(c.Send(refine));
+    uint64_t got = 0;
+    proto::Selection selection;
+    for (const auto& m : c.ReadUntilDone()) {
+      if (m.has_selection()) selection = m.selection();
+      if (m.has_packet()) {
+        got += m.packet().payload().size();
+        const StreamUnit u{m.packet().id(),
+                           m.packet().has_part() ? m.packet().part() : StreamUnit::kWholePacket};
+        ASSERT_TRUE(rx.Receive(u, m.packet().payload()).ok());
+      }
+    }
+    EXPECT_EQ(selection.from_cursor(), records);
+    EXPECT_EQ(selection.bytes(), got);
+  }
+  WsTestClient c(server_->port());
+  ASSERT_TRUE(c.open());
+  proto::ClientMessage resume;
+  resume.mutable_resume()->set_mesh_id(*id_);
+  resume.mutable_resume()->set_held(rx.Held());
+  resume.mutable_resume()->set_region(Sphere());
+  resume.mutable_resume()->set_budget(payload_ / 20);
+  ASSERT_TRUE(c.Send(resume));
+  uint64_t got = 0;
+  size_t packets = 0;
+  proto::Selection selection;
+  proto::Done done;
+  for (const auto& m : c.ReadUntilDone()) {
+    ASSERT_FALSE(m.has_error()) << m.error().message();
+    if (m.has_selection()) selection = m.selection();
+    if (m.has_packet()) {
+      EXPECT_EQ(m.packet().cursor(), packets++);
+      got += m.packet().payload().size();
+    }
+    if (m.has_done()) done = m.done();
+  }
+  ASSERT_GT(packets, 0u);
+  EXPECT_EQ(selection.from_cursor(), 0u);
+  EXPECT_EQ(selection.next_cursor(), packets);
+  EXPECT_EQ(done.next_cursor(), packets);
+  EXPECT_EQ(selection.bytes(), got);  // no header in a resume
 }
 
 TEST_F(ServerRegionTest, WebSocketRefusesBadRegionRequestsAndStaysOpen) {

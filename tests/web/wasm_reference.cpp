@@ -106,7 +106,7 @@ bool WritePartCases(const std::string& dir, const StreamHeader& header,
   };
   auto precincts = StreamPrecincts::Create(header);
   if (!precincts.ok()) return fail(precincts.status());
-  const HeldUnits none(header, *precincts);
+  const HeldUnits none(header, precincts->parents());
   std::vector<std::vector<uint32_t>> part_lengths;
   for (uint32_t id = 0; id < payload.size(); ++id) {
     auto lengths = PartLengths(none, id, payload[id]);

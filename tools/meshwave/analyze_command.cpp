@@ -14,6 +14,7 @@
 #include "commands.h"
 #include "meshwave/analysis.h"
 #include "meshwave/mesh.h"
+#include "meshwave/mesh_io.h"
 #include "meshwave/rate_distortion.h"
 #include "meshwave/semiregular_input.h"
 #include "meshwave/stream_limits.h"

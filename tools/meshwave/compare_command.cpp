@@ -10,6 +10,8 @@
 #include "scaled_distance.h"
 #include "meshwave.pb.h"
 #include "meshwave/mesh.h"
+#include "meshwave/mesh_io.h"
+#include "meshwave/mesh_stats.h"
 #include "meshwave/metrics.h"
 
 namespace meshwave::cli {

@@ -8,6 +8,7 @@
 #include "meshwave.pb.h"
 #include "meshwave/container.h"
 #include "meshwave/mesh.h"
+#include "meshwave/mesh_io.h"
 #include "meshwave/progression.h"
 #include "meshwave/progressive_decoder.h"
 #include "meshwave/stream_limits.h"

@@ -13,6 +13,7 @@
 #include "meshwave/encoder.h"
 #include "meshwave/fidelity.h"
 #include "meshwave/mesh.h"
+#include "meshwave/mesh_io.h"
 #include "meshwave/semiregular.h"
 #include "meshwave/semiregular_input.h"
 #include "stream.pb.h"

@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "cli_util.h"
+#include "meshwave/mesh_io.h"
 #include "meshwave/metrics.h"
 
 namespace meshwave::cli {

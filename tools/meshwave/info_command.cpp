@@ -8,8 +8,12 @@
 #include "meshwave/gltf.h"
 #include "meshwave/mesh.h"
 #include "meshwave/mesh_asset.h"
+#include "meshwave/mesh_clean.h"
+#include "meshwave/mesh_io.h"
+#include "meshwave/mesh_stats.h"
 #include "meshwave/semiregular.h"
 #include "meshwave/stream_limits.h"
+#include "meshwave/subdivision.h"
 
 namespace meshwave::cli {
 namespace {

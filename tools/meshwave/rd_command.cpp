@@ -16,9 +16,12 @@
 #include "core/durable_file.h"
 #include "meshwave.pb.h"
 #include "meshwave/mesh.h"
+#include "meshwave/mesh_clean.h"
+#include "meshwave/mesh_io.h"
 #include "meshwave/rate_distortion.h"
 #include "meshwave/remesh.h"
 #include "meshwave/semiregular.h"
+#include "meshwave/subdivision.h"
 
 namespace meshwave::cli {
 namespace {

@@ -23,7 +23,7 @@
 #include "meshwave/progressive_decoder.h"
 #include "meshwave/region.h"
 #include "meshwave/region_order.h"
-#include "stream/packet_index.h"  // HeaderDiagonal
+#include "meshwave/region_text.h"
 
 namespace meshwave::cli {
 namespace {
@@ -132,7 +132,7 @@ Result<Stream> Load(const std::string& path, std::string& bytes) {
   }
   MW_ASSIGN_OR_RETURN(StreamPrecincts precincts, StreamPrecincts::Create(h));
   s.precincts = std::make_unique<StreamPrecincts>(std::move(precincts));
-  s.units = std::make_unique<HeldUnits>(h, *s.precincts);
+  s.units = std::make_unique<HeldUnits>(h, s.precincts->parents());
   for (uint32_t id = 0; id < s.payload.size(); ++id) {
     MW_ASSIGN_OR_RETURN(std::vector<uint32_t> lengths, PartLengths(*s.units, id, s.payload[id]));
     s.part_lengths.push_back(std::move(lengths));
@@ -213,7 +213,7 @@ Status Run(const RegionArgs& args) {
   std::printf("%-10s %8s %15s %15s %15s   %s\n", "region", "vertices", "at 10 %", "at 25 %",
               "at 50 %", "bytes until the region is exact: rd / region (ratio)");
   for (const Case& c : cases) {
-    const HeldUnits none(h, *s.precincts);
+    const HeldUnits none(h, s.precincts->parents());
     const Region region{c.sphere, std::nullopt};
     const std::vector<StreamUnit> by_region =
         RegionOrder(h, *s.precincts, s.part_lengths, region, none);

@@ -1,4 +1,5 @@
 #include "region_fetch.h"
+#include "meshwave/region_text.h"
 
 #include <iostream>
 #include <variant>

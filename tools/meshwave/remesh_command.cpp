@@ -15,6 +15,7 @@
 #include "meshwave.pb.h"
 #include "meshwave/fidelity.h"
 #include "meshwave/mesh.h"
+#include "meshwave/mesh_io.h"
 #include "meshwave/metrics.h"
 #include "meshwave/remesh.h"
 

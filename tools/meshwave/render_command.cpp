@@ -12,6 +12,7 @@
 #include "commands.h"
 #include "core/durable_file.h"
 #include "meshwave/mesh.h"
+#include "meshwave/mesh_io.h"
 #include "png_writer.h"
 #include "rasterizer.h"
 

@@ -6,8 +6,11 @@
 #include "cli_util.h"
 #include "commands.h"
 #include "meshwave/mesh.h"
+#include "meshwave/mesh_clean.h"
+#include "meshwave/mesh_io.h"
 #include "meshwave/semiregular.h"
 #include "meshwave/stream_limits.h"
+#include "meshwave/subdivision.h"
 
 namespace meshwave::cli {
 namespace {

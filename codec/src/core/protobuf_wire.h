@@ -1,8 +1,9 @@
 // The protobuf wire format (protobuf.dev/programming-guides/encoding) for the
 // few places that write or read it without the protobuf library: the decoder
-// library (no protobuf, for WebAssembly) reading the header and appending the
-// container's `present` list, and the server writing a packet message's
-// prefix without copying the payload. Field numbers come from the .proto:
+// library (no protobuf, for WebAssembly) reading the header (with
+// core/protobuf_wire_reader.h) and appending the container's `present` list,
+// the unit records of region streams, and the server writing a packet
+// message's prefix without copying the payload. Field numbers come from the .proto:
 // generated kFooFieldNumber constants where protobuf is linked, constants
 // pinned to those by a test elsewhere.
 #ifndef MESHWAVE_CORE_PROTOBUF_WIRE_H_

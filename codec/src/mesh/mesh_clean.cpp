@@ -11,6 +11,7 @@
 #include <Eigen/Geometry>
 
 #include "meshwave/mesh.h"
+#include "meshwave/mesh_clean.h"
 
 namespace meshwave {
 namespace {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "meshwave/mesh.h"
+#include "meshwave/mesh_stats.h"
 
 namespace meshwave {
 namespace {

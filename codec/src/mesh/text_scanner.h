@@ -12,6 +12,8 @@
 #include <string_view>
 #include <system_error>
 
+#include "core/quoted.h"  // Quoted, for the readers' messages
+
 namespace meshwave {
 
 inline bool IsSpace(char c) {
@@ -133,20 +135,6 @@ inline bool ParseUint64(std::string_view token, uint64_t* out) {
   const char* end = token.data() + token.size();
   auto [ptr, ec] = std::from_chars(token.data(), end, *out);
   return ec == std::errc() && ptr == end;
-}
-
-// A token quoted for an error message: at most 40 characters, with bytes
-// that are not printable ASCII shown as '?'.
-inline std::string Quoted(std::string_view token) {
-  constexpr size_t kMaxShown = 40;
-  std::string out = "\"";
-  for (size_t i = 0; i < token.size() && i < kMaxShown; ++i) {
-    char c = token[i];
-    out += (c >= 0x20 && c < 0x7f) ? c : '?';
-  }
-  if (token.size() > kMaxShown) out += "...";
-  out += '"';
-  return out;
 }
 
 }  // namespace meshwave

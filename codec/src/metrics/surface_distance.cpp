@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/parallel_for.h"
+#include "meshwave/mesh_stats.h"
 #include "meshwave/metrics.h"
 #include "metrics/input_checks.h"
 #include "metrics/surface_sampler.h"
@@ -27,9 +28,13 @@ struct OneSided {
   size_t samples = 0;
 };
 
-// Distances from the samples of `from` to the surface indexed by `to`.
+// Distances from the samples of `from` to the surface indexed by `to`;
+// sparse sampling when every face and vertex would exceed `max_samples`.
 OneSided Measure(const TriMesh& from, const metrics::TriangleBvh& to,
-                 uint64_t face_samples, uint64_t seed) {
+                 uint64_t face_samples, uint64_t seed, uint64_t max_samples) {
+  const bool sparse =
+      max_samples > 0 && face_samples + from.positions.size() > max_samples;
+  if (sparse) face_samples = max_samples;
   double sum = 0, sum_squared = 0, max = 0;
   // Consecutive samples are close, so the face hit last is a good first
   // guess and lets the BVH prune almost everything at once.
@@ -42,7 +47,8 @@ OneSided Measure(const TriMesh& from, const metrics::TriangleBvh& to,
         sum += d;
         sum_squared += hit.distance_squared;
         max = std::max(max, d);
-      });
+      },
+      sparse);
   OneSided out;
   out.samples = static_cast<size_t>(n);
   out.rms = std::sqrt(sum_squared / static_cast<double>(n));
@@ -86,10 +92,13 @@ Result<SurfaceDistance> SymmetricSurfaceDistance(
   OneSided ab, ba;
   ParallelInvoke(
       options.threads,
-      [&] { ab = Measure(a, metrics::TriangleBvh(b.positions, b.faces), count, options.seed); },
+      [&] {
+        ab = Measure(a, metrics::TriangleBvh(b.positions, b.faces), count, options.seed,
+                     options.max_samples);
+      },
       [&] {
         ba = Measure(b, metrics::TriangleBvh(a.positions, a.faces), count,
-                     options.seed ^ kSeedMixForB);
+                     options.seed ^ kSeedMixForB, options.max_samples);
       });
 
   SurfaceDistance out;

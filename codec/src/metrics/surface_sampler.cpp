@@ -20,8 +20,8 @@ double FaceArea(const TriMesh& mesh, const Face& face) {
                    .norm();
 }
 
-FaceSampleCounts::FaceSampleCounts(const TriMesh& mesh, uint64_t total)
-    : total_(total) {
+FaceSampleCounts::FaceSampleCounts(const TriMesh& mesh, uint64_t total, bool at_least_one)
+    : total_(total), at_least_one_(at_least_one) {
   for (const Face& face : mesh.faces) total_weight_ += FaceArea(mesh, face);
   if (!(total_weight_ > 0) || !std::isfinite(total_weight_)) {
     by_area_ = false;
@@ -41,19 +41,19 @@ uint64_t FaceSampleCounts::Next(double face_area) {
       std::max(cumulative_count_, static_cast<uint64_t>(scaled));
   const uint64_t count = cumulative - cumulative_count_;
   cumulative_count_ = cumulative;
-  return std::max<uint64_t>(count, 1);
+  return at_least_one_ ? std::max<uint64_t>(count, 1) : count;
 }
 
 uint64_t VisitSurfaceSamples(const TriMesh& mesh, uint64_t face_samples,
                              uint64_t seed,
-                             const std::function<void(const Vec3&)>& visit) {
+                             const std::function<void(const Vec3&)>& visit, bool sparse) {
   std::mt19937_64 rng(seed);
-  FaceSampleCounts counts(mesh, face_samples);
-  std::vector<bool> seen(mesh.positions.size(), false);
+  FaceSampleCounts counts(mesh, face_samples, /*at_least_one=*/!sparse);
+  std::vector<bool> seen(sparse ? 0 : mesh.positions.size(), false);
   uint64_t visited = 0;
   for (const Face& face : mesh.faces) {
     for (const uint32_t v : face) {
-      if (seen[v]) continue;
+      if (sparse || seen[v]) continue;
       seen[v] = true;
       visit(mesh.positions[v]);
       ++visited;

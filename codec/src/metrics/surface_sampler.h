@@ -21,7 +21,9 @@ double UnitInterval(uint64_t random_bits);
 // Without any area (all faces degenerate) faces count equally.
 class FaceSampleCounts {
  public:
-  FaceSampleCounts(const TriMesh& mesh, uint64_t total);
+  // `at_least_one` false: a face may get none (sparse sampling of a mesh
+  // with more faces than samples).
+  FaceSampleCounts(const TriMesh& mesh, uint64_t total, bool at_least_one = true);
   // Call once per face, in face order.
   uint64_t Next(double face_area);
 
@@ -31,6 +33,7 @@ class FaceSampleCounts {
   double cumulative_weight_ = 0;
   uint64_t cumulative_count_ = 0;
   bool by_area_ = true;
+  bool at_least_one_ = true;
 };
 
 double FaceArea(const TriMesh& mesh, const Face& face);
@@ -39,11 +42,15 @@ double FaceArea(const TriMesh& mesh, const Face& face);
 // order, first each corner not seen before (so every referenced vertex
 // once, unreferenced ones never), then the face's share of `face_samples`
 // uniform random points inside it (std::mt19937_64 seeded with `seed`).
-// Consecutive samples are near each other, which the caller can exploit.
-// Returns the number of samples. Contract: face indices are in range.
+// `sparse`: no vertex samples, and faces whose share rounds to zero get
+// none (exactly `face_samples` points by area, for meshes too large to
+// sample every face). Consecutive samples are near each other, which the
+// caller can exploit. Returns the number of samples. Contract: face
+// indices are in range.
 uint64_t VisitSurfaceSamples(const TriMesh& mesh, uint64_t face_samples,
                              uint64_t seed,
-                             const std::function<void(const Vec3&)>& visit);
+                             const std::function<void(const Vec3&)>& visit,
+                             bool sparse = false);
 
 }  // namespace meshwave::metrics
 

@@ -5,7 +5,7 @@
 #include "quant/deadzone_quantizer.h"
 #include "stream/decoder_setup.h"
 #include "stream/packet_index.h"
-#include "stream/sawt_field.h"
+#include "stream/sawt_field_decoder.h"
 #include "stream/stream_format.h"
 
 namespace meshwave {

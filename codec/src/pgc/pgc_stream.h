@@ -20,7 +20,7 @@
 #include "meshwave/status.h"
 #include "meshwave/wavelet.h"
 #include "pgc/zerotree_coder.h"
-#include "stream/base_mesh_codec.h"
+#include "stream/base_mesh_decoder.h"
 #include "stream/packet_index.h"
 
 namespace meshwave {

@@ -3,7 +3,9 @@
 #include <utility>
 
 #include "meshwave/fidelity.h"
+#include "meshwave/mesh_clean.h"
 #include "meshwave/remesh.h"
+#include "meshwave/subdivision.h"
 
 namespace meshwave {
 

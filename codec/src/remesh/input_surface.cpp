@@ -1,5 +1,6 @@
 #include "remesh/input_surface.h"
 #include "core/edge_key.h"
+#include "meshwave/mesh_stats.h"
 
 #include <Eigen/Geometry>
 

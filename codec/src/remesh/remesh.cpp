@@ -11,6 +11,8 @@
 #include <tuple>
 #include <utility>
 
+#include "meshwave/mesh_clean.h"
+#include "meshwave/mesh_stats.h"
 #include "remesh/base_flips.h"
 #include "remesh/coincident_vertices.h"
 #include "remesh/components.h"

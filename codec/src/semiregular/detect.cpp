@@ -10,6 +10,7 @@
 #include "core/edge_key.h"
 #include "core/hash_mix.h"
 #include "meshwave/semiregular.h"
+#include "meshwave/subdivision.h"
 #include "semiregular/vertex_rings.h"
 
 namespace meshwave {

@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "meshwave/semiregular.h"
+#include "meshwave/subdivision.h"
 
 namespace meshwave {
 namespace {

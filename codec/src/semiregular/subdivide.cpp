@@ -3,6 +3,7 @@
 #include <numbers>
 
 #include "meshwave/semiregular.h"
+#include "meshwave/subdivision.h"
 #include "meshwave/wavelet.h"
 #include "semiregular/vertex_rings.h"
 

@@ -6,41 +6,103 @@
 // or any older vertex. One bit per edge tells whether a face lies across it
 // and enters through it. About 4 bits per face, against 14 for the corner
 // cache this replaced.
+//
+// What the encoder (base_connectivity_encoder.h) and the decoder
+// (base_connectivity_decoder.h) must agree on: the contexts, and the coded
+// region whose border both sides track.
 #ifndef MESHWAVE_STREAM_BASE_CONNECTIVITY_H_
 #define MESHWAVE_STREAM_BASE_CONNECTIVITY_H_
 
+#include <algorithm>
+#include <array>
 #include <cstdint>
 #include <vector>
 
-#include "entropy/arithmetic_decoder.h"
-#include "entropy/arithmetic_encoder.h"
+#include "core/edge_index_table.h"
+#include "entropy/adaptive_golomb.h"
 #include "meshwave/mesh.h"
-#include "meshwave/status.h"
 
-namespace meshwave {
+namespace meshwave::connectivity {
 
-// The order the base mesh travels in: vertices numbered by first appearance
-// in the traversal, faces in traversal order, each rotated so that its gate
-// edge comes first.
-struct BaseMeshOrder {
-  std::vector<uint32_t> new_of_old;  // vertex renumbering
-  std::vector<Face> faces;           // in new vertex indices
-  uint32_t used_vertices = 0;        // vertices in a face (numbered first)
+struct ConnectivityContexts {
+  BinaryContext is_new_first;  // corners of a component's first face
+  BinaryContext is_new_third;  // the third vertex of a face entered by a gate
+  BinaryContext flipped;       // face oriented against the one it is entered from
+  BinaryContext on_border;
+  GolombContexts border_index;
+  GolombContexts back;         // next_new - 1 - v for any older vertex
+  BinaryContext enters[3];     // by edge slot of the face just coded
 };
 
-// The traversal of an edge-manifold face set (each edge in at most two
-// faces) that uses every vertex. With `enc`, also writes the code. Faces
-// already in transmission order come back unchanged.
-Result<BaseMeshOrder> TraverseBaseMesh(uint32_t vertex_count,
-                                       const std::vector<Face>& faces,
-                                       ArithmeticEncoder* enc);
+// An edge of a coded face through which a face not yet coded is entered,
+// directed as in the coded face.
+struct Gate {
+  uint32_t a, b;
+};
 
-// Reads `face_count` faces over `vertex_count` vertices. Safe on untrusted
-// bytes: every index and every edge use is checked.
-Result<std::vector<Face>> DecodeBaseConnectivity(ArithmeticDecoder& dec,
-                                                 uint32_t vertex_count,
-                                                 uint64_t face_count);
+// What both sides know: how many coded faces use each edge, and for every
+// vertex its neighbours across "open" edges (used by one coded face): the
+// border of the region coded so far.
+class CodedRegion {
+ public:
+  // For a region of about `faces` faces (a closed mesh's edges: 3/2 per face).
+  CodedRegion(uint32_t vertex_count, size_t faces)
+      : uses_(faces * 3 / 2), open_(vertex_count) {}
 
-}  // namespace meshwave
+  uint32_t Uses(uint32_t a, uint32_t b) const {
+    const uint32_t* n = uses_.Find(a, b);
+    return n == nullptr ? 0 : *n;
+  }
+
+  // False when an edge would be in a third face (not a manifold mesh).
+  bool Add(const Face& f) {
+    for (int c = 0; c < 3; ++c) {
+      const uint32_t a = f[c], b = f[(c + 1) % 3];
+      uint32_t& n = uses_.Emplace(a, b, 0).first;
+      if (n >= 2) return false;
+      if (++n == 1) {
+        open_[a].push_back(b);
+        open_[b].push_back(a);
+      } else {
+        Erase(open_[a], b);
+        Erase(open_[b], a);
+      }
+    }
+    return true;
+  }
+
+  // Vertices across open edges from a, then from b, latest first.
+  void BorderCandidates(uint32_t a, uint32_t b, std::vector<uint32_t>& out) const {
+    out.clear();
+    for (uint32_t v : {a, b}) {
+      for (auto it = open_[v].rbegin(); it != open_[v].rend(); ++it) {
+        if (*it != a && *it != b && std::find(out.begin(), out.end(), *it) == out.end()) {
+          out.push_back(*it);
+        }
+      }
+    }
+  }
+
+ private:
+  static void Erase(std::vector<uint32_t>& list, uint32_t v) {
+    auto it = std::find(list.begin(), list.end(), v);
+    if (it != list.end()) list.erase(it);
+  }
+
+  EdgeIndexTable uses_;  // faces coded per edge
+  std::vector<std::vector<uint32_t>> open_;
+};
+
+inline bool Distinct(const Face& f) { return f[0] != f[1] && f[1] != f[2] && f[0] != f[2]; }
+
+// Which edges of a face just coded (from slot `first`) still need their
+// "enters" bit: those no other coded face uses.
+inline std::array<bool, 3> EdgesToAsk(const CodedRegion& region, const Face& f, int first) {
+  std::array<bool, 3> ask{false, false, false};
+  for (int c = first; c < 3; ++c) ask[c] = region.Uses(f[c], f[(c + 1) % 3]) == 0;
+  return ask;
+}
+
+}  // namespace meshwave::connectivity
 
 #endif  // MESHWAVE_STREAM_BASE_CONNECTIVITY_H_

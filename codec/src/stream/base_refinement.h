@@ -8,36 +8,24 @@
 // bits only when they are worth more than details (a coarse base is what a
 // low-rate prefix needs: the fine base was 75-99 % of the bunny's,
 // elephant's and fandisk's qp-8 prefixes against Draco).
+//
+// What the encoder (base_refinement_encoder.h) and the decoder
+// (base_refinement_decoder.h) agree on: a packet's size and where a vertex
+// lies given the bits known.
 #ifndef MESHWAVE_STREAM_BASE_REFINEMENT_H_
 #define MESHWAVE_STREAM_BASE_REFINEMENT_H_
 
+#include <cstddef>
 #include <cstdint>
-#include <span>
-#include <string>
-#include <string_view>
-#include <vector>
 
 #include "bitplane/coefficient_octree.h"  // IntVec3
 #include "meshwave/mesh.h"
-#include "meshwave/status.h"
 #include "meshwave/stream_header.h"
 
 namespace meshwave {
 
 // Bytes of one refinement packet: one bit per coordinate, 3 per vertex.
 size_t BaseRefinementBytes(uint32_t vertex_count);
-
-// The packet of bitplane `plane` (R-1 down to 0) of the finest-grid
-// residuals (each coordinate in [0, 2^R)): bit 3 v + a of the payload (byte
-// k / 8, bit k % 8 from the least significant) is bit `plane` of vertex v's
-// coordinate a.
-std::string EncodeBaseRefinementPlane(std::span<const IntVec3> residual, int plane);
-
-// Adds the bits of packet `plane` to `known` (each coordinate's bits above
-// `plane` already there). Checks the length only: every bit pattern is a
-// valid refinement.
-Status DecodeBaseRefinementPlane(std::string_view payload, int plane,
-                                 std::vector<IntVec3>& known);
 
 // The position of a base vertex with coarse grid coordinates `coarse`
 // whose residual is known from bit `missing` up (`known`, lower bits 0):

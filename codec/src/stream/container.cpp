@@ -116,13 +116,7 @@ Result<ParsedContainer> ParseContainer(std::string_view bytes,
   auto header = ReadStreamHeader(bytes.substr(kContainerPreambleBytes, header_length));
   if (!header.ok()) return ParseError("container: the stream header does not parse");
   out.header = std::move(*header);
-  if (out.header.format_version != kFormatVersion) {
-    return Status(StatusCode::kUnsupported,
-                  "container: format version " +
-                      std::to_string(out.header.format_version) +
-                      " (this build reads version " +
-                      std::to_string(kFormatVersion) + ")");
-  }
+  MW_RETURN_IF_ERROR(CheckFormatVersion(out.header).WithContext("container"));
   const auto& index = out.header.packets;
   const size_t count = index.length.size();
   std::unordered_set<uint32_t> seen;

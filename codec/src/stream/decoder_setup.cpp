@@ -5,17 +5,13 @@
 
 #include "meshwave/stream_limits.h"
 #include "quant/deadzone_quantizer.h"
-#include "stream/sawt_field.h"
+#include "stream/sawt_field_decoder.h"
 #include "stream/stream_format.h"
 
 namespace meshwave {
 
 Status ValidateVersionAndLevels(const StreamHeader& h) {
-  if (h.format_version != kFormatVersion) {
-    return Status(StatusCode::kUnsupported,
-                  "stream format version " + std::to_string(h.format_version) +
-                      " (this build reads version " + std::to_string(kFormatVersion) + ")");
-  }
+  MW_RETURN_IF_ERROR(CheckFormatVersion(h).WithContext("stream"));
   const uint32_t levels = h.transform.levels;
   if (levels > kMaxStreamLevels) {
     return ParseError("header: " + std::to_string(levels) + " levels (at most " +

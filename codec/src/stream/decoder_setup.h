@@ -11,11 +11,11 @@
 #include "meshwave/status.h"
 #include "meshwave/stream_header.h"
 #include "meshwave/wavelet.h"
-#include "stream/base_mesh_codec.h"
+#include "stream/base_mesh_decoder.h"
 
 namespace meshwave {
 
-// The format version this build reads (kUnsupported otherwise) and at most
+// A format version this build reads (CheckFormatVersion) and at most
 // kMaxStreamLevels levels.
 Status ValidateVersionAndLevels(const StreamHeader& h);
 

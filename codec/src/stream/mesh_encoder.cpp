@@ -4,7 +4,7 @@
 #include <cmath>
 #include <string>
 
-#include "bitplane/bitplane_io.h"
+#include "bitplane/encoder_io.h"
 #include "bitplane/bitplane_passes.h"
 #include "bitplane/subband_layout.h"
 #include "core/parallel_for.h"
@@ -12,11 +12,11 @@
 #include "quant/deadzone_choice.h"
 #include "quant/deadzone_quantizer.h"
 #include "quant/subband_gains.h"
-#include "stream/base_mesh_codec.h"
-#include "stream/base_refinement.h"
+#include "stream/base_mesh_decoder.h"
+#include "stream/base_refinement_encoder.h"
 #include "stream/distortion_index_writer.h"
 #include "stream/packet_index.h"
-#include "stream/packet_parts.h"
+#include "meshwave/packet_parts.h"
 #include "stream/precinct_partition.h"
 #include "stream/stream_format.h"
 #include "stream/stream_format_writer.h"

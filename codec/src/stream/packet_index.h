@@ -115,9 +115,9 @@ std::vector<uint32_t> PacketChains(const StreamHeader& header);
 
 // The estimated PSNR rule, the one ProgressiveDecoder::EstimatedPsnr and
 // EstimatedPsnrCurve share: dB with the bounding-box diagonal of the header
-// as peak, from an estimated squared error summed over the header's
-// vertices; +infinity when no error is left.
-double HeaderDiagonal(const StreamHeader& header);
+// (HeaderDiagonal, meshwave/stream_header.h) as peak, from an estimated
+// squared error summed over the header's vertices; +infinity when no error
+// is left.
 double EstimatedPsnrFromDistortion(const StreamHeader& header, double diagonal,
                                    double distortion);
 

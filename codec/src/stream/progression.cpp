@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/protobuf_wire.h"
+#include "core/quoted.h"
 #include "meshwave/container.h"
 #include "quant/deadzone_quantizer.h"
 #include "stream/decoder_setup.h"
@@ -16,8 +17,8 @@ Result<Progression> ParseProgression(const std::string& name) {
   if (name == "quality") return Progression::kQuality;
   if (name == "resolution") return Progression::kResolution;
   if (name == "rd") return Progression::kRd;
-  return InvalidArgument("unknown order \"" + name +
-                         "\" (expected quality, resolution or rd)");
+  // The name may come from a client: quoted bounded and printable.
+  return InvalidArgument("unknown order " + Quoted(name) + " (quality, resolution, rd)");
 }
 
 const char* ProgressionName(Progression p) {

@@ -4,9 +4,10 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 
-#include "bitplane/bitplane_io.h"
+#include "bitplane/decoder_io.h"
 #include "bitplane/bitplane_passes.h"
 #include "bitplane/subband_layout.h"
 #include "core/deferred.h"
@@ -16,12 +17,12 @@
 #include "meshwave/semiregular.h"
 #include "meshwave/wavelet.h"
 #include "quant/deadzone_quantizer.h"
-#include "stream/base_mesh_codec.h"
+#include "stream/base_mesh_decoder.h"
 #include "stream/decoder_setup.h"
 #include "stream/packet_index.h"
-#include "stream/packet_parts.h"
+#include "meshwave/packet_parts.h"
 #include "stream/precinct_partition.h"
-#include "stream/sawt_field.h"
+#include "stream/sawt_field_decoder.h"
 #include "stream/stream_format.h"
 
 namespace meshwave {
@@ -59,12 +60,9 @@ struct ProgressiveDecoder::Impl {
   // Each level's stencils built on first use (level 0's by Create).
   std::unique_ptr<WaveletTransform> transform;
   DecodedBase base;
-  std::vector<char> have;
-  // Precincts: per subband their count and each one's parent precinct.
-  std::vector<std::vector<uint32_t>> precinct_parent;
-  // Parts held of split packets partly held (empty for the others), and
-  // their payload bytes.
-  std::vector<std::vector<char>> have_part;
+  // The units held, and the rules of what each needs first.
+  std::optional<HeldUnits> held;
+  // Payload bytes held of split packets partly held.
   std::vector<uint64_t> part_bytes;
   std::vector<std::vector<uint32_t>> chain_packets;  // per chain, in order
   // Subbands a packet has decoded into since the last Reset: the others
@@ -91,40 +89,11 @@ struct ProgressiveDecoder::Impl {
       return Status(StatusCode::kInvalidArgument,
                     "decoder is unusable after an earlier corrupt packet");
     }
-    if (id >= have.size()) {
+    if (id >= held->packet_count()) {
       return InvalidArgument("packet " + std::to_string(id) + " is not in the index of " +
-                             std::to_string(have.size()) + " packets");
+                             std::to_string(held->packet_count()) + " packets");
     }
     return Status::Ok();
-  }
-
-  uint32_t PartCount(uint32_t id) const {
-    if (!packets->IsSplit(id)) return 0;
-    return static_cast<uint32_t>(precinct_parent[static_cast<size_t>(packets->Subband(id))].size());
-  }
-  bool HasPart(uint32_t id, uint32_t part) const {
-    return have[id] || (!have_part[id].empty() && have_part[id][part]);
-  }
-  // Whether precinct p's share of packet `id` is held: its part, or the
-  // whole packet where it is not split.
-  bool HasShare(uint32_t id, uint32_t p) const {
-    return packets->IsSplit(id) ? HasPart(id, p) : have[id] != 0;
-  }
-  // The first dependency of part `part` of packet `id` not held, -1 if none.
-  int64_t MissingForPart(uint32_t id, uint32_t part) const {
-    const int j = packets->Subband(id);
-    const int b = packets->Bitplane(id);
-    if (int up = packets->Id(j, b + 1); up >= 0 && !HasShare(static_cast<uint32_t>(up), part)) {
-      return up;
-    }
-    if (parent_contexts() && j > 0) {
-      const uint32_t parent = precinct_parent[static_cast<size_t>(j)][part];
-      if (int above = packets->Id(j - 1, b);
-          above >= 0 && !HasShare(static_cast<uint32_t>(above), parent)) {
-        return above;
-      }
-    }
-    return -1;
   }
 
   // Payload bytes of packet `id` decoded (whole, or some of its parts):
@@ -132,11 +101,11 @@ struct ProgressiveDecoder::Impl {
   // order (its dependencies); a part counts for its share of the packet's
   // bytes. Summing the chains in a fixed order makes the estimate
   // independent of the order of arrival.
-  static void Record(Impl& m, uint32_t id, size_t bytes, bool whole) {
-    if (whole) {
-      m.have[id] = 1;
+  static void Record(Impl& m, StreamUnit unit, size_t bytes) {
+    const uint32_t id = unit.id;
+    m.held->Add(unit);
+    if (m.held->Has({id})) {
       ++m.decoded;
-      m.have_part[id].clear();
       m.part_bytes[id] = 0;
     } else {
       m.part_bytes[id] += bytes;
@@ -146,7 +115,7 @@ struct ProgressiveDecoder::Impl {
       const uint32_t chain = m.estimates.chain[id];
       double term = m.estimates.chain_start[chain];
       for (uint32_t q : m.chain_packets[chain]) {
-        if (m.have[q]) {
+        if (m.held->Has({q})) {
           term = m.estimates.after[q];
         } else if (m.part_bytes[q] > 0 && m.header.packets.length[q] > 0) {
           term -= m.estimates.reduction[q] * static_cast<double>(m.part_bytes[q]) /
@@ -246,8 +215,8 @@ Result<std::unique_ptr<ProgressiveDecoder>> ProgressiveDecoder::Create(
   const PrecinctPartition partition = PartitionIntoPrecincts(
       *m->hierarchy, m->base.grid, m->header.packets.precinct_coefficients);
   // Per subband, each precinct's parent (subband 0's: 0): also their count.
-  m->precinct_parent = partition.ParentsPerSubband();
-  if (partition.levels() > 0) m->precinct_parent[0].assign(partition.count(0), 0);
+  PrecinctParents parents = partition.ParentsPerSubband();
+  if (partition.levels() > 0) parents[0].assign(partition.count(0), 0);
   m->chain_packets.assign(m->estimates.chain_start.size(), {});
   for (uint32_t id = 0; id < m->estimates.chain.size(); ++id) {
     if (m->estimates.chain[id] < m->chain_packets.size()) {
@@ -256,7 +225,8 @@ Result<std::unique_ptr<ProgressiveDecoder>> ProgressiveDecoder::Create(
   }
   auto layouts = std::make_shared<SubbandLayoutBuilder>(
       *m->hierarchy, m->base.grid, m->header.octree_leaf_size,
-      partition.FacePrecinctsPerSubband(), m->precinct_parent);
+      partition.FacePrecinctsPerSubband(), parents);
+  m->held.emplace(m->header, std::move(parents));
   m->coding.Start(static_cast<size_t>(m->hierarchy->levels()),
                   [m, layouts](size_t j) {
                     Impl::SubbandCoding s{layouts->Next(), {}, {}};
@@ -292,9 +262,8 @@ void ProgressiveDecoder::Reset() {
     ForgetBaseRefinement(m.header.base, m.base);
   }
   m.touched.assign(m.coding.size(), 0);
-  m.have.assign(m.header.packets.length.size(), 0);
-  m.have_part.assign(m.have.size(), {});
-  m.part_bytes.assign(m.have.size(), 0);
+  m.held->Clear();
+  m.part_bytes.assign(m.held->packet_count(), 0);
   m.chain_now = m.estimates.chain_start;
   m.distortion = m.estimates.start();
   m.decoded = 0;
@@ -303,19 +272,14 @@ void ProgressiveDecoder::Reset() {
 }
 
 const StreamHeader& ProgressiveDecoder::header() const { return impl_->header; }
-size_t ProgressiveDecoder::packet_count() const { return impl_->have.size(); }
-bool ProgressiveDecoder::HasPacket(uint32_t id) const {
-  return id < impl_->have.size() && impl_->have[id];
-}
+size_t ProgressiveDecoder::packet_count() const { return impl_->held->packet_count(); }
+bool ProgressiveDecoder::HasPacket(uint32_t id) const { return impl_->held->Has({id}); }
+const HeldUnits& ProgressiveDecoder::held() const { return *impl_->held; }
 size_t ProgressiveDecoder::packets_decoded() const { return impl_->decoded; }
 uint64_t ProgressiveDecoder::payload_bytes_decoded() const { return impl_->bytes; }
 
 bool ProgressiveDecoder::DependenciesMet(uint32_t id) const {
-  if (id >= impl_->have.size()) return false;
-  for (uint32_t d : impl_->packets->Dependencies(id, impl_->parent_contexts())) {
-    if (!impl_->have[d]) return false;
-  }
-  return true;
+  return impl_->held->DependenciesMet({id});
 }
 
 Status ProgressiveDecoder::AddPacket(uint32_t id, std::string_view payload) {
@@ -336,9 +300,9 @@ Status ProgressiveDecoder::AddPacket(uint32_t id, std::string_view payload) {
            ", bitplane " + std::to_string(m.packets->Bitplane(p)) + ")";
   };
   auto what = [&] { return name(id); };
-  if (m.have[id]) return InvalidArgument(what() + " was already added");
-  for (uint32_t d : m.packets->Dependencies(id, m.parent_contexts())) {
-    if (!m.have[d]) return InvalidArgument(what() + " needs " + name(d) + " first");
+  if (m.held->Has({id})) return InvalidArgument(what() + " was already added");
+  if (int64_t missing = m.held->FirstMissing({id}); missing >= 0) {
+    return InvalidArgument(what() + " needs " + name(static_cast<uint32_t>(missing)) + " first");
   }
   if (payload.size() != index.length[id]) {
     return ParseError(what() + ": " + std::to_string(payload.size()) + " bytes, index says " +
@@ -354,17 +318,17 @@ Status ProgressiveDecoder::AddPacket(uint32_t id, std::string_view payload) {
       m.broken = true;
       return s.WithContext(what());
     }
-    Impl::Record(m, id, payload.size(), true);
+    Impl::Record(m, {id}, payload.size());
     return Status::Ok();
   }
-  const uint32_t precincts = static_cast<uint32_t>(m.precinct_parent[static_cast<size_t>(j)].size());
+  const auto precincts = static_cast<uint32_t>(m.coding.Get(static_cast<size_t>(j)).precincts.size());
   if (m.packets->IsSplit(id)) {
     auto split = SplitPacketParts(payload, precincts);
     if (!split.ok()) return split.status().WithContext(what());
     const std::vector<std::string_view>& parts = *split;
     m.touched[j] = 1;  // before decoding: a corrupt packet leaves its state changed
     for (uint32_t p = 0; p < precincts; ++p) {
-      if (m.HasPart(id, p)) continue;  // sent alone before
+      if (m.held->Has({id, p})) continue;  // sent alone before
       if (Status s = m.DecodePart(j, p, b, parts[p]); !s.ok()) return s.WithContext(what());
     }
   } else {
@@ -380,26 +344,24 @@ Status ProgressiveDecoder::AddPacket(uint32_t id, std::string_view payload) {
     }
   }
   // The bytes of parts held before were counted then.
-  Impl::Record(m, id, payload.size() - std::min<uint64_t>(m.part_bytes[id], payload.size()), true);
+  Impl::Record(m, {id}, payload.size() - std::min<uint64_t>(m.part_bytes[id], payload.size()));
   return Status::Ok();
 }
 
-uint32_t ProgressiveDecoder::PartCount(uint32_t id) const {
-  return id < impl_->have.size() ? impl_->PartCount(id) : 0;
-}
+uint32_t ProgressiveDecoder::PartCount(uint32_t id) const { return impl_->held->PartCount(id); }
 
 bool ProgressiveDecoder::HasPart(uint32_t id, uint32_t part) const {
-  return part < PartCount(id) && impl_->HasPart(id, part);
+  return part < PartCount(id) && impl_->held->Has({id, part});
 }
 
 bool ProgressiveDecoder::PartDependenciesMet(uint32_t id, uint32_t part) const {
-  return part < PartCount(id) && impl_->MissingForPart(id, part) < 0;
+  return part < PartCount(id) && impl_->held->DependenciesMet({id, part});
 }
 
 Status ProgressiveDecoder::AddPacketPart(uint32_t id, uint32_t part, std::string_view payload) {
   Impl& m = *impl_;
   MW_RETURN_IF_ERROR(m.CheckUsable(id));
-  const uint32_t count = m.PartCount(id);
+  const uint32_t count = m.held->PartCount(id);
   const int j = m.packets->Subband(id);
   const int b = m.packets->Bitplane(id);
   auto name = [&](uint32_t q) {
@@ -411,8 +373,8 @@ Status ProgressiveDecoder::AddPacketPart(uint32_t id, uint32_t part, std::string
   if (part >= count) {
     return InvalidArgument(what + ": the packet has " + std::to_string(count) + " parts");
   }
-  if (m.HasPart(id, part)) return InvalidArgument(what + " was already added");
-  if (int64_t missing = m.MissingForPart(id, part); missing >= 0) {
+  if (m.held->Has({id, part})) return InvalidArgument(what + " was already added");
+  if (int64_t missing = m.held->FirstMissing({id, part}); missing >= 0) {
     return InvalidArgument(what + " needs its share of " + name(static_cast<uint32_t>(missing)) +
                            " first");
   }
@@ -423,11 +385,7 @@ Status ProgressiveDecoder::AddPacketPart(uint32_t id, uint32_t part, std::string
   }
   m.touched[j] = 1;
   if (Status s = m.DecodePart(j, part, b, payload); !s.ok()) return s.WithContext(name(id));
-  if (m.have_part[id].empty()) m.have_part[id].assign(count, 0);
-  m.have_part[id][part] = 1;
-  const bool whole = std::all_of(m.have_part[id].begin(), m.have_part[id].end(),
-                                 [](char h) { return h != 0; });
-  Impl::Record(m, id, payload.size(), whole);
+  Impl::Record(m, {id, part}, payload.size());
   return Status::Ok();
 }
 

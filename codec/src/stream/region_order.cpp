@@ -10,7 +10,7 @@
 #include "semiregular/base_face_of.h"
 #include "stream/decoder_setup.h"
 #include "stream/packet_index.h"
-#include "stream/packet_parts.h"
+#include "meshwave/packet_parts.h"
 #include "stream/precinct_partition.h"
 #include "stream/stream_format.h"
 
@@ -55,75 +55,10 @@ Result<StreamPrecincts> StreamPrecincts::Create(const StreamHeader& header) {
   return out;
 }
 
-HeldUnits::HeldUnits(const StreamHeader& header, const StreamPrecincts& precincts)
-    : precincts_(&precincts) {
-  const PacketLayout layout(header);
-  const uint32_t n = static_cast<uint32_t>(layout.count());
-  const bool parents = header.coder == StreamCoder::k3xC;
-  for (uint32_t id = 0; id < n; ++id) {
-    const int j = layout.Subband(id);
-    const int b = layout.Bitplane(id);
-    subband_.push_back(j);
-    bitplane_.push_back(b);
-    up_.push_back(j < 0 ? layout.BaseId(b + 1) : layout.Id(j, b + 1));
-    parent_.push_back(j > 0 && parents ? layout.Id(j - 1, b) : -1);
-  }
-  split_planes_ = header.packets.split_planes;
-  whole_.assign(n, 0);
-  parts_.assign(n, {});
-}
-
-uint32_t HeldUnits::PartCount(uint32_t id) const {
-  if (id >= whole_.size() || subband_[id] < 0) return 0;
-  const auto j = static_cast<size_t>(subband_[id]);
-  if (j >= split_planes_.size() || static_cast<uint32_t>(bitplane_[id]) >= split_planes_[j]) {
-    return 0;
-  }
-  return precincts_->count(subband_[id]);
-}
-
-bool HeldUnits::Valid(StreamUnit u) const {
-  return u.id < whole_.size() && (u.whole() || u.part < PartCount(u.id));
-}
-
-bool HeldUnits::HasShare(uint32_t id, uint32_t p) const {
-  return whole_[id] || (!parts_[id].empty() && parts_[id][p]);
-}
-
-bool HeldUnits::Has(StreamUnit u) const {
-  if (!Valid(u)) return false;
-  return u.whole() ? whole_[u.id] != 0 : HasShare(u.id, u.part);
-}
-
-bool HeldUnits::Ready(StreamUnit u) const {
-  if (!Valid(u) || Has(u)) return false;
-  // Packet q held whole, or (for a part) precinct p's share of it.
-  auto has = [&](int q, uint32_t p) {
-    if (q < 0) return true;
-    const auto id = static_cast<uint32_t>(q);
-    if (whole_[id]) return true;
-    return !u.whole() && PartCount(id) > 0 && HasShare(id, p);
-  };
-  const uint32_t p = u.whole() ? 0 : u.part;
-  const uint32_t parent = u.whole() || subband_[u.id] <= 0 ? 0 : precincts_->parent(subband_[u.id], p);
-  return has(up_[u.id], p) && has(parent_[u.id], parent);
-}
-
-void HeldUnits::Add(StreamUnit u) {
-  if (!Valid(u)) return;
-  if (u.whole()) {
-    whole_[u.id] = 1;
-    parts_[u.id].clear();
-    return;
-  }
-  auto& parts = parts_[u.id];
-  if (whole_[u.id]) return;
-  if (parts.empty()) parts.assign(PartCount(u.id), 0);
-  parts[u.part] = 1;
-  if (std::all_of(parts.begin(), parts.end(), [](char c) { return c != 0; })) {
-    whole_[u.id] = 1;
-    parts.clear();
-  }
+PrecinctParents StreamPrecincts::parents() const {
+  PrecinctParents out;
+  for (const Subband& s : subbands_) out.push_back(s.parent);
+  return out;
 }
 
 Result<std::vector<std::string_view>> PacketParts(const HeldUnits& units, uint32_t id,

@@ -3,6 +3,7 @@
 #define MESHWAVE_STREAM_STREAM_FORMAT_H_
 
 #include <cstdint>
+#include <string>
 #include <string_view>
 
 #include "core/crc.h"  // Crc32c: the SAWT field's check
@@ -13,10 +14,31 @@
 
 namespace meshwave {
 
-// 3: Transform.sawt; 4: compact packet index; 5: base refinement packets;
-// 6: 3xC's significance contexts count significant neighbours;
-// 7: precincts and split packets
-inline constexpr uint32_t kFormatVersion = 7;
+// The version this build writes (meshwave/stream_header.h).
+inline constexpr uint32_t kFormatVersion = kStreamFormatVersion;
+// The oldest version it reads. Version 6 is version 7 without precincts
+// (docs/FORMAT.md 2.2): kept readable so that a catalog written by the
+// previous release is served while `meshwave-server reencode` brings it
+// to this one (docs/DEPLOY.md, "Upgrades"). Each format change keeps the
+// previous version readable the same way.
+inline constexpr uint32_t kOldestReadFormatVersion = 6;
+
+// The one check of a header's format version: one this build reads
+// (kUnsupported, naming both, otherwise), and nothing a version-6 stream
+// cannot hold (kParseError).
+inline Status CheckFormatVersion(const StreamHeader& h) {
+  if (h.format_version < kOldestReadFormatVersion || h.format_version > kFormatVersion) {
+    return Status(StatusCode::kUnsupported,
+                  "format version " + std::to_string(h.format_version) +
+                      " (this build reads versions " + std::to_string(kOldestReadFormatVersion) +
+                      " to " + std::to_string(kFormatVersion) + ")");
+  }
+  if (h.format_version == 6 &&
+      (h.packets.precinct_coefficients != 0 || !h.packets.split_planes.empty())) {
+    return ParseError("header: a version-6 stream with precincts (they came with version 7)");
+  }
+  return Status::Ok();
+}
 inline constexpr char kContainerMagic[4] = {'M', 'W', 'V', '1'};
 // StreamHeader.present's field number in stream.proto, for the decoder
 // library, which has no generated code (stream_format_writer.cpp asserts it
@@ -45,7 +67,7 @@ inline Result<TransformSettings> ReadTransformSettings(const StreamHeader::Trans
   }
   s.frames = t.local_frames ? FrameMode::kLocal : FrameMode::kGlobal;
   // The SAWT choices need the decoded base mesh: the decoders read them
-  // (stream/sawt_field.h) once it is built.
+  // (stream/sawt_field_decoder.h) once it is built.
   if (s.predictor == Predictor::kSawt && !t.sawt) {
     return ParseError("header: SAWT transform without its filter choices");
   }

@@ -5,11 +5,13 @@
 
 #include "mesh/vertex_normals.h"
 #include "quant/deadzone_quantizer.h"
-#include "stream/sawt_field.h"
+#include "stream/sawt_field_encoder.h"
 #include "stream/stream_format.h"
 #include "stream/stream_format_writer.h"
 #include "wavelet/sawt_choice.h"
 #include "wavelet/sawt_regions.h"
+#include "meshwave/mesh_stats.h"
+#include "meshwave/subdivision.h"
 
 namespace meshwave {
 

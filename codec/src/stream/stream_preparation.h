@@ -8,7 +8,8 @@
 #include "meshwave/encoder.h"
 #include "quant/subband_gains.h"
 #include "stream.pb.h"
-#include "stream/base_mesh_codec.h"
+#include "stream/base_mesh_decoder.h"
+#include "stream/base_mesh_encoder.h"
 
 namespace meshwave {
 

@@ -77,6 +77,14 @@ inline Frame MakeFrame(const Vec3& normal_hint, const Vec3& tangent_hint) {
   return f;
 }
 
+// Face normals of the level being transformed; kept per thread so repeated
+// transforms of large meshes do not allocate (and fault in) new pages. The
+// forward and the inverse transform share it.
+inline std::vector<Vec3>& FaceNormalScratch() {
+  thread_local std::vector<Vec3> scratch;
+  return scratch;
+}
+
 // Computes the frames of the coefficients of d^j one at a time from the
 // level-j positions, without storing them (a million frames would be 72 MB).
 // The face normals of level j are computed once, into `face_normals`, which

@@ -15,6 +15,7 @@
 #include "meshwave/status.h"
 #include "meshwave/wavelet.h"
 #include "wavelet/sawt_plan.h"
+#include "wavelet/sawt_regions.h"  // ForEachCodedSawtChoice
 
 namespace meshwave {
 
@@ -26,36 +27,9 @@ Result<std::shared_ptr<const SawtPlan>> ChooseSawtFilters(
     const SemiRegularHierarchy& hierarchy, SawtRegions regions,
     std::span<const Vec3> positions, UpdateWeights update, double lambda);
 
-// (level, region) pairs that hold at least one odd vertex, in the order
-// the stream codes them: levels finest first, regions in order.
-// visit(j, region).
-template <typename Visit>
-void ForEachCodedSawtChoice(const SemiRegularHierarchy& h, const SawtRegions& regions,
-                            Visit&& visit);
-
 // How many coded (level, region) pairs use each filter.
 std::array<uint32_t, kSawtFilterCount> SawtFilterUsage(const SemiRegularHierarchy& h,
                                                        const SawtPlan& plan);
-
-}  // namespace meshwave
-
-#include "wavelet/sawt_regions.h"
-
-namespace meshwave {
-
-template <typename Visit>
-void ForEachCodedSawtChoice(const SemiRegularHierarchy& h, const SawtRegions& regions,
-                            Visit&& visit) {
-  for (int j = h.levels() - 1; j >= 0; --j) {
-    std::vector<char> used(regions.count, 0);
-    for (uint32_t k = 0; k < h.subband_size(j); ++k) {
-      used[regions.face_region[BaseFaceOf(h, j, k)]] = 1;
-    }
-    for (uint32_t r = 0; r < regions.count; ++r) {
-      if (used[r]) visit(j, r);
-    }
-  }
-}
 
 }  // namespace meshwave
 

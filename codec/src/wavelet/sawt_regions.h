@@ -40,6 +40,23 @@ SawtRegions ReplaySawtRegions(const SemiRegularHierarchy& h,
                               std::span<const IntVec3> base_grid,
                               const std::function<int(int depth)>& read_flag);
 
+// (level, region) pairs that hold at least one odd vertex, in the order
+// the stream codes them (the encoder's choices and the decoder's reading):
+// levels finest first, regions in order. visit(j, region).
+template <typename Visit>
+void ForEachCodedSawtChoice(const SemiRegularHierarchy& h, const SawtRegions& regions,
+                            Visit&& visit) {
+  for (int j = h.levels() - 1; j >= 0; --j) {
+    std::vector<char> used(regions.count, 0);
+    for (uint32_t k = 0; k < h.subband_size(j); ++k) {
+      used[regions.face_region[BaseFaceOf(h, j, k)]] = 1;
+    }
+    for (uint32_t r = 0; r < regions.count; ++r) {
+      if (used[r]) visit(j, r);
+    }
+  }
+}
+
 }  // namespace meshwave
 
 #endif  // MESHWAVE_WAVELET_SAWT_REGIONS_H_

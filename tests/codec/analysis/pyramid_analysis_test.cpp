@@ -6,6 +6,7 @@
 #include "codec/test_meshes.h"
 #include "meshwave/analysis.h"
 #include "meshwave/semiregular.h"
+#include "meshwave/subdivision.h"
 #include "meshwave/wavelet.h"
 
 namespace meshwave {

@@ -12,6 +12,7 @@
 #include "mesh/ply_header.h"
 #include "meshwave/file_set.h"
 #include "meshwave/mesh_asset.h"
+#include "meshwave/mesh_io.h"
 
 namespace meshwave {
 namespace {

@@ -13,6 +13,7 @@
 
 #include "meshwave/mesh.h"
 #include "meshwave/mesh_asset.h"
+#include "meshwave/mesh_stats.h"
 #include "test_data.h"
 
 namespace meshwave {

@@ -15,6 +15,8 @@
 #include "codec/asset/asset_checks_testonly.h"
 #include "meshwave/mesh.h"
 #include "meshwave/mesh_asset.h"
+#include "meshwave/mesh_io.h"
+#include "meshwave/mesh_stats.h"
 #include "test_data.h"
 
 namespace meshwave {

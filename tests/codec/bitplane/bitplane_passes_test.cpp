@@ -8,7 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "bitplane/bitplane_io.h"
+#include "bitplane/decoder_io.h"
+#include "bitplane/encoder_io.h"
 #include "bitplane/subband_layout.h"
 #include "codec/hierarchy_on_grid_testonly.h"
 #include "codec/test_meshes.h"

@@ -16,6 +16,7 @@
 #include "codec/mesh/mesh_builders_testonly.h"
 #include "meshwave/gltf.h"
 #include "meshwave/mesh.h"
+#include "meshwave/mesh_io.h"
 
 namespace meshwave {
 namespace {

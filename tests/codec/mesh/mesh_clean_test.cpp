@@ -4,6 +4,8 @@
 
 #include "codec/mesh/mesh_builders_testonly.h"
 #include "meshwave/mesh.h"
+#include "meshwave/mesh_clean.h"
+#include "meshwave/mesh_stats.h"
 
 namespace meshwave {
 namespace {

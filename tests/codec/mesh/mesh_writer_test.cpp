@@ -9,6 +9,8 @@
 #include "codec/mesh/mesh_builders_testonly.h"
 #include "e2e/cli_runner.h"
 #include "meshwave/mesh.h"
+#include "meshwave/mesh_io.h"
+#include "meshwave/mesh_stats.h"
 
 namespace meshwave {
 namespace {

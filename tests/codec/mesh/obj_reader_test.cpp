@@ -5,6 +5,8 @@
 #include <vector>
 
 #include "meshwave/mesh.h"
+#include "meshwave/mesh_io.h"
+#include "meshwave/mesh_stats.h"
 #include "test_data.h"
 
 namespace meshwave {

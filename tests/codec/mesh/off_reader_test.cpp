@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "meshwave/mesh.h"
+#include "meshwave/mesh_io.h"
 #include "test_data.h"
 
 namespace meshwave {

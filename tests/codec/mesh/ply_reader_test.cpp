@@ -9,6 +9,7 @@
 
 #include "codec/mesh/mesh_builders_testonly.h"
 #include "meshwave/mesh.h"
+#include "meshwave/mesh_io.h"
 #include "test_data.h"
 
 namespace meshwave {

@@ -6,6 +6,8 @@
 #include <string>
 
 #include "meshwave/mesh.h"
+#include "meshwave/mesh_io.h"
+#include "meshwave/mesh_stats.h"
 #include "test_data.h"
 
 namespace meshwave {

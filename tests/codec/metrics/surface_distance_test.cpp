@@ -81,6 +81,27 @@ TEST(SurfaceDistanceTest, CoarseSphereVsFineSphereMatchesTheSagitta) {
   EXPECT_GE(d.samples_a, 10 * fine.faces.size());
 }
 
+// A bound on the samples: a mesh over it gets exactly that many face
+// samples (no vertex samples), and the RMS stays close to the full one;
+// a mesh under it is sampled as without the bound.
+TEST(SurfaceDistanceTest, ABoundOnTheSamplesKeepsTheRms) {
+  const TriMesh fine = testing::Icosphere(5);    // 20,480 faces
+  const TriMesh coarse = testing::Icosphere(2);  // 320 faces
+  SurfaceDistanceOptions bounded;
+  bounded.max_samples = 5000;
+  const SurfaceDistance full = Measure(fine, coarse);
+  const SurfaceDistance sparse = Measure(fine, coarse, bounded);
+  EXPECT_EQ(sparse.samples_a, 5000u);
+  EXPECT_EQ(sparse.samples_b, 5000u);
+  EXPECT_GT(full.samples_a, 200000u);
+  EXPECT_NEAR(sparse.rms, full.rms, 0.02 * full.rms);
+  SurfaceDistanceOptions loose;
+  loose.max_samples = 10'000'000;
+  const SurfaceDistance same = Measure(fine, coarse, loose);
+  EXPECT_EQ(same.samples_a, full.samples_a);
+  EXPECT_EQ(same.rms, full.rms);
+}
+
 TEST(SurfaceDistanceTest, PatchInsideALargerPatchIsOneSided) {
   const TriMesh small = testing::GridPatch(4, 0.25, 0.25, 0.5);
   const TriMesh large = testing::GridPatch(8, 0, 0, 1);

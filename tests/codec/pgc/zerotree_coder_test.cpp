@@ -12,7 +12,9 @@
 
 #include "codec/stream/stream_test_util.h"
 #include "codec/test_meshes.h"
+#include "meshwave/mesh_stats.h"
 #include "meshwave/progressive_decoder.h"
+#include "meshwave/subdivision.h"
 #include "pgc/pgc_stream.h"
 #include "stream/packet_index.h"
 

@@ -9,6 +9,7 @@
 #include "meshwave/encoder.h"
 #include "meshwave/rate_distortion.h"
 #include "meshwave/semiregular.h"
+#include "meshwave/subdivision.h"
 
 namespace meshwave {
 namespace {

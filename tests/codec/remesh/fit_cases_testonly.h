@@ -19,6 +19,7 @@
 #include "codec/test_meshes.h"
 #include "meshwave/mesh.h"
 #include "meshwave/semiregular.h"
+#include "meshwave/subdivision.h"
 #include "remesh/components.h"
 #include "remesh/fit_state.h"
 #include "remesh/input_surface.h"

@@ -9,6 +9,7 @@
 #include <cstdint>
 
 #include "meshwave/mesh.h"
+#include "meshwave/mesh_stats.h"
 #include "semiregular/vertex_rings.h"
 
 namespace meshwave::testing {

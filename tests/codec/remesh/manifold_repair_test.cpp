@@ -12,6 +12,7 @@
 #include "codec/test_meshes.h"
 #include "remesh/components.h"
 #include "semiregular/vertex_rings.h"
+#include "meshwave/mesh_stats.h"
 
 namespace meshwave::remesh {
 namespace {

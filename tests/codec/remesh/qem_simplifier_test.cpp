@@ -8,6 +8,7 @@
 #include "remesh/boundary_loops.h"
 #include "remesh/components.h"
 #include "semiregular/vertex_rings.h"
+#include "meshwave/mesh_stats.h"
 
 namespace meshwave::remesh {
 namespace {

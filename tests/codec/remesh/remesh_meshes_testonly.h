@@ -9,6 +9,7 @@
 #include <numbers>
 
 #include "meshwave/mesh.h"
+#include "meshwave/mesh_clean.h"
 
 namespace meshwave::testing {
 

@@ -9,8 +9,12 @@
 
 #include "codec/remesh/remesh_meshes_testonly.h"
 #include "codec/test_meshes.h"
+#include "meshwave/mesh_clean.h"
+#include "meshwave/mesh_io.h"
+#include "meshwave/mesh_stats.h"
 #include "meshwave/metrics.h"
 #include "meshwave/semiregular.h"
+#include "meshwave/subdivision.h"
 #include "remesh/components.h"
 #include "remesh/input_surface.h"
 #include "remesh/manifold_repair.h"

@@ -5,6 +5,7 @@
 
 #include "codec/test_meshes.h"
 #include "meshwave/semiregular.h"
+#include "meshwave/subdivision.h"
 
 namespace meshwave {
 namespace {

@@ -5,7 +5,10 @@
 #include <algorithm>
 #include <set>
 
+#include "meshwave/mesh_clean.h"
+#include "meshwave/mesh_io.h"
 #include "meshwave/semiregular.h"
+#include "meshwave/subdivision.h"
 #include "test_data.h"
 
 namespace meshwave {

@@ -1,4 +1,7 @@
-#include "stream/base_mesh_codec.h"
+#include "stream/base_mesh_decoder.h"
+#include "stream/base_mesh_encoder.h"
+#include "stream/base_refinement.h"
+#include "stream/base_refinement_encoder.h"
 
 #include <gtest/gtest.h>
 
@@ -6,7 +9,10 @@
 #include <utility>
 
 #include "codec/test_meshes.h"
+#include "meshwave/mesh_io.h"
+#include "meshwave/mesh_stats.h"
 #include "meshwave/semiregular.h"
+#include "meshwave/subdivision.h"
 #include "test_data.h"
 
 namespace meshwave {

@@ -114,8 +114,8 @@ TEST(ContainerTest, RejectsBadMagicVersionTrailingBytes) {
             std::string::npos);
   // The old base code, the version before the SAWT field, the one before the
   // compact packet index, the one before the base refinement, the one before
-  // 3xC's neighbour contexts, the one before precincts, and a future one.
-  for (uint32_t version : {1u, 2u, 3u, 4u, 5u, 6u, 8u}) {
+  // 3xC's neighbour contexts, and a future one.
+  for (uint32_t version : {1u, 2u, 3u, 4u, 5u, kStreamFormatVersion + 1}) {
     EncodedStream other = Stream();
     proto::StreamHeader p;
     ASSERT_TRUE(p.ParseFromString(other.header.bytes_without_present));
@@ -126,6 +126,34 @@ TEST(ContainerTest, RejectsBadMagicVersionTrailingBytes) {
               StatusCode::kUnsupported);
   }
   EXPECT_FALSE(ParseContainer("MWV1").ok());
+}
+
+// Version 6 is version 7 without precincts, read as such (a catalog of the
+// previous release is served while it is re-encoded); one with precincts
+// is no version-6 stream.
+TEST(ContainerTest, ReadsVersionSixWithoutPrecincts) {
+  for (uint32_t precincts : {0u, 8u}) {
+    EncodeOptions options;
+    options.precinct_coefficients = precincts;
+    auto encoded = EncodeMesh(testing::BumpySphere(3), options);
+    ASSERT_TRUE(encoded.ok());
+    EncodedStream stream = *std::move(encoded);
+    proto::StreamHeader p;
+    ASSERT_TRUE(p.ParseFromString(stream.header.bytes_without_present));
+    p.set_format_version(6);
+    stream.header = *ToStreamHeader(p);
+    const std::string bytes = SerializeFullContainer(stream);
+    auto parsed = ParseContainer(bytes);
+    if (precincts == 0) {
+      ASSERT_TRUE(parsed.ok()) << parsed.status().ToString();
+      EXPECT_EQ(parsed->header.format_version, 6u);
+      EXPECT_TRUE(DecodeAll(bytes, false).ok());
+    } else {
+      EXPECT_EQ(parsed.status().code(), StatusCode::kParseError);
+      EXPECT_NE(parsed.status().message().find("version-6 stream with precincts"),
+                std::string::npos);
+    }
+  }
 }
 
 TEST(ContainerTest, PreambleGivesTheLittleEndianHeaderLength) {

@@ -1,4 +1,4 @@
-#include "stream/packet_parts.h"
+#include "meshwave/packet_parts.h"
 
 #include <gtest/gtest.h>
 

@@ -15,7 +15,7 @@
 #include "meshwave/progression.h"
 #include "meshwave/progressive_decoder.h"
 #include "stream/packet_index.h"
-#include "stream/packet_parts.h"
+#include "meshwave/packet_parts.h"
 
 namespace meshwave {
 namespace {

@@ -12,6 +12,7 @@
 
 #include "codec/stream/stream_test_util.h"
 #include "meshwave/encoder.h"
+#include "meshwave/subdivision.h"
 
 namespace meshwave::testing {
 

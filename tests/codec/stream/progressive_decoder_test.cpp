@@ -11,6 +11,7 @@
 
 #include "codec/stream/stream_test_util.h"
 #include "meshwave/container.h"
+#include "meshwave/mesh_stats.h"
 #include "meshwave/progression.h"
 #include "stream/packet_index.h"
 

@@ -1,12 +1,13 @@
 // Region orders (meshwave/region_order.h): every unit once, each after what
 // it needs, ending in the full decode; the region's vertices first; a new
-// region continues from what is held; HeldUnits agrees with the decoder.
+// region continues from what is held; the precincts' parents are the decoder's.
 #include "meshwave/region_order.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <random>
 #include <set>
 #include <string_view>
@@ -16,7 +17,7 @@
 #include "codec/stream/precinct_stream_testonly.h"
 #include "meshwave/progression.h"
 #include "meshwave/progressive_decoder.h"
-#include "stream/packet_parts.h"
+#include "meshwave/packet_parts.h"
 
 namespace meshwave {
 namespace {
@@ -38,7 +39,7 @@ const RegionFixture& RegionStream() {
     auto precincts = StreamPrecincts::Create(s.header);
     EXPECT_TRUE(precincts.ok()) << precincts.status().ToString();
     RegionFixture out{&s, *std::move(precincts), {}, {}};
-    const HeldUnits units(s.header, out.precincts);
+    const HeldUnits units(s.header, out.precincts.parents());
     for (uint32_t id = 0; id < s.packets.size(); ++id) {
       auto lengths = PartLengths(units, id, s.packets[id]);
       EXPECT_TRUE(lengths.ok());
@@ -92,7 +93,7 @@ double RegionPsnr(const std::vector<Vec3>& got, const std::vector<Vec3>& want, c
 TEST(RegionOrderTest, EveryUnitOnceEachAfterWhatItNeedsEndingInTheFullDecode) {
   const RegionFixture& f = RegionStream();
   const Region region = SphereHolding(f.full, Vec3(1, 0.3, 0.2).normalized(), 0.1);
-  HeldUnits held(f.s->header, f.precincts);
+  HeldUnits held(f.s->header, f.precincts.parents());
   const std::vector<StreamUnit> order =
       RegionOrder(f.s->header, f.precincts, f.part_lengths, region, held);
   auto d = DecoderOf(*f.s);
@@ -120,7 +121,7 @@ TEST(RegionOrderTest, EveryUnitOnceEachAfterWhatItNeedsEndingInTheFullDecode) {
 TEST(RegionOrderTest, TheRegionIsRefinedFirst) {
   const RegionFixture& f = RegionStream();
   const Region region = SphereHolding(f.full, Vec3(-0.2, 1, 0.4).normalized(), 0.05);
-  const HeldUnits none(f.s->header, f.precincts);
+  const HeldUnits none(f.s->header, f.precincts.parents());
   const std::vector<StreamUnit> order =
       RegionOrder(f.s->header, f.precincts, f.part_lengths, region, none);
   uint64_t total = 0;
@@ -152,7 +153,7 @@ TEST(RegionOrderTest, ANewRegionContinuesFromWhatIsHeld) {
   const RegionFixture& f = RegionStream();
   const Region a = SphereHolding(f.full, Vec3(0, 0, 1), 0.05);
   const Region b = SphereHolding(f.full, Vec3(0, 0, -1), 0.25);
-  HeldUnits held(f.s->header, f.precincts);
+  HeldUnits held(f.s->header, f.precincts.parents());
   auto d = DecoderOf(*f.s);
   std::set<std::pair<uint32_t, uint32_t>> seen;
   const std::vector<StreamUnit> first = RegionOrder(f.s->header, f.precincts, f.part_lengths, a, held);
@@ -178,9 +179,9 @@ TEST(RegionOrderTest, AViewSendsWhatTheCameraSeesFirst) {
   const RegionFixture& f = RegionStream();
   // Far off, narrow, aimed at the side of the sphere: its cone takes in
   // the near side of that point and misses the rest.
-  auto region = ParseViewRegion("6,0,6,-5.3,0.7,-6,4,800,600");
-  ASSERT_TRUE(region.ok());
-  const HeldUnits none(f.s->header, f.precincts);
+  const std::optional<Region> region =
+      Region{ViewRegion{Vec3(6, 0, 6), Vec3(-5.3, 0.7, -6), 4, 800, 600}, std::nullopt};
+  const HeldUnits none(f.s->header, f.precincts.parents());
   const std::vector<StreamUnit> order =
       RegionOrder(f.s->header, f.precincts, f.part_lengths, *region, none);
   auto d = DecoderOf(*f.s);
@@ -207,11 +208,13 @@ TEST(RegionOrderTest, AViewSendsWhatTheCameraSeesFirst) {
   EXPECT_EQ(d->Positions(), f.full);
 }
 
-// HeldUnits' rules are the decoder's: along a random order of units, both
-// agree on what is held and what is ready.
-TEST(RegionOrderTest, HeldUnitsAgreesWithTheDecoder) {
+// The server's precincts (StreamPrecincts, from which it tracks what a
+// client holds) give the decoder's parents: along a random order of units,
+// a HeldUnits made from them and the decoder's own agree on what is held
+// and what is ready.
+TEST(RegionOrderTest, StreamPrecinctsGiveTheDecodersRules) {
   const RegionFixture& f = RegionStream();
-  HeldUnits held(f.s->header, f.precincts);
+  HeldUnits held(f.s->header, f.precincts.parents());
   auto d = DecoderOf(*f.s);
   std::mt19937 rng(7);
   const uint32_t n = static_cast<uint32_t>(f.s->packets.size());

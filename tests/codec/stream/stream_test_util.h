@@ -13,6 +13,7 @@
 #include "meshwave/encoder.h"
 #include "meshwave/progressive_decoder.h"
 #include "meshwave/semiregular.h"
+#include "meshwave/subdivision.h"
 
 namespace meshwave::testing {
 

@@ -7,7 +7,10 @@
 #include <iostream>
 
 #include "codec/test_meshes.h"
+#include "meshwave/mesh_io.h"
+#include "meshwave/mesh_stats.h"
 #include "meshwave/semiregular.h"
+#include "meshwave/subdivision.h"
 #include "meshwave/wavelet.h"
 #include "test_data.h"
 

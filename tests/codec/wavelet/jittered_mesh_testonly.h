@@ -11,6 +11,7 @@
 
 #include "meshwave/mesh.h"
 #include "meshwave/semiregular.h"
+#include "meshwave/subdivision.h"
 
 namespace meshwave::testing {
 

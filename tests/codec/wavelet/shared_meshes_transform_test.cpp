@@ -9,7 +9,11 @@
 #include <random>
 
 #include "meshwave/mesh.h"
+#include "meshwave/mesh_clean.h"
+#include "meshwave/mesh_io.h"
+#include "meshwave/mesh_stats.h"
 #include "meshwave/semiregular.h"
+#include "meshwave/subdivision.h"
 #include "meshwave/wavelet.h"
 #include "test_data.h"
 

@@ -17,7 +17,7 @@
 #include "meshwave/client/url.h"
 #include "meshwave/progression.h"
 #include "meshwave/region.h"
-#include "meshwave/region_order.h"
+#include "meshwave/held_units.h"
 #include "meshwave/status.h"
 #include "meshwave/stream_limits.h"
 
