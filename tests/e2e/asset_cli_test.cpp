@@ -1,6 +1,7 @@
 // End-to-end: glTF into the CLI. The .glb that `meshwave decode` writes
 // reads back (`info`, `encode`), `info` describes a file's attributes (text
-// and JSON), and a missing texture leaves the geometry described.
+// and JSON), a missing texture leaves the geometry described, and `encode`
+// names in one line what the stream leaves out.
 #include <google/protobuf/util/json_util.h>
 #include <gtest/gtest.h>
 
@@ -89,6 +90,46 @@ TEST(AssetCliTest, AMissingTextureLeavesTheGeometryDescribed) {
           "die.png is missing"),
       std::string::npos)
       << r.out;
+}
+
+TEST(AssetCliTest, EncodeNamesWhatTheStreamLeavesOut) {
+  TempDir dir;
+  const auto ring = testing::SampleDataDir() / "textured/ring.glb";
+  auto r = RunCli({"encode", ring.string(), (dir / "ring.mwv").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("warning: " + ring.string() +
+                       ": the stream holds the geometry only; not coded yet: "
+                       "UVs, vertex colours, 2 materials, 1 texture image\n"),
+            std::string::npos)
+      << r.err;
+
+  const auto ball = testing::SampleDataDir() / "textured/hue_ball.ply";
+  r = RunCli({"encode", ball.string(), (dir / "ball.mwv").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find(ball.string() +
+                       ": the stream holds the geometry only; not coded yet: "
+                       "vertex colours\n"),
+            std::string::npos)
+      << r.err;
+
+  // A texture that cannot be read: the geometry is encoded, and said so.
+  for (const char* name : {"die.obj", "die.mtl"}) {
+    std::filesystem::copy_file(testing::SampleDataDir() / "textured" / name,
+                               dir / name);
+  }
+  r = RunCli({"encode", (dir / "die.obj").string(), (dir / "die.mwv").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("die.obj: the stream holds the geometry only; the "
+                       "file's attributes could not be read (not found: "
+                       "die.obj: texture die.png is missing"),
+            std::string::npos)
+      << r.err;
+
+  // Geometry alone: nothing to name.
+  r = RunCli({"encode", testing::SampleMesh("holes.off").string(),
+              (dir / "holes.mwv").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err.find("not coded yet"), std::string::npos) << r.err;
 }
 
 }  // namespace
