@@ -36,7 +36,8 @@ jobs=${FUZZ_JOBS:-1}
 niceness=${FUZZ_NICE:-19}
 all=(ply_reader_fuzz obj_reader_fuzz off_reader_fuzz container_fuzz packet_fuzz
      decoder_order_fuzz http_request_fuzz ws_message_fuzz stream_splitter_fuzz
-     ws_server_message_fuzz local_state_fuzz region_fuzz)
+     ws_server_message_fuzz local_state_fuzz region_fuzz gltf_asset_fuzz obj_asset_fuzz
+     image_decoder_fuzz)
 targets=("$@")
 ((${#targets[@]})) || targets=("${all[@]}")
 ledger=$root/bench/fuzz_runs.tsv
@@ -47,6 +48,7 @@ dict_of() {
     ply_reader_fuzz) echo ply.dict ;; obj_reader_fuzz) echo obj.dict ;;
     off_reader_fuzz) echo off.dict ;; container_fuzz) echo container.dict ;;
     http_request_fuzz) echo http.dict ;; ws_message_fuzz) echo ws.dict ;;
+    gltf_asset_fuzz) echo gltf.dict ;; obj_asset_fuzz) echo obj_asset.dict ;;
   esac
 }
 

@@ -1,5 +1,6 @@
-# `cmake --install`: the decoder, codec, protocol and client libraries, their
-# public headers, the generated protobuf headers they include, and a CMake
+# `cmake --install`: the decoder, codec, asset, protocol and client
+# libraries, their public headers, the generated protobuf headers they
+# include, and a CMake
 # package so that another project can find_package(meshwave) and link
 # meshwave::client. A build configured with MESHWAVE_DECODER_ONLY installs
 # the decoder alone (cmake/MeshwaveDecoderInstall.cmake).
@@ -18,6 +19,7 @@ set_property(TARGET meshwave_client_proto PROPERTY INTERFACE_INCLUDE_DIRECTORIES
 
 set_target_properties(meshwave_decoder PROPERTIES EXPORT_NAME decoder)
 set_target_properties(meshwave_codec PROPERTIES EXPORT_NAME codec)
+set_target_properties(meshwave_asset PROPERTIES EXPORT_NAME asset)
 set_target_properties(meshwave_core PROPERTIES EXPORT_NAME core)
 set_target_properties(meshwave_protocol PROPERTIES EXPORT_NAME protocol)
 set_target_properties(meshwave_proto PROPERTIES EXPORT_NAME proto)
@@ -27,8 +29,8 @@ set_target_properties(meshwave_client_proto PROPERTIES EXPORT_NAME client_proto)
 # warning flags of meshwave_options do not reach consumers.
 set_target_properties(meshwave_options PROPERTIES EXPORT_NAME options)
 
-install(TARGETS meshwave_decoder meshwave_core meshwave_codec meshwave_protocol meshwave_proto
-                meshwave_client meshwave_client_proto meshwave_options
+install(TARGETS meshwave_decoder meshwave_core meshwave_codec meshwave_asset meshwave_protocol
+                meshwave_proto meshwave_client meshwave_client_proto meshwave_options
   EXPORT meshwaveTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
   INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})

@@ -22,6 +22,8 @@ build=(
   zlib1g-dev                   # PNG output of meshwave render
   libpq-dev                    # PostgreSQL catalog backend (libpq)
   libssl-dev                   # SHA-256 (content hashes), TLS
+  libtinygltf-dev nlohmann-json3-dev   # glTF input (codec/src/asset: the header, compiled in)
+  libpng-dev libturbojpeg0-dev libwebp-dev  # texture images of glTF and OBJ inputs
 )
 viewer=(
   emscripten nodejs            # web/build_decoder.sh: the decoder the viewer runs

@@ -50,4 +50,26 @@ std::string SharedMeshesMissing(std::initializer_list<std::string> names) {
                                SharedMeshDir().string() + how;
 }
 
+std::filesystem::path SharedTexturedDir() {
+  return SharedMeshDir().parent_path() / "textured";
+}
+
+std::string SharedTexturedMissing(std::initializer_list<std::string> names) {
+  std::string missing;
+  for (const auto& name : names) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(SharedTextured(name), ec)) {
+      missing += (missing.empty() ? "" : ", ") + name;
+    }
+  }
+  return missing.empty()
+             ? ""
+             : "shared textured file " + missing + " not found in " +
+                   SharedTexturedDir().string() +
+                   ": the shared development meshes are not part of the "
+                   "repository (put shared/ beside it, or configure with "
+                   "-DMESHWAVE_SHARED_MESHES=DIR: textured/ is read beside "
+                   "that folder)";
+}
+
 }  // namespace meshwave::testing

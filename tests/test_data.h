@@ -62,6 +62,17 @@ inline std::filesystem::path TestData(const std::string& name) {
   return TestDataDir() / name;
 }
 
+// The shared textured and coloured meshes (../shared/data/textured, beside
+// the shared meshes: glTF, OBJ + MTL + PNG, coloured PLY, each in a folder
+// with its sidecar files), e.g. SharedTextured("spot/cow.obj").
+std::filesystem::path SharedTexturedDir();
+inline std::filesystem::path SharedTextured(const std::string& name) {
+  return SharedTexturedDir() / name;
+}
+// Empty when the shared textured files `names` are present; else the line
+// that says what is missing and how to get it.
+std::string SharedTexturedMissing(std::initializer_list<std::string> names);
+
 // Every mesh file (.ply/.obj/.off) in the shared directory, sorted by name;
 // empty when the directory is missing.
 std::vector<std::filesystem::path> AllSharedMeshes();
@@ -80,6 +91,20 @@ std::string SharedMeshesMissing(std::initializer_list<std::string> names);
   do {                                                                    \
     const std::string mw_missing_ =                                       \
         ::meshwave::testing::SharedMeshesMissing({__VA_ARGS__});          \
+    if (!mw_missing_.empty()) {                                           \
+      if (::meshwave::testing::SharedMeshesRequired()) {                  \
+        GTEST_FAIL() << mw_missing_                                       \
+                     << " (required: MESHWAVE_REQUIRE_SHARED_MESHES=ON)"; \
+      }                                                                   \
+      GTEST_SKIP() << mw_missing_;                                        \
+    }                                                                     \
+  } while (false)
+
+// The same for the shared textured files (SharedTextured names).
+#define MESHWAVE_REQUIRE_SHARED_TEXTURED(...)                             \
+  do {                                                                    \
+    const std::string mw_missing_ =                                       \
+        ::meshwave::testing::SharedTexturedMissing({__VA_ARGS__});        \
     if (!mw_missing_.empty()) {                                           \
       if (::meshwave::testing::SharedMeshesRequired()) {                  \
         GTEST_FAIL() << mw_missing_                                       \

@@ -3,8 +3,9 @@
 # no test tools, no browser, no emscripten), builds the CLI and the server
 # (the viewer's WebAssembly decoder comes built, web/dist), runs the meshwave CLI on the
 # shipped sample meshes (describe, subdivide, encode, decode at budgets,
-# compare), then starts meshwave-server on an embedded default catalog
-# (SQLite, in a temporary directory) holding the sample meshes, and streams
+# compare; a textured glTF described and encoded), then starts
+# meshwave-server on an embedded default catalog (SQLite, in a temporary
+# directory) holding the sample meshes, and streams
 # one with the client: a fetch at a budget, then two refinements that pull
 # only the next packets. It prints the browser viewer's URL
 # (http://127.0.0.1:PORT/viewer/) and, run from a terminal, keeps the server
@@ -61,6 +62,12 @@ $cli decode "$out/holes.mwv" "$out/holes.glb" --budget 8000
 echo
 echo "== meshwave decode holes.mwv --order resolution --max-level 1 (a smaller mesh)"
 $cli decode "$out/holes.mwv" "$out/holes_level1.ply" --order resolution --max-level 1
+echo
+echo "== meshwave info data/textured/ring.glb (UVs, colours, materials and a texture)"
+$cli info data/textured/ring.glb
+echo
+echo "== meshwave encode data/textured/ring.glb (the geometry; it says what it leaves out)"
+$cli encode data/textured/ring.glb "$out/ring.mwv"
 
 echo
 echo "== meshwave-server ingest: the sample meshes into a new catalog (elephant.off is remeshed)"

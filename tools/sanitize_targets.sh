@@ -1,14 +1,15 @@
 # The targets of the sanitizer stages (sourced by tools/sanitize.sh, which
 # builds and runs them, and bench/build_time.sh, which times their build).
-# asan: the untrusted-input, server and client suites and every fuzz target;
+# asan: the untrusted-input (mesh and asset readers), server and client suites
+# and every fuzz target;
 # tsan: the server's concurrency suites, core_test (Deferred, DeferredSequence,
 # ParallelFor) and stream_test (the decoder's set-up threads, subband by
 # subband: 18 s under TSan); the server suites also decode with them.
-asan_suites=(core_test mesh_test entropy_test stream_test wavelet_test metrics_test remesh_test
+asan_suites=(core_test mesh_test asset_test entropy_test stream_test wavelet_test metrics_test remesh_test
              server_test server_http_test server_ws_test client_test client_e2e_test
              reliability_test child_process_test server_region_test)
 fuzz_targets=(ply_reader_fuzz obj_reader_fuzz off_reader_fuzz container_fuzz packet_fuzz
               decoder_order_fuzz stream_header_fuzz http_request_fuzz ws_message_fuzz
               stream_splitter_fuzz ws_server_message_fuzz local_state_fuzz region_fuzz
-              stream_units_fuzz)
+              stream_units_fuzz gltf_asset_fuzz obj_asset_fuzz image_decoder_fuzz)
 tsan_suites=(core_test stream_test server_http_test server_ws_test reliability_test)

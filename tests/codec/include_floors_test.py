@@ -17,9 +17,9 @@ import sys
 
 # Floors, bottom first; folders on one floor do not include each other.
 FLOORS = [
-    ["core"],
+    ["core", "image"],
     ["mesh"],
-    ["semiregular", "entropy"],
+    ["semiregular", "entropy", "asset"],
     ["bitplane"],
     ["wavelet", "analysis", "texture"],
     ["quant"],
@@ -33,7 +33,7 @@ ENCODER_HEADER = re.compile(
     r'^(entropy/arithmetic_encoder\.h|bitplane/encoder_io\.h|.*_encoder\.h|.*_encoder_io\.h|'
     r'wavelet/sawt_choice\.h|stream/stream_preparation\.h|stream/stream_format_writer\.h|'
     r'stream/distortion_index_writer\.h|pgc/.*|remesh/.*|analysis/.*|metrics/.*|quant/subband_gains\.h|'
-    r'quant/deadzone_choice\.h)$')
+    r'quant/deadzone_choice\.h|asset/.*|image/.*)$')
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
 
 

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "fuzz_require_testonly.h"
 #include "meshwave/container.h"
 #include "meshwave/progressive_decoder.h"
 
@@ -73,14 +74,6 @@ inline const Fixture& GetFixture() {
   return fixture;
 }
 
-// A check whose failure is a bug in the code under test: abort, so that
-// libFuzzer (and the replay driver) report the input.
-inline void Require(bool ok, const char* what) {
-  if (!ok) {
-    std::fprintf(stderr, "fuzz invariant violated: %s\n", what);
-    std::abort();
-  }
-}
 
 }  // namespace meshwave::fuzz
 

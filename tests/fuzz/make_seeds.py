@@ -23,9 +23,20 @@ by 15 % * sin(3.1 i + 0.7) so that the details are not zero), and
 (tiny precincts, so that both have split packets: 2 and 3 precincts in
 the tetrahedron's subband 1, 3 and 8 in the octahedron's subbands 1 and 2)
 
+The asset targets (gltf_asset_fuzz, obj_asset_fuzz, image_decoder_fuzz)
+get small documents written here (glTF JSON and buffers, OBJ + MTL, PNGs of
+every layout), the project's textured samples (data/textured) and the
+shared textured files (cut), and the JPEG and WebP files of
+tests/fuzz/data/images/, which are checked in because Python's standard
+library writes neither format: a 24 x 16 RGBA gradient through TurboJPEG's
+tjCompress2 at quality 75 (4:2:0; 4:4:4 progressive; grey; from CMYK) and
+libwebp's WebPEncodeRGBA / WebPEncodeRGB at quality 60 and
+WebPEncodeLosslessRGBA.
+
 Usage: python3 tests/fuzz/make_seeds.py [SHARED_MESHES_DIR]
 """
 import hashlib
+import json
 import os
 import random
 import re
@@ -33,6 +44,7 @@ import shutil
 import struct
 import subprocess
 import sys
+import zlib
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
@@ -259,6 +271,163 @@ def stream_units_seeds():
     put("stream_units_fuzz", "record_cut", b"\x01" + record(1, 0, b"abcdef")[:-2])
 
 
+def png(width, height, color_type, depth, samples, interlaced=False, palette=b"", trns=b""):
+    """A PNG of any layout: `samples` row-major, channel values below 2^depth."""
+    channels = {0: 1, 2: 3, 3: 1, 4: 2, 6: 4}[color_type]
+
+    def scanlines(x0, y0, dx, dy):
+        out = b""
+        for y in range(y0, height, dy):
+            row, bits, filled = bytearray([0]), 0, 0
+            for x in range(x0, width, dx):
+                for c in range(channels):
+                    v = samples[(y * width + x) * channels + c]
+                    if depth == 16:
+                        row += struct.pack(">H", v)
+                    elif depth == 8:
+                        row.append(v)
+                    else:
+                        bits, filled = (bits << depth) | v, filled + depth
+                        if filled == 8:
+                            row.append(bits)
+                            bits, filled = 0, 0
+            if filled:
+                row.append((bits << (8 - filled)) & 0xFF)
+            out += bytes(row)
+        return out
+
+    if interlaced:
+        passes = [(0, 0, 8, 8), (4, 0, 8, 8), (0, 4, 4, 8), (2, 0, 4, 4), (0, 2, 2, 4),
+                  (1, 0, 2, 2), (0, 1, 1, 2)]
+        raw = b"".join(scanlines(*p) for p in passes if p[0] < width and p[1] < height)
+    else:
+        raw = scanlines(0, 0, 1, 1)
+
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+
+    out = b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, depth, color_type,
+                                                              0, 0, int(interlaced)))
+    if palette:
+        out += chunk(b"PLTE", palette)
+    if trns:
+        out += chunk(b"tRNS", trns)
+    return out + chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b"")
+
+
+def image_seeds():
+    w, h = 10, 7
+    grad = [(x * 25 + y * 3 + c * 40) % 256 for y in range(h) for x in range(w) for c in range(4)]
+    put("image_decoder_fuzz", "rgba.png", png(w, h, 6, 8, grad))
+    put("image_decoder_fuzz", "rgb_interlaced.png",
+        png(w, h, 2, 8, [v for i, v in enumerate(grad) if i % 4 != 3], interlaced=True))
+    put("image_decoder_fuzz", "grey16.png", png(w, h, 0, 16, [v * 257 for v in grad[::4]]))
+    put("image_decoder_fuzz", "grey1.png", png(w, h, 0, 1, [v & 1 for v in grad[::4]]))
+    put("image_decoder_fuzz", "grey_alpha.png", png(w, h, 4, 8, grad[: w * h * 2]))
+    put("image_decoder_fuzz", "palette4_trns.png",
+        png(w, h, 3, 4, [v % 3 for v in grad[::4]], palette=bytes([255, 0, 0, 0, 255, 0, 0, 0, 255]),
+            trns=b"\x80"))
+    put("image_decoder_fuzz", "rgba_truncated.png", png(w, h, 6, 8, grad)[:-30])
+    put("image_decoder_fuzz", "die.png", open(os.path.join(ROOT, "data", "textured", "die.png"), "rb").read())
+    images = os.path.join(HERE, "data", "images")
+    for name in sorted(os.listdir(images)):
+        put("image_decoder_fuzz", name, open(os.path.join(images, name), "rb").read())
+
+
+def glb(doc, bin_chunk):
+    text = json.dumps(doc, separators=(",", ":")).encode()
+    text += b" " * (-len(text) % 4)
+    bin_chunk += b"\0" * (-len(bin_chunk) % 4)
+    out = struct.pack("<I4s", len(text), b"JSON") + text
+    if bin_chunk:
+        out += struct.pack("<I4s", len(bin_chunk), b"BIN\0") + bin_chunk
+    return struct.pack("<4sII", b"glTF", 2, 12 + len(out)) + out
+
+
+def gltf_document(image_view=None):
+    """A quad in two triangles (positions, UVs, colours, uint16 indices)
+    under a two-node tree, a material with a texture; and its buffer."""
+    positions = struct.pack("<12f", 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0)
+    uvs = struct.pack("<8f", 0, 1, 1, 1, 1, 0, 0, 0)
+    colours = bytes([255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255, 255, 255, 255, 128])
+    indices = struct.pack("<6H", 0, 1, 2, 0, 2, 3) + b"\0\0"
+    blob = positions + uvs + colours + indices
+    views = [{"buffer": 0, "byteOffset": 0, "byteLength": 48},
+             {"buffer": 0, "byteOffset": 48, "byteLength": 32},
+             {"buffer": 0, "byteOffset": 80, "byteLength": 16},
+             {"buffer": 0, "byteOffset": 96, "byteLength": 12}]
+    doc = {
+        "asset": {"version": "2.0"},
+        "extensionsUsed": ["KHR_texture_transform"],
+        "scene": 0, "scenes": [{"nodes": [0]}],
+        "nodes": [{"rotation": [0, 0, 0.7071068, 0.7071068], "scale": [2, 2, 2], "children": [1]},
+                  {"translation": [0, 0, 1], "mesh": 0}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1, "COLOR_0": 2},
+                                    "indices": 3, "material": 0}]}],
+        "accessors": [
+            {"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3",
+             "min": [0, 0, 0], "max": [1, 1, 0]},
+            {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC2"},
+            {"bufferView": 2, "componentType": 5121, "normalized": True, "count": 4, "type": "VEC4"},
+            {"bufferView": 3, "componentType": 5123, "count": 6, "type": "SCALAR"}],
+        "bufferViews": views,
+        "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0, "extensions": {
+            "KHR_texture_transform": {"offset": [0.5, 0], "scale": [2, 2]}}}}}],
+        "textures": [{"source": 0, "sampler": 0}],
+        "samplers": [{"wrapS": 33071, "wrapT": 33648}],
+        "images": [{"uri": "a.png"}],
+    }
+    if image_view is not None:
+        views.append({"buffer": 0, "byteOffset": len(blob), "byteLength": len(image_view)})
+        blob += image_view
+        doc["images"] = [{"bufferView": 4, "mimeType": "image/png"}]
+    doc["buffers"] = [{"byteLength": len(blob)}]
+    return doc, blob
+
+
+def asset_seeds():
+    sep = b"\n--file--\n"
+    tiny = png(4, 4, 6, 8, [(i * 37) % 256 for i in range(64)])
+    doc, blob = gltf_document(tiny)
+    put("gltf_asset_fuzz", "quad_textured.glb", b"\x00" + glb(doc, blob))
+    strip = dict(doc)
+    strip["meshes"] = [{"primitives": [{"attributes": {"POSITION": 0}, "mode": 5},
+                                       {"attributes": {"POSITION": 0}, "indices": 3, "mode": 6}]}]
+    put("gltf_asset_fuzz", "strip_fan.glb", b"\x00" + glb(strip, blob))
+    sparse = json.loads(json.dumps(doc))
+    sparse["accessors"][0]["sparse"] = {"count": 1, "indices": {"bufferView": 3, "componentType": 5123},
+                                        "values": {"bufferView": 0}}
+    put("gltf_asset_fuzz", "sparse.glb", b"\x00" + glb(sparse, blob))
+    doc, blob = gltf_document()
+    doc["buffers"][0]["uri"] = "m.bin"
+    put("gltf_asset_fuzz", "quad.gltf", b"\x01" + json.dumps(doc).encode() + sep + blob + sep + tiny)
+    ring = open(os.path.join(ROOT, "data", "textured", "ring.glb"), "rb").read()
+    put("gltf_asset_fuzz", "ring.glb", b"\x00" + ring)
+    for name in ("ToyCar/ToyCar.gltf", "IridescenceAbalone/IridescenceAbalone.gltf"):
+        path = os.path.join(SHARED, "..", "textured", name)
+        if os.path.exists(path):  # their JSON only: the gate, tinygltf's parse
+            put("gltf_asset_fuzz", "shared_" + os.path.basename(name), b"\x01" + open(path, "rb").read())
+
+    mtl = (b"newmtl a\nKd 1 0.5 0.25\nd 0.5\nmap_Kd -s 2 2 1 -o 0.5 0 -clamp on t.png\n"
+           b"map_Bump -bm 0.8 t.png\nPr 0.4\nnewmtl b\nTr 0.2\nKe 1 1 0\n")
+    obj = (b"mtllib m.mtl\nv 0 0 0 1 0 0\nv 1 0 0 0 1 0\nv 1 1 0 0 0 1\nv 0 1 0\n"
+           b"vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvn 0 0 1\nusemtl a\nf 1/1/1 2/2/1 3/3/1 4/4/1\n"
+           b"usemtl b\nf -4//1 -2//1 -1//1\nf 1 3 4\nl 1 2\n")
+    put("obj_asset_fuzz", "quad", obj + sep + mtl + sep + tiny)
+    die = os.path.join(ROOT, "data", "textured")
+    put("obj_asset_fuzz", "die_head", head_lines(os.path.join(die, "die.obj"), 40) + sep +
+        open(os.path.join(die, "die.mtl"), "rb").read() + sep + tiny)
+    cow = os.path.join(SHARED, "..", "textured", "spot")
+    if os.path.isdir(cow):
+        put("obj_asset_fuzz", "shared_cow_head", head_lines(os.path.join(cow, "cow.obj"), 80) + sep +
+            open(os.path.join(cow, "cow.mtl"), "rb").read())
+    d = os.path.join(ROOT, "tests", "data", "wellformed")
+    for name in sorted(os.listdir(d)):
+        if name.endswith(".obj"):
+            put("obj_asset_fuzz", "wellformed_" + name, open(os.path.join(d, name), "rb").read())
+    image_seeds()
+
+
 if __name__ == "__main__":
     if os.path.isdir(SEEDS):
         shutil.rmtree(SEEDS)
@@ -269,3 +438,4 @@ if __name__ == "__main__":
     client_seeds()
     region_seeds()
     stream_units_seeds()
+    asset_seeds()

@@ -261,7 +261,7 @@ void AddAnalyzeCommand(CLI::App& app, int& exit_code) {
       "analyze", "Statistical analysis of a mesh's wavelet coefficients (as Satti et al. 2011): "
                  "SL/LM/GG fits with KL and ME, deadzone choice, mutual information; "
                  "--plots writes CSVs and PNG figures (gnuplot)");
-  cmd->add_option("in", args->in, "Mesh file (.ply, .obj, .off); irregular meshes are remeshed")
+  cmd->add_option("in", args->in, "Mesh file (.ply, .obj, .off, .glb, .gltf); irregular meshes are remeshed")
       ->required();
   cmd->add_flag("--json", args->json, "Print the report as JSON");
   cmd->add_option("--plots", args->plots,

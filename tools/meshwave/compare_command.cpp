@@ -178,7 +178,7 @@ void AddCompareCommand(CLI::App& app, int& exit_code) {
       "the vertex counts agree, and always the symmetric sampled surface "
       "distance (RMS, mean, Hausdorff); relative values use the bounding-box "
       "diagonal of A");
-  cmd->add_option("a", args->file_a, "Reference mesh A (.ply, .obj, .off)")
+  cmd->add_option("a", args->file_a, "Reference mesh A (.ply, .obj, .off, .glb, .gltf)")
       ->required();
   cmd->add_option("b", args->file_b, "Mesh B to measure against A")->required();
   cmd->add_flag("--json", args->json,

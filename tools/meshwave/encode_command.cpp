@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <string>
+#include <vector>
 
 #include "cli_util.h"
 #include "commands.h"
@@ -13,6 +15,7 @@
 #include "meshwave/encoder.h"
 #include "meshwave/fidelity.h"
 #include "meshwave/mesh.h"
+#include "meshwave/mesh_asset.h"
 #include "meshwave/mesh_io.h"
 #include "meshwave/semiregular.h"
 #include "meshwave/semiregular_input.h"
@@ -65,6 +68,37 @@ Result<SemiRegularInput> LoadSemiRegular(const EncodeArgs& args, TriMesh mesh) {
   return input;
 }
 
+// What the stream leaves out of the input, in one line: the codec codes the
+// geometry alone (issue 35), so UVs, colours, materials and images are
+// named, never dropped silently. Empty when the file holds none of them.
+std::string AttributesLeftOut(const std::string& file) {
+  const Result<MeshAsset> asset = ReadMeshAsset(file);
+  if (!asset.ok()) {
+    return file + ": the stream holds the geometry only; the file's attributes could not "
+                  "be read (" + asset.status().ToString() + ")";
+  }
+  auto count = [](size_t n, const char* one, const char* many) {
+    return std::to_string(n) + " " + (n == 1 ? one : many);
+  };
+  std::vector<std::string> parts;
+  if (!asset->uv.empty()) parts.push_back("UVs");
+  if (!asset->color.empty()) parts.push_back("vertex colours");
+  if (!asset->materials.empty()) {
+    parts.push_back(count(asset->materials.size(), "material", "materials"));
+  }
+  if (!asset->images.empty()) {
+    parts.push_back(count(asset->images.size(), "texture image", "texture images"));
+  }
+  if (!asset->notes.empty()) {
+    parts.push_back(count(asset->notes.size(), "feature", "features") +
+                    " the reader leaves out (meshwave info lists them)");
+  }
+  if (parts.empty()) return "";
+  std::string line = file + ": the stream holds the geometry only; not coded yet: ";
+  for (size_t i = 0; i < parts.size(); ++i) line += (i == 0 ? "" : ", ") + parts[i];
+  return line;
+}
+
 // What --fidelity reached: the complete stream against the file as read.
 Status ReportFidelity(const EncodeArgs& args, const TriMesh& original,
                       const SemiRegularInput& input, const EncodedStream& stream,
@@ -106,6 +140,9 @@ Status Run(const EncodeArgs& args) {
   options.name = std::filesystem::path(args.in).stem().string();
   options.threads = args.threads;
   MW_ASSIGN_OR_RETURN(TriMesh original, ReadMesh(args.in));
+  if (const std::string left_out = AttributesLeftOut(args.in); !left_out.empty()) {
+    std::cerr << "warning: " << left_out << "\n";
+  }
   MW_ASSIGN_OR_RETURN(SemiRegularInput input,
                       LoadSemiRegular(args, args.fidelity_db > 0 ? original : std::move(original)));
   MW_ASSIGN_OR_RETURN(EncodedStream stream, EncodeMesh(input.mesh, options));
@@ -154,7 +191,7 @@ void AddEncodeCommand(CLI::App& app, int& exit_code) {
   CLI::App* cmd = app.add_subcommand(
       "encode", "Encode a mesh into an embedded .mwv stream (irregular meshes "
                 "are remeshed first)");
-  cmd->add_option("in", args->in, "Mesh file (.ply, .obj, .off)")->required();
+  cmd->add_option("in", args->in, "Mesh file (.ply, .obj, .off, .glb, .gltf)")->required();
   cmd->add_option("out", args->out, "Output stream (.mwv)")->required();
   AddTransformOptions(cmd, args->predictor, args->update, args->levels,
                       args->precision);

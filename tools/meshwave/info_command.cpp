@@ -5,7 +5,9 @@
 #include "cli_util.h"
 #include "commands.h"
 #include "meshwave.pb.h"
+#include "meshwave/gltf.h"
 #include "meshwave/mesh.h"
+#include "meshwave/mesh_asset.h"
 #include "meshwave/mesh_clean.h"
 #include "meshwave/mesh_io.h"
 #include "meshwave/mesh_stats.h"
@@ -39,14 +41,50 @@ void FillTopology(const MeshStats& s, proto::Topology& t) {
   if (s.manifold && s.genus >= 0) t.set_genus(s.genus);
 }
 
+// The file's attributes (UVs, colours, materials, images), read apart from
+// the geometry: a texture that cannot be read leaves the rest of the
+// description intact.
+void FillAsset(const std::string& file, proto::AssetInfo& out) {
+  const Result<MeshAsset> asset = ReadMeshAsset(file);
+  if (!asset.ok()) {
+    out.set_error(asset.status().ToString());
+    return;
+  }
+  out.set_uv_values(asset->uv.values.size());
+  out.set_color_values(asset->color.values.size());
+  for (const Material& m : asset->materials) out.add_materials(m.name);
+  for (const AssetImage& image : asset->images) {
+    proto::AssetInfo::Image& i = *out.add_images();
+    i.set_name(image.name);
+    i.set_mime_type(image.mime_type);
+    i.set_width(image.rgba.empty() ? 0 : image.width);
+    i.set_height(image.rgba.empty() ? 0 : image.height);
+  }
+  for (const std::string& note : asset->notes) out.add_notes(note);
+  out.set_summary(DescribeMeshAsset(*asset));
+}
+
+const char* FormatName(MeshFormat format, const std::string& file) {
+  switch (format) {
+    case MeshFormat::kPly:
+      return "ply";
+    case MeshFormat::kObj:
+      return "obj";
+    case MeshFormat::kOff:
+      return "off";
+    case MeshFormat::kGltf:
+      return GltfFormFromPath(file) == GltfForm::kBinary ? "glb" : "gltf";
+  }
+  return "?";
+}
+
 Result<proto::MeshInfo> Describe(const InfoArgs& args) {
   MW_ASSIGN_OR_RETURN(MeshFormat format, FormatFromPath(args.file));
   MW_ASSIGN_OR_RETURN(TriMesh mesh, ReadMesh(args.file));
   proto::MeshInfo info;
   info.set_file(args.file);
-  info.set_format(format == MeshFormat::kPly   ? "ply"
-                  : format == MeshFormat::kObj ? "obj"
-                                               : "off");
+  info.set_format(FormatName(format, args.file));
+  FillAsset(args.file, *info.mutable_asset());
   info.set_file_vertices(mesh.positions.size());
   info.set_file_faces(mesh.faces.size());
   FillTopology(ComputeStats(mesh), *info.mutable_as_read());
@@ -154,6 +192,9 @@ void PrintHuman(const proto::MeshInfo& i) {
   } else {
     line("semi-regular levels:", "0 (" + i.semiregular_note() + ")");
   }
+  line("attributes:", i.asset().error().empty()
+                          ? i.asset().summary()
+                          : "not readable: " + i.asset().error());
 }
 
 }  // namespace
@@ -161,9 +202,11 @@ void PrintHuman(const proto::MeshInfo& i) {
 void AddInfoCommand(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<InfoArgs>();
   CLI::App* cmd = app.add_subcommand(
-      "info", "Describe a mesh file: counts, topology, bounding box and "
-              "semi-regular levels");
-  cmd->add_option("file", args->file, "Mesh file (.ply, .obj, .off)")
+      "info", "Describe a mesh file: counts, topology, bounding box, "
+              "semi-regular levels, and its UVs, colours, materials and "
+              "images");
+  cmd->add_option("file", args->file,
+                  "Mesh file (.ply, .obj, .off, .glb, .gltf)")
       ->required();
   cmd->add_flag("--json", args->json, "Print JSON instead of text");
   cmd->add_option("--max-levels", args->max_levels,

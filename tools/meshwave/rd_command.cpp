@@ -215,7 +215,7 @@ void AddRdCommand(CLI::App& app, int& exit_code) {
   CLI::App* cmd = app.add_subcommand(
       "rd", "Rate-distortion curves of the 3xC, SIM and PGC coders on a mesh "
             "(irregular meshes are remeshed first)");
-  cmd->add_option("in", args->in, "Mesh file (.ply, .obj, .off)")->required();
+  cmd->add_option("in", args->in, "Mesh file (.ply, .obj, .off, .glb, .gltf)")->required();
   cmd->add_option("--coders", args->coders, "Comma-separated: 3xc, sim, pgc")
       ->capture_default_str();
   cmd->add_option("--csv", args->csv,

@@ -239,7 +239,7 @@ void AddRemeshCommand(CLI::App& app, int& exit_code) {
       "remesh",
       "Turn any triangle mesh into a semi-regular mesh that follows its "
       "surface (clean, repair, simplify to a base mesh, subdivide and fit)");
-  cmd->add_option("in", args->in, "Input mesh (.ply, .obj, .off)")->required();
+  cmd->add_option("in", args->in, "Input mesh (.ply, .obj, .off, .glb, .gltf)")->required();
   cmd->add_option("out", args->out, "Semi-regular output (.ply, .obj, .glb or .gltf)")
       ->required();
   AddFidelityOptions(cmd, args->fidelity_db, args->max_vertex_ratio, "the remesh");

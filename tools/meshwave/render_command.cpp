@@ -81,7 +81,7 @@ void AddRenderCommand(CLI::App& app, int& exit_code) {
   CLI::App* cmd = app.add_subcommand(
       "render", "Render a mesh to PNG off-screen, optionally coloured by the distance "
                 "of each vertex to a reference (green to red)");
-  cmd->add_option("mesh", args->in, "Mesh file (.ply, .obj, .off)")->required();
+  cmd->add_option("mesh", args->in, "Mesh file (.ply, .obj, .off, .glb, .gltf)")->required();
   cmd->add_option("out", args->out, "Output image (.png)")->required();
   cmd->add_option("--reference", args->reference,
                   "Mesh with the same vertices in the same order (e.g. the full decode)");

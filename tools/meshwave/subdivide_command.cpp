@@ -53,7 +53,7 @@ void AddSubdivideCommand(CLI::App& app, int& exit_code) {
   CLI::App* cmd = app.add_subcommand(
       "subdivide",
       "Refine a coarse manifold mesh by 1-to-4 splits into a semi-regular mesh");
-  cmd->add_option("in", args->in, "Coarse manifold mesh (.ply, .obj, .off)")
+  cmd->add_option("in", args->in, "Coarse manifold mesh (.ply, .obj, .off, .glb, .gltf)")
       ->required();
   cmd->add_option("out", args->out, "Output mesh (.ply, .obj, .glb or .gltf)")->required();
   cmd->add_option("-l,--levels", args->levels, "Levels of subdivision")

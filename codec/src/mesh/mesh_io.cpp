@@ -1,50 +1,17 @@
-// File-level mesh I/O: format by extension, whole-file reads, crash-safe
-// writes (core/durable_file.h), and the parser dispatch.
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
-
+// File-level mesh I/O that needs no asset reader: the format by extension,
+// crash-safe writes (core/durable_file.h), and the bounding box. Reading
+// (ReadMesh, ParseMesh) is asset/mesh_read.cpp: glTF geometry comes through
+// the asset reader, a floor above this one.
 #include <cctype>
-#include <cerrno>
-#include <cstdint>
-#include <cstring>
 #include <string>
-#include <utility>
 
 #include "core/durable_file.h"
-#include "mesh/mesh_readers.h"
 #include "meshwave/gltf.h"
 #include "meshwave/mesh.h"
 #include "meshwave/mesh_io.h"
 #include "meshwave/mesh_stats.h"
 
 namespace meshwave {
-namespace {
-
-// Larger inputs are refused before reading: the biggest meshes we handle are
-// a few hundred MB, and every reader needs a few times the file in memory.
-constexpr uint64_t kMaxFileBytes = uint64_t{4} << 30;
-
-Status ErrnoError(const std::filesystem::path& path, const char* action,
-                  int error) {
-  return IoError(path.string() + ": cannot " + action + ": " +
-                 std::strerror(error));
-}
-
-// Closes a file descriptor on every path out of a function.
-class FdCloser {
- public:
-  explicit FdCloser(int fd) : fd_(fd) {}
-  FdCloser(const FdCloser&) = delete;
-  FdCloser& operator=(const FdCloser&) = delete;
-  ~FdCloser() {
-    if (fd_ >= 0) ::close(fd_);
-  }
- private:
-  int fd_;
-};
-
-}  // namespace
 
 Result<MeshFormat> FormatFromPath(const std::filesystem::path& path) {
   std::string ext = path.extension().string();
@@ -53,59 +20,10 @@ Result<MeshFormat> FormatFromPath(const std::filesystem::path& path) {
   if (ext == ".ply") return MeshFormat::kPly;
   if (ext == ".obj") return MeshFormat::kObj;
   if (ext == ".off") return MeshFormat::kOff;
+  if (ext == ".glb" || ext == ".gltf") return MeshFormat::kGltf;
   return InvalidArgument(path.string() + ": unknown mesh format \"" +
                          path.extension().string() +
-                         "\" (expected .ply, .obj or .off)");
-}
-
-Result<TriMesh> ParseMesh(std::string_view bytes, MeshFormat format,
-                          std::string_view name) {
-  Result<TriMesh> mesh = [&]() -> Result<TriMesh> {
-    switch (format) {
-      case MeshFormat::kPly:
-        return ParsePly(bytes, name);
-      case MeshFormat::kObj:
-        return ParseObj(bytes, name);
-      case MeshFormat::kOff:
-        return ParseOff(bytes, name);
-    }
-    return InvalidArgument(std::string(name) + ": unknown mesh format");
-  }();
-  if (mesh.ok() && mesh->faces.empty()) {
-    return ParseError(std::string(name) + ": no faces (" +
-                      std::to_string(mesh->positions.size()) + " vertices)");
-  }
-  return mesh;
-}
-
-Result<TriMesh> ReadMesh(const std::filesystem::path& path) {
-  MW_ASSIGN_OR_RETURN(MeshFormat format, FormatFromPath(path));
-  int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) return ErrnoError(path, "open", errno);
-  FdCloser closer(fd);
-  struct stat info {};
-  if (::fstat(fd, &info) != 0) return ErrnoError(path, "stat", errno);
-  if (!S_ISREG(info.st_mode))
-    return IoError(path.string() + ": not a regular file");
-  const uint64_t size = static_cast<uint64_t>(info.st_size);
-  if (size > kMaxFileBytes) {
-    return IoError(path.string() + ": " + std::to_string(size) +
-                   " bytes is larger than the 4 GiB limit");
-  }
-  std::string bytes(static_cast<size_t>(size), '\0');
-  size_t done = 0;
-  while (done < bytes.size()) {
-    ssize_t got = ::read(fd, bytes.data() + done, bytes.size() - done);
-    if (got < 0) {
-      if (errno == EINTR) continue;
-      return ErrnoError(path, "read", errno);
-    }
-    if (got == 0) {
-      return IoError(path.string() + ": file shrank while being read");
-    }
-    done += static_cast<size_t>(got);
-  }
-  return ParseMesh(bytes, format, path.string());
+                         "\" (expected .ply, .obj, .off, .glb or .gltf)");
 }
 
 Status WriteMesh(const TriMesh& mesh, const std::filesystem::path& path) {
@@ -124,6 +42,8 @@ Status WriteMesh(const TriMesh& mesh, const std::filesystem::path& path) {
     case MeshFormat::kObj:
       return WriteFileDurably(path, SerializeObj(mesh));
     case MeshFormat::kOff:
+      break;
+    case MeshFormat::kGltf:  // handled above (GltfFormFromPath)
       break;
   }
   return Status(

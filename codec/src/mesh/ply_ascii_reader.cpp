@@ -39,11 +39,12 @@ bool IntegerFits(int64_t value, PlyScalar type) {
 class AsciiBodyReader {
  public:
   AsciiBodyReader(const PlyHeader& header, std::string_view bytes,
-                  std::string_view name)
+                  std::string_view name, std::vector<Eigen::Vector4f>* colors)
       : header_(header),
         layout_(header.layout),
         name_(name),
-        cursor_(bytes.substr(header.body_offset), header.body_line) {}
+        cursor_(bytes.substr(header.body_offset), header.body_line),
+        colors_(header.layout.HasColors() ? colors : nullptr) {}
 
   Result<TriMesh> Read() {
     for (size_t i = 0; i < header_.elements.size(); ++i) {
@@ -170,8 +171,21 @@ class AsciiBodyReader {
     return Status::Ok();
   }
 
+  // Which colour channel property p holds, or -1.
+  int ColorChannel(size_t p) const {
+    if (colors_ == nullptr) return -1;
+    for (int c = 0; c < 4; ++c) {
+      if (p == layout_.rgba[c]) return c;
+    }
+    return -1;
+  }
+
   Status ReadVertices(const PlyElement& e) {
     mesh_.positions.resize(static_cast<size_t>(e.count));  // checked count
+    if (colors_ != nullptr) {
+      colors_->assign(static_cast<size_t>(e.count),
+                      Eigen::Vector4f(1.0f, 1.0f, 1.0f, 1.0f));
+    }
     for (uint64_t r = 0; r < e.count; ++r) {
       Vec3& position = mesh_.positions[r];
       for (size_t p = 0; p < e.properties.size(); ++p) {
@@ -180,6 +194,13 @@ class AsciiBodyReader {
                    : p == layout_.xyz[1] ? 1
                    : p == layout_.xyz[2] ? 2
                                          : -1;
+        if (const int channel = axis < 0 ? ColorChannel(p) : -1; channel >= 0) {
+          double value = 0.0;
+          MW_RETURN_IF_ERROR(ReadValue(e, r, property.type, &value));
+          if (std::isnan(value)) return Error(e, r, "colour is NaN");
+          (*colors_)[r][channel] = PlyColorChannel(value, property.type);
+          continue;
+        }
         if (axis < 0) {
           MW_RETURN_IF_ERROR(SkipProperty(e, r, property));
           continue;
@@ -239,15 +260,16 @@ class AsciiBodyReader {
   const PlyMeshLayout& layout_;
   std::string_view name_;
   TokenCursor cursor_;
+  std::vector<Eigen::Vector4f>* colors_;  // null: geometry only
   TriMesh mesh_;
 };
 
 }  // namespace
 
 Result<TriMesh> ReadPlyAsciiBody(const PlyHeader& header,
-                                 std::string_view bytes,
-                                 std::string_view name) {
-  return AsciiBodyReader(header, bytes, name).Read();
+                                 std::string_view bytes, std::string_view name,
+                                 std::vector<Eigen::Vector4f>* colors) {
+  return AsciiBodyReader(header, bytes, name, colors).Read();
 }
 
 }  // namespace meshwave

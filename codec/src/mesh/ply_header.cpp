@@ -208,6 +208,18 @@ class HeaderParser {
           layout.xyz[axis] = p;
         }
       }
+      static constexpr std::array<std::string_view, 4> kChannels = {
+          "red", "green", "blue", "alpha"};
+      for (size_t p = 0; p < v.properties.size(); ++p) {
+        if (v.properties[p].is_list) continue;
+        std::string_view n = v.properties[p].name;
+        if (n.starts_with("diffuse_")) n.remove_prefix(8);
+        for (size_t c = 0; c < 4; ++c) {
+          if (n == kChannels[c] && layout.rgba[c] == PlyMeshLayout::kNone) {
+            layout.rgba[c] = p;
+          }
+        }
+      }
       for (size_t axis = 0; axis < 3; ++axis) {
         if (layout.xyz[axis] == PlyMeshLayout::kNone) {
           return ElementError(v, "no property " + std::string(kAxes[axis]));
@@ -304,6 +316,35 @@ size_t PlyElement::MinBinaryRecordSize() const {
     size += PlyScalarSize(p.is_list ? p.count_type : p.type);
   }
   return size;
+}
+
+float PlyColorChannel(double value, PlyScalar type) {
+  double scale = 1.0;
+  switch (type) {
+    case PlyScalar::kInt8:
+      scale = 127.0;
+      break;
+    case PlyScalar::kUint8:
+      scale = 255.0;
+      break;
+    case PlyScalar::kInt16:
+      scale = 32767.0;
+      break;
+    case PlyScalar::kUint16:
+      scale = 65535.0;
+      break;
+    case PlyScalar::kInt32:
+      scale = 2147483647.0;
+      break;
+    case PlyScalar::kUint32:
+      scale = 4294967295.0;
+      break;
+    case PlyScalar::kFloat32:
+    case PlyScalar::kFloat64:
+      break;
+  }
+  const double v = value / scale;
+  return static_cast<float>(v < 0.0 ? 0.0 : v > 1.0 ? 1.0 : v);
 }
 
 Result<PlyHeader> ParsePlyHeader(std::string_view bytes,

@@ -10,6 +10,8 @@
 #include <string_view>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "meshwave/mesh.h"
 #include "meshwave/status.h"
 
@@ -61,6 +63,13 @@ struct PlyMeshLayout {
   size_t face_element = kNone;
   size_t indices = kNone;  // property index of vertex_indices
   uint64_t vertex_count = 0;
+  // Vertex colour properties (red, green, blue, alpha, or diffuse_red ...),
+  // scalars; kNone when absent. Colours are read only when red, green and
+  // blue are all there.
+  size_t rgba[4] = {kNone, kNone, kNone, kNone};
+  bool HasColors() const {
+    return rgba[0] != kNone && rgba[1] != kNone && rgba[2] != kNone;
+  }
 };
 
 struct PlyHeader {
@@ -78,12 +87,32 @@ struct PlyHeader {
 Result<PlyHeader> ParsePlyHeader(std::string_view bytes, std::string_view name);
 
 // The body readers, one per encoding: they read the elements of `header`
-// from `bytes` (the whole file) starting at header.body_offset.
+// from `bytes` (the whole file) starting at header.body_offset. With
+// `colors` (and header.layout.HasColors()) they also fill one colour per
+// vertex, see PlyColorChannel; without, they read geometry alone, as fast
+// as before colours existed.
 Result<TriMesh> ReadPlyAsciiBody(const PlyHeader& header,
-                                 std::string_view bytes, std::string_view name);
-Result<TriMesh> ReadPlyBinaryBody(const PlyHeader& header,
-                                  std::string_view bytes,
-                                  std::string_view name);
+                                 std::string_view bytes, std::string_view name,
+                                 std::vector<Eigen::Vector4f>* colors = nullptr);
+Result<TriMesh> ReadPlyBinaryBody(
+    const PlyHeader& header, std::string_view bytes, std::string_view name,
+    std::vector<Eigen::Vector4f>* colors = nullptr);
+
+// A colour channel as stored, mapped to [0, 1] by its type: integers
+// divided by their type's maximum (uchar 255, ushort 65535, ...), floats
+// as they are; clamped. No transfer function is applied (PLY colours are
+// sRGB-encoded by convention: the caller decodes them).
+float PlyColorChannel(double value, PlyScalar type);
+
+// ParsePly with the vertex colours (empty when the file has none) and the
+// header, for a caller that reports what else the file holds.
+struct PlyColoredMesh {
+  TriMesh mesh;
+  std::vector<Eigen::Vector4f> colors;
+  PlyHeader header;
+};
+Result<PlyColoredMesh> ParsePlyWithColors(std::string_view bytes,
+                                          std::string_view name);
 
 }  // namespace meshwave
 

@@ -75,14 +75,15 @@ void DecodeUniformCoordinates(const char* records, size_t count, size_t stride,
 class BinaryBodyReader {
  public:
   BinaryBodyReader(const PlyHeader& header, std::string_view bytes,
-                   std::string_view name)
+                   std::string_view name, std::vector<Eigen::Vector4f>* colors)
       : header_(header),
         layout_(header.layout),
         name_(name),
         reader_(bytes.substr(header.body_offset)),
         order_(header.encoding == PlyEncoding::kBinaryBigEndian
                    ? std::endian::big
-                   : std::endian::little) {}
+                   : std::endian::little),
+        colors_(header.layout.HasColors() ? colors : nullptr) {}
 
   Result<TriMesh> Read() {
     for (size_t i = 0; i < header_.elements.size(); ++i) {
@@ -175,10 +176,27 @@ class BinaryBodyReader {
     return Status::Ok();
   }
 
+  // Stores colour channel property p of vertex r, when p is one.
+  Status MaybeColor(const PlyElement& e, size_t r, size_t p, const char* data) {
+    for (int c = 0; c < 4; ++c) {
+      if (p != layout_.rgba[c]) continue;
+      const double value = LoadAsDouble(data, e.properties[p].type, order_);
+      if (std::isnan(value)) {
+        return MeshParseError(name_, "vertex " + std::to_string(r),
+                              "colour is NaN");
+      }
+      (*colors_)[r][c] = PlyColorChannel(value, e.properties[p].type);
+    }
+    return Status::Ok();
+  }
+
   Status ReadVertices(const PlyElement& e) {
     MW_RETURN_IF_ERROR(CheckCount(e));
     const size_t count = static_cast<size_t>(e.count);
     mesh_.positions.resize(count);
+    if (colors_ != nullptr) {
+      colors_->assign(count, Eigen::Vector4f(1.0f, 1.0f, 1.0f, 1.0f));
+    }
     if (!e.HasLists()) {
       MW_RETURN_IF_ERROR(ReadFixedVertices(e));
     } else {
@@ -190,6 +208,7 @@ class BinaryBodyReader {
               position[axis] = LoadAsDouble(data, e.properties[p].type, order_);
             }
           }
+          if (colors_ != nullptr) return MaybeColor(e, r, p, data);
           return Status::Ok();
         };
         auto ignore_list = [](size_t, size_t, const char*) {
@@ -242,6 +261,27 @@ class BinaryBodyReader {
         for (int axis = 0; axis < 3; ++axis) {
           out[r][axis] =
               LoadAsDouble(record + offsets[axis], types[axis], order_);
+        }
+      }
+    }
+    if (colors_ != nullptr) {
+      // A second pass over the same records: the geometry loop above stays
+      // as fast as without colours.
+      size_t property_offsets[4] = {0, 0, 0, 0};
+      for (int c = 0; c < 4; ++c) {
+        if (layout_.rgba[c] == PlyMeshLayout::kNone) continue;
+        size_t at = 0;
+        for (size_t p = 0; p < layout_.rgba[c]; ++p) {
+          at += PlyScalarSize(e.properties[p].type);
+        }
+        property_offsets[c] = at;
+      }
+      for (size_t r = 0; r < count; ++r) {
+        const char* record = records.data() + r * stride;
+        for (int c = 0; c < 4; ++c) {
+          if (layout_.rgba[c] == PlyMeshLayout::kNone) continue;
+          MW_RETURN_IF_ERROR(
+              MaybeColor(e, r, layout_.rgba[c], record + property_offsets[c]));
         }
       }
     }
@@ -302,15 +342,30 @@ class BinaryBodyReader {
   std::string_view name_;
   ByteReader reader_;
   std::endian order_;
+  std::vector<Eigen::Vector4f>* colors_;  // null: geometry only
   TriMesh mesh_;
 };
 
 }  // namespace
 
 Result<TriMesh> ReadPlyBinaryBody(const PlyHeader& header,
-                                  std::string_view bytes,
-                                  std::string_view name) {
-  return BinaryBodyReader(header, bytes, name).Read();
+                                  std::string_view bytes, std::string_view name,
+                                  std::vector<Eigen::Vector4f>* colors) {
+  return BinaryBodyReader(header, bytes, name, colors).Read();
+}
+
+Result<PlyColoredMesh> ParsePlyWithColors(std::string_view bytes,
+                                          std::string_view name) {
+  PlyColoredMesh out;
+  MW_ASSIGN_OR_RETURN(out.header, ParsePlyHeader(bytes, name));
+  if (out.header.encoding == PlyEncoding::kAscii) {
+    MW_ASSIGN_OR_RETURN(out.mesh,
+                        ReadPlyAsciiBody(out.header, bytes, name, &out.colors));
+  } else {
+    MW_ASSIGN_OR_RETURN(out.mesh,
+                        ReadPlyBinaryBody(out.header, bytes, name, &out.colors));
+  }
+  return out;
 }
 
 Result<TriMesh> ParsePly(std::string_view bytes, std::string_view name) {

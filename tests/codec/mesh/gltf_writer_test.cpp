@@ -170,11 +170,18 @@ TEST(GltfWriterTest, WriteMeshChoosesGltfByExtension) {
   }
   EXPECT_EQ(GltfFormFromPath("a/b.GlB"), GltfForm::kBinary);
   EXPECT_EQ(GltfFormFromPath("b.ply"), std::nullopt);
-  // Written only: reading one back is refused with the formats read.
-  const Result<TriMesh> back = ReadMesh(dir / "t.glb");
-  EXPECT_EQ(back.status().code(), StatusCode::kInvalidArgument);
-  EXPECT_THAT(back.status().message(),
-              HasSubstr("expected .ply, .obj or .off"));
+  // Both forms read back (ReadMesh reads glTF geometry): the same
+  // positions, bit for bit, and faces.
+  for (const char* name : {"t.glb", "t.GLTF"}) {
+    const Result<TriMesh> back = ReadMesh(dir / name);
+    ASSERT_TRUE(back.ok()) << name << ": " << back.status().ToString();
+    EXPECT_EQ(back->positions, mesh.positions) << name;
+    EXPECT_EQ(back->faces, mesh.faces) << name;
+  }
+  const Result<TriMesh> stl = ReadMesh(dir / "t.stl");
+  EXPECT_EQ(stl.status().code(), StatusCode::kInvalidArgument);
+  EXPECT_THAT(stl.status().message(),
+              HasSubstr("expected .ply, .obj, .off, .glb or .gltf"));
   const Status unknown = WriteMesh(mesh, dir / "t.stl");
   EXPECT_EQ(unknown.code(), StatusCode::kInvalidArgument);
   EXPECT_THAT(unknown.message(), HasSubstr("write .ply, .obj, .glb or .gltf"));

@@ -13,9 +13,10 @@
 
 namespace meshwave {
 
-enum class MeshFormat { kPly, kObj, kOff };
+enum class MeshFormat { kPly, kObj, kOff, kGltf };
 
-// Guesses the format from the file extension (.ply, .obj, .off; any case).
+// Guesses the format from the file extension (.ply, .obj, .off; .glb and
+// .gltf are kGltf; any case).
 Result<MeshFormat> FormatFromPath(const std::filesystem::path& path);
 
 // Parses a whole file held in memory. `name` is used in error messages only.
@@ -24,6 +25,12 @@ Result<MeshFormat> FormatFromPath(const std::filesystem::path& path);
 // other properties and elements are skipped. OBJ: `v` and `f` (polygons
 // fan-triangulated, negative indices, v/vt/vn forms); everything else ignored.
 // OFF: OFF/COFF/NOFF/CNOFF headers, comments, polygons fan-triangulated.
+// glTF: a .glb, or a .gltf whose buffers are data URIs (a file that refers
+// to others needs them: ReadMesh, or ParseMeshAsset of meshwave/
+// mesh_asset.h); the default scene's triangles with node transforms
+// applied, positions welded; images are not read. AssetLimits' defaults
+// hold (16.7 M triangles counted per drawing node: instancing is a way to
+// make a small file decode to a huge mesh).
 // Rejects NaN/Inf coordinates, out-of-range indices, truncated data and empty
 // meshes. Polygons with fewer than 3 corners are an error.
 Result<TriMesh> ParseMesh(std::string_view bytes, MeshFormat format,
@@ -31,7 +38,8 @@ Result<TriMesh> ParseMesh(std::string_view bytes, MeshFormat format,
 
 // Reads and parses a file; the format comes from its extension. Files over
 // 4 GiB are refused. IoError (naming the path) when it cannot be read; the
-// parse errors name the path as given.
+// parse errors name the path as given (glTF's name the file in its folder,
+// where its .bin files are read from).
 Result<TriMesh> ReadMesh(const std::filesystem::path& path);
 
 // Writes binary PLY (float32), OBJ (shortest exact decimals: lossless) or
