@@ -3,7 +3,7 @@
 # CMake package whose find_package(meshwave) gives meshwave::decoder alone.
 # Nothing of the encoder, the protocol, the server or the client
 # (tests/codec/decoder_install_test.sh checks the installed tree).
-include(CMakePackageConfigHelpers)
+include(${CMAKE_CURRENT_LIST_DIR}/MeshwavePackage.cmake)
 include(GNUInstallDirs)
 
 set_target_properties(meshwave_decoder PROPERTIES EXPORT_NAME decoder)
@@ -14,12 +14,4 @@ install(TARGETS meshwave_decoder
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/codec/include/decoder/meshwave
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} FILES_MATCHING PATTERN "*.h")
 
-set(MESHWAVE_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/meshwave)
-install(EXPORT meshwaveDecoderTargets NAMESPACE meshwave:: DESTINATION ${MESHWAVE_CMAKE_DIR})
-configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/meshwaveDecoderConfig.cmake.in
-  ${PROJECT_BINARY_DIR}/meshwaveConfig.cmake INSTALL_DESTINATION ${MESHWAVE_CMAKE_DIR})
-write_basic_package_version_file(${PROJECT_BINARY_DIR}/meshwaveConfigVersion.cmake
-  COMPATIBILITY SameMinorVersion)
-install(FILES ${PROJECT_BINARY_DIR}/meshwaveConfig.cmake
-              ${PROJECT_BINARY_DIR}/meshwaveConfigVersion.cmake
-  DESTINATION ${MESHWAVE_CMAKE_DIR})
+meshwave_install_package(meshwaveDecoderTargets ${PROJECT_SOURCE_DIR}/cmake/meshwaveDecoderConfig.cmake.in)

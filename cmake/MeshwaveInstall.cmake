@@ -4,7 +4,7 @@
 # package so that another project can find_package(meshwave) and link
 # meshwave::client. A build configured with MESHWAVE_DECODER_ONLY installs
 # the decoder alone (cmake/MeshwaveDecoderInstall.cmake).
-include(CMakePackageConfigHelpers)
+include(${CMAKE_CURRENT_LIST_DIR}/MeshwavePackage.cmake)
 include(GNUInstallDirs)
 
 # Include directories as seen from the build tree and from an install (the
@@ -44,12 +44,4 @@ install(DIRECTORY ${PROJECT_BINARY_DIR}/proto/ ${PROJECT_BINARY_DIR}/client/
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} FILES_MATCHING PATTERN "*.pb.h"
   PATTERN "CMakeFiles" EXCLUDE)
 
-set(MESHWAVE_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/meshwave)
-install(EXPORT meshwaveTargets NAMESPACE meshwave:: DESTINATION ${MESHWAVE_CMAKE_DIR})
-configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/meshwaveConfig.cmake.in
-  ${PROJECT_BINARY_DIR}/meshwaveConfig.cmake INSTALL_DESTINATION ${MESHWAVE_CMAKE_DIR})
-write_basic_package_version_file(${PROJECT_BINARY_DIR}/meshwaveConfigVersion.cmake
-  COMPATIBILITY SameMinorVersion)
-install(FILES ${PROJECT_BINARY_DIR}/meshwaveConfig.cmake
-              ${PROJECT_BINARY_DIR}/meshwaveConfigVersion.cmake
-  DESTINATION ${MESHWAVE_CMAKE_DIR})
+meshwave_install_package(meshwaveTargets ${PROJECT_SOURCE_DIR}/cmake/meshwaveConfig.cmake.in)

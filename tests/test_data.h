@@ -87,24 +87,17 @@ std::string SharedMeshesMissing(std::initializer_list<std::string> names);
 // Skips (or, with MESHWAVE_REQUIRE_SHARED_MESHES=ON, fails) the current
 // test, or every test of a suite from SetUpTestSuite, when a shared mesh is
 // missing. Arguments: file names in the shared directory, or none.
-#define MESHWAVE_REQUIRE_SHARED_MESH(...)                                 \
-  do {                                                                    \
-    const std::string mw_missing_ =                                       \
-        ::meshwave::testing::SharedMeshesMissing({__VA_ARGS__});          \
-    if (!mw_missing_.empty()) {                                           \
-      if (::meshwave::testing::SharedMeshesRequired()) {                  \
-        GTEST_FAIL() << mw_missing_                                       \
-                     << " (required: MESHWAVE_REQUIRE_SHARED_MESHES=ON)"; \
-      }                                                                   \
-      GTEST_SKIP() << mw_missing_;                                        \
-    }                                                                     \
-  } while (false)
+#define MESHWAVE_REQUIRE_SHARED_MESH(...) \
+  MESHWAVE_REQUIRE_SHARED_FILES_(::meshwave::testing::SharedMeshesMissing({__VA_ARGS__}))
 
 // The same for the shared textured files (SharedTextured names).
-#define MESHWAVE_REQUIRE_SHARED_TEXTURED(...)                             \
+#define MESHWAVE_REQUIRE_SHARED_TEXTURED(...) \
+  MESHWAVE_REQUIRE_SHARED_FILES_(::meshwave::testing::SharedTexturedMissing({__VA_ARGS__}))
+
+// `missing`: what is missing, empty when nothing is.
+#define MESHWAVE_REQUIRE_SHARED_FILES_(missing)                           \
   do {                                                                    \
-    const std::string mw_missing_ =                                       \
-        ::meshwave::testing::SharedTexturedMissing({__VA_ARGS__});        \
+    const std::string mw_missing_ = (missing);                            \
     if (!mw_missing_.empty()) {                                           \
       if (::meshwave::testing::SharedMeshesRequired()) {                  \
         GTEST_FAIL() << mw_missing_                                       \

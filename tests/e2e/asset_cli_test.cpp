@@ -10,22 +10,15 @@
 #include <string>
 
 #include "e2e/cli_runner.h"
+#include "e2e/mesh_info_testonly.h"
 #include "meshwave.pb.h"
 
 namespace meshwave {
 namespace {
 
+using testing::InfoOf;
 using testing::RunCli;
 using testing::TempDir;
-
-proto::MeshInfo InfoOf(const std::filesystem::path& file) {
-  const auto r = RunCli({"info", file.string(), "--json"});
-  EXPECT_EQ(r.exit_code, 0) << file << ": " << r.err;
-  proto::MeshInfo info;
-  const auto status = google::protobuf::util::JsonStringToMessage(r.out, &info);
-  EXPECT_TRUE(status.ok()) << status.ToString() << "\n" << r.out;
-  return info;
-}
 
 TEST(AssetCliTest, TheGlbThatDecodeWritesReadsBack) {
   TempDir dir;

@@ -4,6 +4,7 @@
 
 #include "codec/test_meshes.h"
 #include "e2e/cli_runner.h"
+#include "e2e/mesh_info_testonly.h"
 #include "meshwave.pb.h"
 #include "meshwave/mesh.h"
 #include "meshwave/mesh_io.h"
@@ -11,17 +12,9 @@
 namespace meshwave {
 namespace {
 
+using testing::InfoOf;
 using testing::RunCli;
 using testing::TempDir;
-
-proto::MeshInfo InfoOf(const std::filesystem::path& file) {
-  const auto r = RunCli({"info", file.string(), "--json"});
-  EXPECT_EQ(r.exit_code, 0) << file << ": " << r.err;
-  proto::MeshInfo info;
-  const auto status = google::protobuf::util::JsonStringToMessage(r.out, &info);
-  EXPECT_TRUE(status.ok()) << status.ToString() << "\n" << r.out;
-  return info;
-}
 
 TEST(CliTest, HelpListsCommands) {
   const auto r = RunCli({"--help"});

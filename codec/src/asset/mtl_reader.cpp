@@ -46,9 +46,7 @@ class MtlParser {
 
   Result<std::vector<MtlMaterial>> Parse() {
     std::string_view line;
-    while (lines_.Next(&line)) {
-      const size_t hash = line.find('#');
-      if (hash != std::string_view::npos) line = line.substr(0, hash);
+    while (NextStatementLine(lines_, &line)) {
       TokenSplitter tokens(line);
       std::string_view keyword;
       if (!tokens.Next(&keyword)) continue;

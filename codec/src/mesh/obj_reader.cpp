@@ -20,9 +20,7 @@ class ObjParser {
 
   Result<TriMesh> Parse() {
     std::string_view line;
-    while (lines_.Next(&line)) {
-      size_t hash = line.find('#');
-      if (hash != std::string_view::npos) line = line.substr(0, hash);
+    while (NextStatementLine(lines_, &line)) {
       TokenSplitter tokens(line);
       std::string_view keyword;
       if (!tokens.Next(&keyword)) continue;

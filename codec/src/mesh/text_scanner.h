@@ -79,6 +79,15 @@ class TokenSplitter {
   size_t position_ = 0;
 };
 
+// The next line of an OBJ or MTL file with its comment (from '#') cut;
+// false at the end of the text.
+inline bool NextStatementLine(LineSplitter& lines, std::string_view* line) {
+  if (!lines.Next(line)) return false;
+  const size_t hash = line->find('#');
+  if (hash != std::string_view::npos) *line = line->substr(0, hash);
+  return true;
+}
+
 // Tokens across line breaks, remembering the line each token starts on
 // (ASCII PLY records may in principle wrap).
 class TokenCursor {
