@@ -94,5 +94,27 @@ TEST(LocalStateTest, RefusesACorruptOrMismatchedSidecar) {
   EXPECT_EQ(LoadState(file).status().code(), StatusCode::kIoError);
 }
 
+// The container the packets came from (docs/API.md, "Re-encoded meshes")
+// comes back as saved; a sidecar naming something else is refused.
+TEST(LocalStateTest, KeepsTheServedContainerAndRefusesAMalformedOne) {
+  TempDir dir;
+  const auto file = dir / "m.mwv";
+  LocalState st = SampleState();
+  st.served_container = std::string(64, 'a');
+  ASSERT_TRUE(SaveState(file, st).ok());
+  auto back = LoadState(file);
+  ASSERT_TRUE(back.ok()) << back.status().ToString();
+  EXPECT_EQ(back->served_container, st.served_container);
+
+  st.served_container = "not-a-digest";
+  ASSERT_TRUE(SaveState(file, st).ok());
+  auto bad = LoadState(file);
+  ASSERT_FALSE(bad.ok());
+  EXPECT_EQ(bad.status().code(), StatusCode::kParseError);
+  EXPECT_NE(bad.status().message().find("served_container is not a container digest"),
+            std::string::npos)
+      << bad.status().message();
+}
+
 }  // namespace
 }  // namespace meshwave::client
