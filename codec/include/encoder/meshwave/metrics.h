@@ -68,8 +68,8 @@ struct SurfaceDistanceOptions {
   uint64_t seed = 1;
   // Lower bound on the number of face samples of each mesh.
   size_t min_samples = 10000;
-  // Threads (0: the machine's cores): the two directions are measured side
-  // by side, each as on one thread, so the result is the same for any count.
+  // Threads (0: the machine's cores) that build each direction's index and
+  // measure its samples; the result is the same for any count.
   int threads = 0;
   // At most this many samples on each mesh (0: no bound): a mesh whose
   // face and vertex samples would exceed it gets exactly this many face
