@@ -108,7 +108,8 @@ class RingMatrix {
                 rings_.Ring(static_cast<uint32_t>(v));
             const double* row = values_.data() + start_[v];
             double sum = row[0] * x[static_cast<Eigen::Index>(v)];
-            for (size_t k = 0; k < ring.size(); ++k) sum += row[1 + k] * x[ring[k]];
+            for (size_t k = 0; k < ring.size(); ++k)
+              sum += row[1 + k] * x[ring[k]];
             y[static_cast<Eigen::Index>(v)] = sum;
           }
         },
@@ -172,48 +173,79 @@ struct InputSample {
 
 // The input's vertices (area/12 of every incident face) and face centroids
 // (3/4 of the face's area), a rule exact for quadratics over each face,
-// face by face so consecutive samples are near each other.
-std::vector<InputSample> SampleInput(const InputSurface& surface) {
-  const TriMesh& mesh = surface.mesh();
-  const size_t nv = mesh.positions.size();
-  std::vector<double> vertex_weight(nv, 0);
-  std::vector<Vec3> vertex_normal(nv, Vec3::Zero());
-  std::vector<double> area(mesh.faces.size());
-  for (size_t f = 0; f < mesh.faces.size(); ++f) {
-    const Face& t = mesh.faces[f];
-    area[f] = (mesh.positions[t[1]] - mesh.positions[t[0]])
-                  .cross(mesh.positions[t[2]] - mesh.positions[t[0]])
-                  .norm() /
-              2;
-    for (uint32_t v : t) {
-      vertex_weight[v] += area[f] / 12;
-      vertex_normal[v] += area[f] * surface.FaceNormal(static_cast<uint32_t>(f));
+// face by face so consecutive samples are near each other. Each sample is
+// made when asked for from a list of 8 bytes a sample and what its vertex
+// needs (its unit normal, weight and component), so that a 10 M-face input
+// holds 0.3 GiB here rather than 15 M whole samples (1 GiB).
+class InputSamples {
+ public:
+  explicit InputSamples(const InputSurface& surface) : surface_(surface) {
+    const TriMesh& mesh = surface.mesh();
+    const size_t nv = mesh.positions.size();
+    vertex_weight_.assign(nv, 0);
+    vertex_normal_.assign(nv, Vec3::Zero());
+    vertex_component_.assign(nv, 0);
+    for (size_t f = 0; f < mesh.faces.size(); ++f) {
+      const double area = FaceArea(f);
+      for (uint32_t v : mesh.faces[f]) {
+        vertex_weight_[v] += area / 12;
+        vertex_normal_[v] +=
+            area * surface.FaceNormal(static_cast<uint32_t>(f));
+      }
+    }
+    refs_.reserve(nv + mesh.faces.size());
+    std::vector<uint8_t> seen(nv, 0);
+    for (size_t f = 0; f < mesh.faces.size(); ++f) {
+      if (FaceArea(f) > 0) refs_.push_back(f);
+      for (uint32_t v : mesh.faces[f]) {
+        if (seen[v]) continue;
+        seen[v] = 1;
+        const double length = vertex_normal_[v].norm();
+        if (!(vertex_weight_[v] > 0) || !(length > 0)) continue;
+        vertex_normal_[v] /= length;
+        vertex_component_[v] = surface.components().of_face[f];
+        refs_.push_back(kVertex | v);
+      }
     }
   }
-  std::vector<InputSample> samples;
-  samples.reserve(nv + mesh.faces.size());
-  std::vector<uint8_t> seen(nv, 0);
-  for (size_t f = 0; f < mesh.faces.size(); ++f) {
+
+  size_t size() const { return refs_.size(); }
+
+  InputSample operator[](size_t s) const {
+    const TriMesh& mesh = surface_.mesh();
+    const uint64_t ref = refs_[s];
+    if ((ref & kVertex) != 0) {
+      const auto v = static_cast<uint32_t>(ref);
+      return {mesh.positions[v], vertex_normal_[v], vertex_weight_[v],
+              vertex_component_[v]};
+    }
+    const auto f = static_cast<uint32_t>(ref);
     const Face& t = mesh.faces[f];
-    const uint32_t component = surface.components().of_face[f];
-    if (area[f] > 0) {
-      samples.push_back({(mesh.positions[t[0]] + mesh.positions[t[1]] +
-                          mesh.positions[t[2]]) /
-                             3,
-                         surface.FaceNormal(static_cast<uint32_t>(f)),
-                         3 * area[f] / 4, component});
-    }
-    for (uint32_t v : t) {
-      if (seen[v]) continue;
-      seen[v] = 1;
-      const double length = vertex_normal[v].norm();
-      if (!(vertex_weight[v] > 0) || !(length > 0)) continue;
-      samples.push_back({mesh.positions[v], vertex_normal[v] / length,
-                         vertex_weight[v], component});
-    }
+    return {
+        (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) /
+            3,
+        surface_.FaceNormal(f), 3 * FaceArea(f) / 4,
+        surface_.components().of_face[f]};
   }
-  return samples;
-}
+
+ private:
+  static constexpr uint64_t kVertex = uint64_t{1} << 32;
+
+  double FaceArea(size_t f) const {
+    const TriMesh& mesh = surface_.mesh();
+    const Face& t = mesh.faces[f];
+    return (mesh.positions[t[1]] - mesh.positions[t[0]])
+               .cross(mesh.positions[t[2]] - mesh.positions[t[0]])
+               .norm() /
+           2;
+  }
+
+  const InputSurface& surface_;
+  std::vector<double> vertex_weight_;
+  std::vector<Vec3> vertex_normal_;  // unit once the samples are listed
+  std::vector<uint32_t> vertex_component_;
+  std::vector<uint64_t> refs_;  // a face, or kVertex | a vertex
+};
 
 class LeastSquaresFit {
  public:
@@ -233,16 +265,16 @@ class LeastSquaresFit {
     SetUpVertices(stats);
     SetUpEdges();
     if (stats.free_vertices == 0) return stats;
-    const std::vector<InputSample> input = SampleInput(state_.surface);
+    const InputSamples input(state_.surface);
     input_hint_.assign(input.size(), metrics::TriangleBvh::kNoFace);
     t_.assign(n_, 0);
     for (int round = 0; round < state_.options.least_squares_rounds; ++round) {
       const std::vector<Vec3> x = Positions(t_);
-      std::vector<Term> input_terms = ProjectInput(input, x);
-      std::vector<Term> remesh_terms = ProjectRemesh(x);
-      stats.input_samples = CountUsed(input_terms);
-      stats.remesh_samples = CountUsed(remesh_terms);
-      Eigen::VectorXd g = Assemble(input_terms, remesh_terms);
+      h_.Clear();
+      Eigen::VectorXd g = Eigen::VectorXd::Zero(n_);
+      stats.input_samples = AddInputTerms(input, x, g);
+      stats.remesh_samples = AddRemeshTerms(x, g);
+      AddRegularisation(g);
       const Eigen::VectorXd delta = SolveConjugateGradients(h_, -g, threads_);
       std::vector<double> next(n_);
       for (uint32_t v = 0; v < n_; ++v) {
@@ -271,9 +303,27 @@ class LeastSquaresFit {
     return x;
   }
 
-  static size_t CountUsed(const std::vector<Term>& terms) {
-    return static_cast<size_t>(std::count_if(
-        terms.begin(), terms.end(), [](const Term& t) { return t.weight > 0; }));
+  // The normal equations H δ = -g of the energy linearised at t_ are summed
+  // in sample order: input samples, remesh samples, then the smoothness and
+  // Tikhonov terms. The samples are projected in batches (whole hint
+  // blocks) on the threads and added as each batch is done, so only one
+  // batch of terms is held: for a 10 M-face input the terms of all samples
+  // would be about 0.8 GiB each way.
+  static constexpr size_t kTermBatch = 4096 * kHintBlock;
+
+  // Adds one sample's term to h_ and g; whether it was used.
+  bool AddTerm(const Term& term, Eigen::VectorXd& g) {
+    if (!(term.weight > 0)) return false;
+    for (int k = 0; k < 3; ++k) {
+      if (term.a[k] == 0) continue;
+      g[term.v[k]] += term.weight * term.a[k] * term.r0;
+      h_.AddDiagonal(term.v[k], term.weight * term.a[k] * term.a[k]);
+      for (int l = k + 1; l < 3; ++l) {
+        if (term.a[l] == 0 || term.v[l] == term.v[k]) continue;
+        h_.AddPair(term.v[k], term.v[l], term.weight * term.a[k] * term.a[l]);
+      }
+    }
+    return true;
   }
 
   // Free vertices, their offset limits and areas, the faces' fitted normals.
@@ -324,9 +374,9 @@ class LeastSquaresFit {
   }
 
   // Input samples to their nearest point on the current remesh, the
-  // residual along that face's normal.
-  std::vector<Term> ProjectInput(const std::vector<InputSample>& input,
-                                 const std::vector<Vec3>& x) {
+  // residual along that face's normal; returns the samples used.
+  size_t AddInputTerms(const InputSamples& input, const std::vector<Vec3>& x,
+                       Eigen::VectorXd& g) {
     const metrics::TriangleBvh bvh(x, faces_, threads_);
     std::vector<Vec3> unit(faces_.size());
     for (size_t f = 0; f < faces_.size(); ++f) {
@@ -335,32 +385,41 @@ class LeastSquaresFit {
       const double length = c.norm();
       unit[f] = length > 0 ? Vec3(c / length) : Vec3::Zero();
     }
-    std::vector<Term> terms(input.size());
-    const size_t blocks = (input.size() + kHintBlock - 1) / kHintBlock;
-    ParallelFor(
-        blocks, threads_,
-        [&](size_t begin, size_t end) {
-          for (size_t b = begin; b < end; ++b) {
-            uint32_t hint = metrics::TriangleBvh::kNoFace;
-            const size_t last = std::min(input.size(), (b + 1) * kHintBlock);
-            for (size_t s = b * kHintBlock; s < last; ++s) {
-              if (input_hint_[s] != metrics::TriangleBvh::kNoFace) {
-                hint = input_hint_[s];
+    size_t used = 0;
+    std::vector<Term> terms;
+    for (size_t first = 0; first < input.size(); first += kTermBatch) {
+      const size_t count = std::min(kTermBatch, input.size() - first);
+      terms.assign(count, Term{});
+      const size_t blocks = (count + kHintBlock - 1) / kHintBlock;
+      ParallelFor(
+          blocks, threads_,
+          [&](size_t begin, size_t end) {
+            for (size_t b = begin; b < end; ++b) {
+              uint32_t hint = metrics::TriangleBvh::kNoFace;
+              const size_t last = std::min(count, (b + 1) * kHintBlock);
+              for (size_t i = b * kHintBlock; i < last; ++i) {
+                const size_t s = first + i;
+                if (input_hint_[s] != metrics::TriangleBvh::kNoFace) {
+                  hint = input_hint_[s];
+                }
+                const InputSample sample = input[s];
+                const metrics::TriangleBvh::Hit hit =
+                    bvh.ClosestPoint(sample.point, hint);
+                if (hit.face == metrics::TriangleBvh::kNoFace) continue;
+                hint = hit.face;
+                input_hint_[s] = hit.face;
+                terms[i] = InputTerm(sample, hit, x, unit[hit.face]);
               }
-              const metrics::TriangleBvh::Hit hit =
-                  bvh.ClosestPoint(input[s].point, hint);
-              if (hit.face == metrics::TriangleBvh::kNoFace) continue;
-              hint = hit.face;
-              input_hint_[s] = hit.face;
-              terms[s] = InputTerm(input[s], hit, x, unit[hit.face]);
             }
-          }
-        },
-        16);
-    return terms;
+          },
+          16);
+      for (const Term& term : terms) used += AddTerm(term, g) ? 1 : 0;
+    }
+    return used;
   }
 
-  Term InputTerm(const InputSample& sample, const metrics::TriangleBvh::Hit& hit,
+  Term InputTerm(const InputSample& sample,
+                 const metrics::TriangleBvh::Hit& hit,
                  const std::vector<Vec3>& x, const Vec3& m) const {
     Term term;
     const Face& t = faces_[hit.face];
@@ -371,11 +430,12 @@ class LeastSquaresFit {
     const Vec3 d = hit.point - sample.point;
     // Far from the face's own size: a part the remesh missed, which no
     // normal offset of these corners mends.
-    const double size = std::max({(x[t[1]] - x[t[0]]).norm(),
-                                  (x[t[2]] - x[t[1]]).norm(),
-                                  (x[t[0]] - x[t[2]]).norm()});
+    const double size =
+        std::max({(x[t[1]] - x[t[0]]).norm(), (x[t[2]] - x[t[1]]).norm(),
+                  (x[t[0]] - x[t[2]]).norm()});
     if (d.norm() > size) return term;
-    const Eigen::Vector3d beta = Barycentric(hit.point, x[t[0]], x[t[1]], x[t[2]]);
+    const Eigen::Vector3d beta =
+        Barycentric(hit.point, x[t[0]], x[t[1]], x[t[2]]);
     for (int k = 0; k < 3; ++k) {
       term.v[k] = t[k];
       term.a[k] = free_[t[k]] ? beta[k] * normal_[t[k]].dot(m) : 0;
@@ -386,66 +446,54 @@ class LeastSquaresFit {
   }
 
   // Remesh edge midpoints to their nearest point on the input, the
-  // residual along the input face's normal.
-  std::vector<Term> ProjectRemesh(const std::vector<Vec3>& x) const {
-    std::vector<Term> terms(edges_.size());
+  // residual along the input face's normal; returns the samples used.
+  size_t AddRemeshTerms(const std::vector<Vec3>& x, Eigen::VectorXd& g) {
     const InputSurface& surface = state_.surface;
-    ParallelFor(
-        edges_.size(), threads_,
-        [&](size_t begin, size_t end) {
-          for (size_t e = begin; e < end; ++e) {
-            const Edge& edge = edges_[e];
-            const uint32_t i = edge.i, j = edge.j;
-            if (!(free_[i] || free_[j]) || !(edge.weight > 0)) continue;
-            const Vec3 y = (x[i] + x[j]) / 2;
-            const InputSurface::Projection hit =
-                surface.ClosestAnywhere(y, state_.anchors[i].face);
-            if (!hit.found()) continue;
-            const Vec3& m = surface.FaceNormal(hit.face);
-            const Vec3 facing = normal_[i] + normal_[j];
-            if (m.dot(facing) < kMinSheetCos * facing.norm() ||
-                surface.components().of_face[hit.face] !=
-                    state_.anchors[i].component) {
-              continue;
+    size_t used = 0;
+    std::vector<Term> terms;
+    for (size_t first = 0; first < edges_.size(); first += kTermBatch) {
+      const size_t count = std::min(kTermBatch, edges_.size() - first);
+      terms.assign(count, Term{});
+      ParallelFor(
+          count, threads_,
+          [&](size_t begin, size_t end) {
+            for (size_t e = first + begin; e < first + end; ++e) {
+              const Edge& edge = edges_[e];
+              const uint32_t i = edge.i, j = edge.j;
+              if (!(free_[i] || free_[j]) || !(edge.weight > 0)) continue;
+              const Vec3 y = (x[i] + x[j]) / 2;
+              const InputSurface::Projection hit =
+                  surface.ClosestAnywhere(y, state_.anchors[i].face);
+              if (!hit.found()) continue;
+              const Vec3& m = surface.FaceNormal(hit.face);
+              const Vec3 facing = normal_[i] + normal_[j];
+              if (m.dot(facing) < kMinSheetCos * facing.norm() ||
+                  surface.components().of_face[hit.face] !=
+                      state_.anchors[i].component) {
+                continue;
+              }
+              const Vec3 d = y - hit.point;
+              if (d.norm() > (x[i] - x[j]).norm()) continue;
+              Term& term = terms[e - first];
+              term.v = {i, j, j};
+              term.a = {free_[i] ? normal_[i].dot(m) / 2 : 0,
+                        free_[j] ? normal_[j].dot(m) / 2 : 0, 0};
+              term.r0 = d.dot(m);
+              term.weight = edge.weight;
             }
-            const Vec3 d = y - hit.point;
-            if (d.norm() > (x[i] - x[j]).norm()) continue;
-            Term& term = terms[e];
-            term.v = {i, j, j};
-            term.a = {free_[i] ? normal_[i].dot(m) / 2 : 0,
-                      free_[j] ? normal_[j].dot(m) / 2 : 0, 0};
-            term.r0 = d.dot(m);
-            term.weight = edge.weight;
-          }
-        },
-        1024);
-    return terms;
+          },
+          1024);
+      for (const Term& term : terms) used += AddTerm(term, g) ? 1 : 0;
+    }
+    return used;
   }
 
-  // The normal equations H δ = -g of the energy linearised at t_, summed
-  // in sample order.
-  Eigen::VectorXd Assemble(const std::vector<Term>& input_terms,
-                           const std::vector<Term>& remesh_terms) {
-    h_.Clear();
-    Eigen::VectorXd g = Eigen::VectorXd::Zero(n_);
-    const auto add = [&](const Term& term) {
-      if (!(term.weight > 0)) return;
-      for (int k = 0; k < 3; ++k) {
-        if (term.a[k] == 0) continue;
-        g[term.v[k]] += term.weight * term.a[k] * term.r0;
-        h_.AddDiagonal(term.v[k], term.weight * term.a[k] * term.a[k]);
-        for (int l = k + 1; l < 3; ++l) {
-          if (term.a[l] == 0 || term.v[l] == term.v[k]) continue;
-          h_.AddPair(term.v[k], term.v[l], term.weight * term.a[k] * term.a[l]);
-        }
-      }
-    };
-    for (const Term& term : input_terms) add(term);
-    for (const Term& term : remesh_terms) add(term);
+  // The smoothness and Tikhonov terms, after the samples'; fixed vertices
+  // get the identity.
+  void AddRegularisation(Eigen::VectorXd& g) {
     const double smoothness = state_.options.least_squares_smoothness;
     for (const Edge& edge : edges_) {
-      const double w =
-          smoothness * (x0_[edge.i] - x0_[edge.j]).squaredNorm();
+      const double w = smoothness * (x0_[edge.i] - x0_[edge.j]).squaredNorm();
       const double difference = t_[edge.i] - t_[edge.j];
       if (free_[edge.i]) {
         h_.AddDiagonal(edge.i, w);
@@ -468,7 +516,6 @@ class LeastSquaresFit {
       g[v] += w * t_[v];
       if (!(h_.Diagonal(v) > 0)) h_.SetDiagonal(v, 1);
     }
-    return g;
   }
 
   // Whether face f, at offsets t, has turned more than allowed from its
@@ -542,7 +589,8 @@ class LeastSquaresFit {
           faces_.size(), threads_,
           [&](size_t begin, size_t end) {
             for (size_t f = begin; f < end; ++f) {
-              bad[f] = Turned(f, next) || NewlyFlipped(f, next, flipped_before[f]);
+              bad[f] =
+                  Turned(f, next) || NewlyFlipped(f, next, flipped_before[f]);
             }
           },
           16384);
