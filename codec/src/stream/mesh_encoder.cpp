@@ -10,6 +10,7 @@
 #include "quant/subband_gains.h"
 #include "stream/base_mesh_decoder.h"
 #include "stream/base_refinement_encoder.h"
+#include "stream/channel_encoder.h"
 #include "stream/distortion_index_writer.h"
 #include "stream/packet_index.h"
 #include "stream/precinct_partition.h"
@@ -33,7 +34,17 @@ const char* CoderKindName(CoderKind coder) {
 
 Result<EncodedStream> EncodeMesh(const SemiRegularMesh& input,
                                  const EncodeOptions& options) {
+  return EncodeMesh(input, options, {});
+}
+
+Result<EncodedStream> EncodeMesh(const SemiRegularMesh& input, const EncodeOptions& options,
+                                 const VertexAttributes& attributes) {
   MW_ASSIGN_OR_RETURN(PreparedStream prepared, PrepareStream(input, options));
+  if (!attributes.colors.empty() && attributes.colors.size() != input.positions.size()) {
+    return InvalidArgument(std::to_string(attributes.colors.size()) +
+                           " vertex colours for a mesh of " +
+                           std::to_string(input.positions.size()) + " vertices");
+  }
   EncodedStream out;
   out.mesh = std::move(prepared.mesh);
   if (prepared.transform.sawt) {
@@ -91,6 +102,27 @@ Result<EncodedStream> EncodeMesh(const SemiRegularMesh& input,
                    base_error[static_cast<size_t>(b) + 1] - base_error[static_cast<size_t>(b)],
                    index, model);
     out.packets.push_back(std::move(payload));
+  }
+  // The colour channel after the geometry: its packets follow the base
+  // refinement's, its chains the geometry's (FORMAT.md 2.3).
+  if (!attributes.colors.empty()) {
+    out.colors.resize(attributes.colors.size());
+    for (size_t v = 0; v < out.colors.size(); ++v) {
+      out.colors[v] = attributes.colors[prepared.input_vertex[v]];
+    }
+    MW_ASSIGN_OR_RETURN(EncodedChannel channel,
+                        EncodeColorChannel(prepared, out.mesh, out.colors, layouts, options));
+    model.geometry_chains = model.chain_start.size();
+    model.chain_start.insert(model.chain_start.end(), channel.chain_start.begin(),
+                             channel.chain_start.end());
+    for (int j = 0; j < levels; ++j) {
+      for (CodedPacket& packet : channel.coded.subbands[static_cast<size_t>(j)]) {
+        AddCodedPacket(packet.payload, static_cast<uint32_t>(model.geometry_chains + j),
+                       packet.reduction, index, model);
+        out.packets.push_back(std::move(packet.payload));
+      }
+    }
+    *header.add_channels() = std::move(channel.header);
   }
   WriteDistortionIndex(model, prepared.zero_packet_distortion, header);
   MW_ASSIGN_OR_RETURN(out.header, ToStreamHeader(header));

@@ -140,7 +140,8 @@ Result<PreparedStream> PrepareStream(const SemiRegularMesh& input,
   // (and so every coefficient's index) follows from that order.
   MW_ASSIGN_OR_RETURN(const BaseMeshOrder order, ChooseTransmissionOrder(
       input.hierarchy->vertex_count(0), input.hierarchy->faces(0)));
-  MW_ASSIGN_OR_RETURN(out.mesh, RenumberBase(input, order.new_of_old, order.faces));
+  MW_ASSIGN_OR_RETURN(out.mesh,
+                      RenumberBase(input, order.new_of_old, order.faces, &out.input_vertex));
   const SemiRegularHierarchy& h = *out.mesh.hierarchy;
   const int levels = h.levels();
   const Aabb box = BoundingBox(out.mesh.positions);

@@ -15,6 +15,8 @@ namespace meshwave {
 
 struct PreparedStream {
   SemiRegularMesh mesh;        // in the stream's vertex order
+  // Each of its vertices' index in the input mesh (attributes follow it).
+  std::vector<uint32_t> input_vertex;
   proto::StreamHeader header;  // common fields and the base mesh; no coder
   TransformSettings transform;  // the options' transform, with its SAWT plan
   Pyramid pyramid;
