@@ -21,7 +21,7 @@ FLOORS = [
     ["mesh"],
     ["semiregular", "entropy", "asset"],
     ["bitplane"],
-    ["wavelet", "analysis", "texture"],
+    ["wavelet", "analysis", "texture", "attributes"],
     ["quant"],
     ["stream", "metrics"],
     ["pgc", "remesh"],

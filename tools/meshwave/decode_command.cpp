@@ -70,8 +70,9 @@ Status Run(const DecodeArgs& args) {
   }
   const int level = OutputLevel(**decoder, max_level, args.extra_levels);
   const TriMesh mesh = (*decoder)->Mesh(level);
+  const std::vector<Vec3> colors = (*decoder)->Colors(level);
   const double decode_ms = MillisecondsSince(start);
-  MW_RETURN_IF_ERROR(WriteMesh(mesh, args.out));
+  MW_RETURN_IF_ERROR(WriteMesh(mesh, args.out, colors));
   if (args.json) {
     proto::DecodeReport report;
     report.set_output(args.out);
@@ -88,8 +89,9 @@ Status Run(const DecodeArgs& args) {
     PrintJson(report);
     return Status::Ok();
   }
-  std::printf("wrote %s: %zu vertices, %zu faces (level %d of %d)\n", args.out.c_str(),
-              mesh.positions.size(), mesh.faces.size(), level, levels);
+  std::printf("wrote %s: %zu vertices, %zu faces (level %d of %d)%s\n", args.out.c_str(),
+              mesh.positions.size(), mesh.faces.size(), level, levels,
+              colors.empty() ? "" : ", with vertex colours");
   std::printf("%zu of %zu packets in %s order, %llu bytes, estimated PSNR %.2f dB "
               "(against the encoded mesh)\n",
               selection.ids.size(), order.size(), ProgressionName(progression),

@@ -2,6 +2,7 @@
 // Semi-regular input is used as it is; irregular input is remeshed first.
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -11,6 +12,7 @@
 #include "cli_util.h"
 #include "commands.h"
 #include "core/durable_file.h"
+#include "meshwave/attribute_transfer.h"
 #include "meshwave/container.h"
 #include "meshwave/encoder.h"
 #include "meshwave/fidelity.h"
@@ -69,10 +71,9 @@ Result<SemiRegularInput> LoadSemiRegular(const EncodeArgs& args, TriMesh mesh) {
 }
 
 // What the stream leaves out of the input, in one line: the codec codes the
-// geometry alone (issue 35), so UVs, colours, materials and images are
+// geometry and vertex colours (issue 35), so UVs, materials and images are
 // named, never dropped silently. Empty when the file holds none of them.
-std::string AttributesLeftOut(const std::string& file) {
-  const Result<MeshAsset> asset = ReadMeshAsset(file);
+std::string AttributesLeftOut(const std::string& file, const Result<MeshAsset>& asset) {
   if (!asset.ok()) {
     return file + ": the stream holds the geometry only; the file's attributes could not "
                   "be read (" + asset.status().ToString() + ")";
@@ -82,7 +83,6 @@ std::string AttributesLeftOut(const std::string& file) {
   };
   std::vector<std::string> parts;
   if (!asset->uv.empty()) parts.push_back("UVs");
-  if (!asset->color.empty()) parts.push_back("vertex colours");
   if (!asset->materials.empty()) {
     parts.push_back(count(asset->materials.size(), "material", "materials"));
   }
@@ -94,7 +94,8 @@ std::string AttributesLeftOut(const std::string& file) {
                     " the reader leaves out (meshwave info lists them)");
   }
   if (parts.empty()) return "";
-  std::string line = file + ": the stream holds the geometry only; not coded yet: ";
+  std::string line = file + ": the stream holds the geometry" +
+                     (asset->color.empty() ? "" : " and vertex colours") + "; not coded yet: ";
   for (size_t i = 0; i < parts.size(); ++i) line += (i == 0 ? "" : ", ") + parts[i];
   return line;
 }
@@ -140,12 +141,17 @@ Status Run(const EncodeArgs& args) {
   options.name = std::filesystem::path(args.in).stem().string();
   options.threads = args.threads;
   MW_ASSIGN_OR_RETURN(TriMesh original, ReadMesh(args.in));
-  if (const std::string left_out = AttributesLeftOut(args.in); !left_out.empty()) {
+  const Result<MeshAsset> asset = ReadMeshAsset(args.in);
+  if (const std::string left_out = AttributesLeftOut(args.in, asset); !left_out.empty()) {
     std::cerr << "warning: " << left_out << "\n";
   }
   MW_ASSIGN_OR_RETURN(SemiRegularInput input,
                       LoadSemiRegular(args, args.fidelity_db > 0 ? original : std::move(original)));
-  MW_ASSIGN_OR_RETURN(EncodedStream stream, EncodeMesh(input.mesh, options));
+  VertexAttributes attributes;
+  if (asset.ok()) {
+    MW_ASSIGN_OR_RETURN(attributes, TransferAttributes(*asset, input.mesh, args.threads));
+  }
+  MW_ASSIGN_OR_RETURN(EncodedStream stream, EncodeMesh(input.mesh, options, attributes));
   const std::string bytes = SerializeFullContainer(stream);
   MW_RETURN_IF_ERROR(WriteFileDurably(args.out, bytes));
   uint64_t payload = 0;
@@ -164,6 +170,25 @@ Status Run(const EncodeArgs& args) {
               PredictorName(options.transform.predictor),
               UpdateWeightsName(options.transform.update),
               CoderKindName(options.coder), 8.0 * static_cast<double>(bytes.size()) / v);
+  if (!stream.header.channels.empty()) {
+    // A channel's packets come last: per subband, its top bitplane + 1.
+    size_t channel_packets = 0;
+    for (const StreamHeader::Channel& channel : stream.header.channels) {
+      for (uint32_t j = 0; j < stream.header.transform.levels; ++j) {
+        int top = -1;
+        for (int c = 0; c < 3; ++c) top = std::max(top, channel.quantizer(static_cast<int>(j), c).top_bitplane);
+        channel_packets += static_cast<size_t>(top + 1);
+      }
+    }
+    uint64_t channel_bytes = 0;
+    const size_t geometry_packets = stream.packets.size() - channel_packets;
+    for (size_t id = geometry_packets; id < stream.packets.size(); ++id) {
+      channel_bytes += stream.packets[id].size();
+    }
+    std::printf("colour channel: %zu packets, %llu bytes (precision %d)\n",
+                stream.packets.size() - geometry_packets,
+                static_cast<unsigned long long>(channel_bytes), options.color_precision);
+  }
   if (!stream.sawt_filter_usage.empty()) {
     // The field as the header carries it: tag, length and message.
     const StreamHeader::SawtChoices& sawt = *stream.header.transform.sawt;

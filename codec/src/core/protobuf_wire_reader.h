@@ -188,6 +188,14 @@ inline Field ReadDouble(uint32_t type, WireReader& r, double& out) {
   return Field::kRead;
 }
 
+inline Field ReadFloat(uint32_t type, WireReader& r, float& out) {
+  if (type != kFixed32) return Field::kUnknown;
+  uint32_t bits = 0;
+  if (!r.Fixed32(bits)) return Field::kError;
+  std::memcpy(&out, &bits, sizeof out);
+  return Field::kRead;
+}
+
 inline Field ReadFixed32(uint32_t type, WireReader& r, uint32_t& out) {
   if (type != kFixed32) return Field::kUnknown;
   return r.Fixed32(out) ? Field::kRead : Field::kError;

@@ -26,9 +26,10 @@ Result<MeshFormat> FormatFromPath(const std::filesystem::path& path) {
                          "\" (expected .ply, .obj, .off, .glb or .gltf)");
 }
 
-Status WriteMesh(const TriMesh& mesh, const std::filesystem::path& path) {
+Status WriteMesh(const TriMesh& mesh, const std::filesystem::path& path,
+                 std::span<const Vec3> colors) {
   if (const auto gltf = GltfFormFromPath(path)) {
-    return WriteFileDurably(path, SerializeGltf(mesh, *gltf));
+    return WriteFileDurably(path, SerializeGltf(mesh, *gltf, colors));
   }
   const Result<MeshFormat> read_format = FormatFromPath(path);
   if (!read_format.ok()) {
@@ -38,7 +39,7 @@ Status WriteMesh(const TriMesh& mesh, const std::filesystem::path& path) {
   }
   switch (*read_format) {
     case MeshFormat::kPly:
-      return WriteFileDurably(path, SerializePly(mesh));
+      return WriteFileDurably(path, SerializePly(mesh, colors));
     case MeshFormat::kObj:
       return WriteFileDurably(path, SerializeObj(mesh));
     case MeshFormat::kOff:

@@ -4,6 +4,7 @@
 #include <bit>
 #include <cctype>
 #include <charconv>
+#include <cmath>
 #include <limits>
 #include <cstring>
 #include <string>
@@ -52,6 +53,13 @@ void AppendFloatArray(std::string& out, const std::array<float, 3>& v) {
 
 void PadTo4(std::string& s, char pad) { s.append((4 - s.size() % 4) % 4, pad); }
 
+// Linear [0, 1] (clamped) to an sRGB-encoded byte (IEC 61966-2-1).
+uint8_t LinearToSrgbByte(double linear) {
+  const double v = std::clamp(linear, 0.0, 1.0);
+  const double encoded = v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1 / 2.4) - 0.055;
+  return static_cast<uint8_t>(std::lround(255 * std::clamp(encoded, 0.0, 1.0)));
+}
+
 void AppendUint32(std::string& out, uint32_t v) {
   char bytes[4];
   StoreLittleEndian(bytes, v);
@@ -68,10 +76,12 @@ std::optional<GltfForm> GltfFormFromPath(const std::filesystem::path& path) {
   return std::nullopt;
 }
 
-std::string SerializeGltf(const TriMesh& mesh, GltfForm form) {
-  // The buffer: float32 positions, then uint32 indices (both 4-aligned).
+std::string SerializeGltf(const TriMesh& mesh, GltfForm form, std::span<const Vec3> colors) {
+  // The buffer: float32 positions, then uint32 indices, then float32
+  // colours (all 4-aligned).
   const size_t n = mesh.positions.size();
-  std::string bin(n * 12 + mesh.faces.size() * 12, '\0');
+  const bool colored = !colors.empty() && colors.size() == n;
+  std::string bin(n * 12 + mesh.faces.size() * 12 + (colored ? n * 12 : 0), '\0');
   char* p = bin.data();
   std::array<float, 3> lo, hi;
   lo.fill(std::numeric_limits<float>::infinity());
@@ -87,6 +97,13 @@ std::string SerializeGltf(const TriMesh& mesh, GltfForm form) {
   for (const Face& f : mesh.faces) {
     for (uint32_t index : f) p = StoreLittleEndian(p, index);
   }
+  if (colored) {
+    for (const Vec3& c : colors) {
+      for (int a = 0; a < 3; ++a) {
+        p = StoreLittleEndian(p, static_cast<float>(std::clamp(c[a], 0.0, 1.0)));
+      }
+    }
+  }
 
   std::string json = R"({"asset":{"version":"2.0","generator":"meshwave"},"scene":0,)";
   if (mesh.faces.empty() || n == 0) {
@@ -95,7 +112,9 @@ std::string SerializeGltf(const TriMesh& mesh, GltfForm form) {
     bin.clear();
   } else {
     json += R"("scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)";
-    json += R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1,"mode":4}]}],)";
+    json += colored
+                ? R"("meshes":[{"primitives":[{"attributes":{"POSITION":0,"COLOR_0":2},"indices":1,"mode":4}]}],)"
+                : R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1,"mode":4}]}],)";
     json += R"("accessors":[{"bufferView":0,"componentType":5126,"count":)";
     AppendUnsigned(json, n);
     json += R"(,"type":"VEC3","min":)";
@@ -104,13 +123,27 @@ std::string SerializeGltf(const TriMesh& mesh, GltfForm form) {
     AppendFloatArray(json, hi);
     json += R"(},{"bufferView":1,"componentType":5125,"count":)";
     AppendUnsigned(json, mesh.faces.size() * 3);
-    json += R"(,"type":"SCALAR"}],"bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":)";
+    json += R"(,"type":"SCALAR"})";
+    if (colored) {
+      json += R"(,{"bufferView":2,"componentType":5126,"count":)";
+      AppendUnsigned(json, n);
+      json += R"(,"type":"VEC3"})";
+    }
+    json += R"(],"bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":)";
     AppendUnsigned(json, n * 12);
     json += R"(,"target":34962},{"buffer":0,"byteOffset":)";
     AppendUnsigned(json, n * 12);
     json += R"(,"byteLength":)";
     AppendUnsigned(json, mesh.faces.size() * 12);
-    json += R"(,"target":34963}],"buffers":[{"byteLength":)";
+    json += R"(,"target":34963})";
+    if (colored) {
+      json += R"(,{"buffer":0,"byteOffset":)";
+      AppendUnsigned(json, n * 12 + mesh.faces.size() * 12);
+      json += R"(,"byteLength":)";
+      AppendUnsigned(json, n * 12);
+      json += R"(,"target":34962})";
+    }
+    json += R"(],"buffers":[{"byteLength":)";
     AppendUnsigned(json, bin.size());
     if (form == GltfForm::kEmbedded) {
       json += R"(,"uri":"data:application/octet-stream;base64,)";
@@ -141,7 +174,8 @@ std::string SerializeGltf(const TriMesh& mesh, GltfForm form) {
   return out;
 }
 
-std::string SerializePly(const TriMesh& mesh) {
+std::string SerializePly(const TriMesh& mesh, std::span<const Vec3> colors) {
+  const bool colored = !colors.empty() && colors.size() == mesh.positions.size();
   std::string out =
       "ply\n"
       "format binary_little_endian 1.0\n"
@@ -151,21 +185,26 @@ std::string SerializePly(const TriMesh& mesh) {
       "\n"
       "property float x\n"
       "property float y\n"
-      "property float z\n"
+      "property float z\n" +
+      std::string(colored ? "property uchar red\nproperty uchar green\nproperty uchar blue\n"
+                          : "") +
       "element face " +
       std::to_string(mesh.faces.size()) +
       "\n"
       "property list uchar int vertex_indices\n"
       "end_header\n";
   const size_t header_size = out.size();
-  constexpr size_t kVertexBytes = 3 * sizeof(float);
+  const size_t vertex_bytes = 3 * sizeof(float) + (colored ? 3 : 0);
   constexpr size_t kFaceBytes = 1 + 3 * sizeof(int32_t);
-  out.resize(header_size + mesh.positions.size() * kVertexBytes +
+  out.resize(header_size + mesh.positions.size() * vertex_bytes +
              mesh.faces.size() * kFaceBytes);
   char* p = out.data() + header_size;
-  for (const Vec3& v : mesh.positions) {
+  for (size_t i = 0; i < mesh.positions.size(); ++i) {
     for (int axis = 0; axis < 3; ++axis) {
-      p = StoreLittleEndian(p, static_cast<float>(v[axis]));
+      p = StoreLittleEndian(p, static_cast<float>(mesh.positions[i][axis]));
+    }
+    if (colored) {
+      for (int c = 0; c < 3; ++c) *p++ = static_cast<char>(LinearToSrgbByte(colors[i][c]));
     }
   }
   for (const Face& f : mesh.faces) {

@@ -46,7 +46,8 @@ class EdgeFinder {
 
 Result<SemiRegularMesh> RenumberBase(const SemiRegularMesh& mesh,
                                      const std::vector<uint32_t>& new_of_old,
-                                     std::vector<Face> new_base_faces) {
+                                     std::vector<Face> new_base_faces,
+                                     std::vector<uint32_t>* old_of_new_out) {
   const SemiRegularHierarchy& old = *mesh.hierarchy;
   const uint32_t v0 = old.vertex_count(0);
   if (new_of_old.size() != v0 || new_base_faces.size() != old.faces(0).size()) {
@@ -84,6 +85,7 @@ Result<SemiRegularMesh> RenumberBase(const SemiRegularMesh& mesh,
   for (size_t v = 0; v < old_of_new.size(); ++v) {
     out.positions[v] = mesh.positions[old_of_new[v]];
   }
+  if (old_of_new_out != nullptr) *old_of_new_out = std::move(old_of_new);
   return out;
 }
 

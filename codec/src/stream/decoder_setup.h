@@ -23,6 +23,11 @@ Status ValidateVersionAndLevels(const StreamHeader& h);
 // a known deadzone code and a top bitplane in [-1, kMaxBitplane].
 Status ValidateQuantizers(const StreamHeader& h);
 
+// At most kMaxChannels channels, each of a known kind (one of each), with a
+// quantizer per (subband, component) as the geometry's, a finite positive
+// base step and rd weight, and room for 3 base values per base vertex.
+Status ValidateChannels(const StreamHeader& h);
+
 // Decodes the base mesh (at most `max_base_vertices`) into `base`, builds
 // `hierarchy` and checks the header's vertex and face counts and bounding
 // box against it; returns the header's transform settings (with the SAWT

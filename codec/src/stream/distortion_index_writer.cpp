@@ -11,7 +11,9 @@ namespace meshwave {
 void WriteDistortionIndex(const DistortionModel& model, double true_start_distortion,
                           proto::StreamHeader& header) {
   double model_start = model.base;
-  for (double e : model.chain_start) model_start += e;
+  for (size_t c = 0; c < model.chain_start.size() && c < model.geometry_chains; ++c) {
+    model_start += model.chain_start[c];
+  }
   double scale = 1;
   if (model_start > 0 && true_start_distortion > 0 && std::isfinite(model_start) &&
       std::isfinite(true_start_distortion)) {
@@ -22,18 +24,19 @@ void WriteDistortionIndex(const DistortionModel& model, double true_start_distor
   index.clear_chain_distortion();
   // The coded (float) chain starts are the reference of each chain's first
   // step, so the decoder follows exactly the values coded here.
+  const auto scale_of = [&](size_t c) { return c < model.geometry_chains ? scale : 1.0; };
   std::vector<double> coded(model.chain_start.size());
   for (size_t c = 0; c < model.chain_start.size(); ++c) {
-    const float start = static_cast<float>(scale * std::max(model.chain_start[c], 0.0));
+    const float start = static_cast<float>(scale_of(c) * std::max(model.chain_start[c], 0.0));
     index.add_chain_distortion(start);
     coded[c] = start;
   }
   std::vector<double> truth(model.chain_start.size());
-  for (size_t c = 0; c < truth.size(); ++c) truth[c] = scale * model.chain_start[c];
+  for (size_t c = 0; c < truth.size(); ++c) truth[c] = scale_of(c) * model.chain_start[c];
   std::string steps(model.reduction.size(), '\0');
   for (size_t i = 0; i < model.reduction.size(); ++i) {
     const uint32_t c = model.chain[i];
-    truth[c] -= scale * model.reduction[i];
+    truth[c] -= scale_of(c) * model.reduction[i];
     // Closed loop: the step from the coded previous value to the true one.
     int d = 0;
     if (coded[c] > 0) {

@@ -5,6 +5,7 @@
 #define MESHWAVE_STREAM_DISTORTION_INDEX_WRITER_H_
 
 #include <cstdint>
+#include <limits>
 #include <string_view>
 #include <vector>
 
@@ -20,10 +21,13 @@ struct DistortionModel {
   std::vector<double> chain_start;  // per chain, nothing of it decoded
   std::vector<uint32_t> chain;      // per packet
   std::vector<double> reduction;    // per packet
+  // Chains from this one on are a channel's (in its own units): not summed
+  // into the geometry's start, not scaled.
+  size_t geometry_chains = std::numeric_limits<size_t>::max();
 };
 
 // Writes base_distortion, chain_distortion and distortion_step, scaling
-// every figure so that the estimate with no packet equals
+// every figure of the geometry so that the estimate with no packet equals
 // `true_start_distortion` (when it and the model's are positive). Why the
 // scale: the encoders estimate with subband gains, as if the synthesis were
 // orthogonal. It is not (Loop's predictor least of all: the model was 3 to

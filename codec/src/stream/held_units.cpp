@@ -16,6 +16,13 @@ HeldUnits::HeldUnits(const StreamHeader& header, PrecinctParents parents)
     const int j = layout.Subband(id);
     const int b = layout.Bitplane(id);
     subband_.push_back(j);
+    if (const int k = layout.Channel(id); k >= 0) {
+      // A channel's packets need their channel's only, and are never split.
+      up_.push_back(layout.ChannelId(k, j, b + 1));
+      parent_.push_back(j > 0 && parent_contexts ? layout.ChannelId(k, j - 1, b) : -1);
+      part_count_.push_back(0);
+      continue;
+    }
     up_.push_back(j < 0 ? layout.BaseId(b + 1) : layout.Id(j, b + 1));
     parent_.push_back(j > 0 && parent_contexts ? layout.Id(j - 1, b) : -1);
     const bool split = layout.IsSplit(id) && static_cast<size_t>(j) < parents_.size();

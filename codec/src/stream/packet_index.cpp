@@ -40,12 +40,41 @@ PacketLayout::PacketLayout(const StreamHeader& h) {
   // Clamped for headers not validated yet (ValidateStreamHeader refuses more).
   base_planes_ = static_cast<int>(
       std::min<uint32_t>(h.base.refinement_planes, kMaxBaseRefinementPlanes));
+  subband_.insert(subband_.end(), static_cast<size_t>(base_planes_), -1);
   count_ += base_planes_;
+  channel_.assign(static_cast<size_t>(count_), -1);
+  const size_t channels = std::min<size_t>(h.channels.size(), kMaxChannels);
+  for (size_t k = 0; k < channels; ++k) {
+    const StreamHeader::Channel& channel = h.channels[k];
+    std::vector<int>& first = channel_first_.emplace_back();
+    std::vector<int>& tops = channel_top_.emplace_back();
+    for (int j = 0; j < levels; ++j) {
+      int top = -1;
+      if (channel.quantizers.size() >= 3 * (static_cast<size_t>(j) + 1)) {
+        for (int c = 0; c < 3; ++c) top = std::max(top, channel.quantizer(j, c).top_bitplane);
+      }
+      top = std::max(top, -1);
+      first.push_back(count_);
+      tops.push_back(top);
+      for (int b = top; b >= 0; --b) {
+        subband_.push_back(j);
+        channel_.push_back(static_cast<int>(k));
+      }
+      count_ += top + 1;
+    }
+  }
 }
 
 int PacketLayout::BaseId(int plane) const {
   if (plane < 0 || plane >= base_planes_) return -1;
   return detail_count_ + (base_planes_ - 1 - plane);
+}
+
+int PacketLayout::ChannelId(int k, int j, int b) const {
+  if (k < 0 || k >= channels() || j < 0 || j >= levels()) return -1;
+  const int top = channel_top_[static_cast<size_t>(k)][static_cast<size_t>(j)];
+  if (b < 0 || b > top) return -1;
+  return channel_first_[static_cast<size_t>(k)][static_cast<size_t>(j)] + (top - b);
 }
 
 int PacketLayout::Id(int j, int b) const {
@@ -64,9 +93,11 @@ PacketLayout::Needs PacketLayout::Dependencies(uint32_t id, bool parent_contexts
   }
   const int j = Subband(id);
   const int b = Bitplane(id);
-  if (int up = Id(j, b + 1); up >= 0) needs.ids[needs.count++] = static_cast<uint32_t>(up);
+  const int k = Channel(id);
+  auto id_of = [&](int jj, int bb) { return k < 0 ? Id(jj, bb) : ChannelId(k, jj, bb); };
+  if (int up = id_of(j, b + 1); up >= 0) needs.ids[needs.count++] = static_cast<uint32_t>(up);
   if (parent_contexts) {
-    if (int parent = Id(j - 1, b); parent >= 0) {
+    if (int parent = id_of(j - 1, b); parent >= 0) {
       needs.ids[needs.count++] = static_cast<uint32_t>(parent);
     }
   }
@@ -75,18 +106,24 @@ PacketLayout::Needs PacketLayout::Dependencies(uint32_t id, bool parent_contexts
 
 int PacketLayout::Bitplane(uint32_t id) const {
   if (IsBase(id)) return base_planes_ - 1 - (static_cast<int>(id) - detail_count_);
-  const int j = subband_[id];
-  return top_[static_cast<size_t>(j)] - (static_cast<int>(id) - first_[static_cast<size_t>(j)]);
+  const auto j = static_cast<size_t>(subband_[id]);
+  if (const int k = Channel(id); k >= 0) {
+    const auto kk = static_cast<size_t>(k);
+    return channel_top_[kk][j] - (static_cast<int>(id) - channel_first_[kk][j]);
+  }
+  return top_[j] - (static_cast<int>(id) - first_[j]);
 }
 
 std::vector<uint32_t> PacketChains(const StreamHeader& header) {
   const int count = static_cast<int>(header.packets.length.size());
   std::vector<uint32_t> chain(static_cast<size_t>(count), 0);
   const PacketLayout layout(header);
+  const int levels = layout.levels();
   for (int id = 0; id < count && id < layout.count(); ++id) {
     const auto u = static_cast<uint32_t>(id);
-    chain[static_cast<size_t>(id)] =
-        static_cast<uint32_t>(layout.IsBase(u) ? layout.levels() : layout.Subband(u));
+    int c = layout.IsBase(u) ? levels : layout.Subband(u);
+    if (const int k = layout.Channel(u); k >= 0) c = levels + 1 + k * levels + layout.Subband(u);
+    chain[static_cast<size_t>(id)] = static_cast<uint32_t>(c);
   }
   return chain;
 }
@@ -110,7 +147,7 @@ double EstimatedPsnrFromDistortion(const StreamHeader& header, double diagonal,
 
 double DistortionEstimates::Estimate(const std::vector<double>& current) const {
   double d = base;
-  for (double e : current) d += e;
+  for (size_t c = 0; c < current.size() && c < geometry_chains; ++c) d += current[c];
   return d;
 }
 
@@ -120,6 +157,10 @@ DistortionEstimates ReadDistortionIndex(const StreamHeader& header,
   DistortionEstimates out;
   out.base = header.base_distortion;
   for (float e : index.chain_distortion) out.chain_start.push_back(e);
+  const size_t channel_chains =
+      std::min<size_t>(header.channels.size(), kMaxChannels) * header.transform.levels;
+  out.geometry_chains =
+      out.chain_start.size() - std::min(out.chain_start.size(), channel_chains);
   std::vector<double> current = out.chain_start;
   const std::string& steps = index.distortion_step;
   out.chain.assign(chain_of.begin(), chain_of.end());

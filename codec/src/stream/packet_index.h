@@ -42,7 +42,8 @@ bool PacketCheckMatches(const StreamHeader::PacketIndex& index, uint32_t id,
 
 // Packet ids <-> (subband, bitplane), from the quantizers' top bitplanes:
 // ids run subband by subband, bitplanes descending, then the base
-// refinement's packets, planes descending (FORMAT.md 2.1).
+// refinement's packets, planes descending, then each channel's packets
+// as the geometry's, channel by channel (FORMAT.md 2.1, 2.3).
 class PacketLayout {
  public:
   explicit PacketLayout(const StreamHeader& h);
@@ -50,7 +51,19 @@ class PacketLayout {
   int Id(int j, int b) const;
   // Id of the base refinement packet of `plane`, -1 when it does not exist.
   int BaseId(int plane) const;
+  // Id of packet (j, b) of channel k, -1 when it does not exist.
+  int ChannelId(int k, int j, int b) const;
   int Top(int j) const { return top_[static_cast<size_t>(j)]; }
+  int ChannelTop(int k, int j) const {
+    return channel_top_[static_cast<size_t>(k)][static_cast<size_t>(j)];
+  }
+  int channels() const { return static_cast<int>(channel_top_.size()); }
+  // The channel packet `id` belongs to; -1 for the geometry's packets (its
+  // subbands' and the base refinement's).
+  int Channel(uint32_t id) const {
+    return id < channel_.size() ? channel_[id] : -1;
+  }
+  bool IsChannel(uint32_t id) const { return Channel(id) >= 0; }
   // Whether detail packet `id` holds one codeword per precinct behind a
   // table of their lengths (PacketIndex.split_planes).
   bool IsSplit(uint32_t id) const {
@@ -63,16 +76,18 @@ class PacketLayout {
   int detail_count() const { return detail_count_; }
   int base_planes() const { return base_planes_; }
   bool IsBase(uint32_t id) const {
-    return id >= static_cast<uint32_t>(detail_count_) && id < static_cast<uint32_t>(count_);
+    return id >= static_cast<uint32_t>(detail_count_) &&
+           id < static_cast<uint32_t>(detail_count_ + base_planes_);
   }
-  // The subband (-1 for a base refinement packet) and bitplane (the base
-  // refinement's plane) of packet `id` (0 <= id < count()).
-  int Subband(uint32_t id) const { return IsBase(id) ? -1 : subband_[id]; }
+  // The subband (-1 for a base refinement packet; a channel packet's
+  // subband of its channel) and bitplane (the base refinement's plane) of
+  // packet `id` (0 <= id < count()).
+  int Subband(uint32_t id) const { return subband_[id]; }
   int Bitplane(uint32_t id) const;
   // The packets `id` needs first (PacketDependencies): the one above it in
   // its subband (or in the base refinement) and, with parent contexts
-  // (3xC), the parent subband's at the same bitplane. Empty for an id out
-  // of range. At most two, so no allocation: the decoder asks for every
+  // (3xC), the parent subband's at the same bitplane, both of its own
+  // signal (the geometry or its channel). Empty for an id out of range. At most two, so no allocation: the decoder asks for every
   // packet it is offered.
   struct Needs {
     std::array<uint32_t, 2> ids{};
@@ -85,7 +100,10 @@ class PacketLayout {
  private:
   std::vector<int> first_;  // id of (j, top_j)
   std::vector<int> top_;
-  std::vector<int> subband_;
+  std::vector<std::vector<int>> channel_first_;  // per channel, as first_
+  std::vector<std::vector<int>> channel_top_;
+  std::vector<int> subband_;  // per id; -1 for the base refinement's
+  std::vector<int> channel_;  // per id; -1 for the geometry's
   std::vector<uint32_t> split_planes_;  // per subband, as in the header
   int detail_count_ = 0;
   int base_planes_ = 0;
@@ -99,18 +117,22 @@ class PacketLayout {
 // the order the packets arrived in. reduction = term before - term after.
 struct DistortionEstimates {
   double base = 0;
+  // The chains of the geometry, which Estimate sums: the first ones, the
+  // channels' chains following them.
+  size_t geometry_chains = 0;
   std::vector<double> chain_start;  // per chain
   std::vector<uint32_t> chain;      // per packet
   std::vector<double> after;        // per packet: its chain's term after it
   std::vector<double> reduction;    // per packet
   double start() const { return Estimate(chain_start); }
-  // `current`: every chain's term (chain_start, or `after` of its last packet).
+  // The geometry's estimated error. `current`: every chain's term
+  // (chain_start, or `after` of its last packet).
   double Estimate(const std::vector<double>& current) const;
 };
 DistortionEstimates ReadDistortionIndex(const StreamHeader& header,
                                         std::span<const uint32_t> chain_of);
 // The chain of each packet: its subband (3xC and SIM), J for the base
-// refinement's packets.
+// refinement's packets, J + 1 + k J + j for subband j of channel k.
 std::vector<uint32_t> PacketChains(const StreamHeader& header);
 
 // The estimated PSNR rule, the one ProgressiveDecoder::EstimatedPsnr and

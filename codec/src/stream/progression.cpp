@@ -68,9 +68,12 @@ Status ValidateStreamHeader(const StreamHeader& h) {
       }
     }
   }
+  MW_RETURN_IF_ERROR(ValidateChannels(h));
   const PacketLayout map(h);
-  // One chain per subband and the base refinement's.
-  MW_RETURN_IF_ERROR(ValidateCompactIndex(h, map.count(), static_cast<int>(levels) + 1));
+  // One chain per subband and the base refinement's, then one per subband
+  // of each channel.
+  MW_RETURN_IF_ERROR(ValidateCompactIndex(
+      h, map.count(), static_cast<int>(levels) * (1 + static_cast<int>(h.channels.size())) + 1));
   const uint64_t refinement_bytes = BaseRefinementBytes(h.base.vertex_count);
   for (int id = 0; id < map.count(); ++id) {
     const uint32_t length = index.length[static_cast<size_t>(id)];
@@ -107,6 +110,18 @@ std::vector<uint32_t> PacketOrder(const StreamHeader& h,
   int top = -1;
   for (int j = 0; j < used; ++j) top = std::max(top, map.Top(j));
   std::vector<uint32_t> order;
+  // The channels' packets of bitplane n, subband by subband.
+  auto channel_plane = [&](int n) {
+    for (int k = 0; k < map.channels(); ++k) {
+      for (int j = 0; j < used; ++j) {
+        if (int id = map.ChannelId(k, j, n); id >= 0) order.push_back(static_cast<uint32_t>(id));
+      }
+    }
+  };
+  int channel_top = -1;
+  for (int k = 0; k < map.channels(); ++k) {
+    for (int j = 0; j < used; ++j) channel_top = std::max(channel_top, map.ChannelTop(k, j));
+  }
   // The base refinement belongs to level 0, which every order draws. The
   // resolution order sends it first, as the whole base travelled in the
   // header before version 5; the quality order sends each plane with the
@@ -120,11 +135,15 @@ std::vector<uint32_t> PacketOrder(const StreamHeader& h,
       // Planes coarser than every detail bitplane first.
       int b = base_planes - 1;
       for (; b >= 0 && b + shift > top; --b) base_plane(b);
+      // A channel's bitplanes above the geometry's come first too; each
+      // other channel bitplane follows the geometry's of the same number.
+      for (int n = channel_top; n > top; --n) channel_plane(n);
       for (int n = top; n >= 0; --n) {
         for (; b >= 0 && b + shift == n; --b) base_plane(b);
         for (int j = 0; j < used; ++j) {
           if (int id = map.Id(j, n); id >= 0) order.push_back(static_cast<uint32_t>(id));
         }
+        channel_plane(n);
       }
       for (; b >= 0; --b) base_plane(b);  // finer than every detail bitplane
       break;
@@ -133,6 +152,11 @@ std::vector<uint32_t> PacketOrder(const StreamHeader& h,
       for (int b = base_planes - 1; b >= 0; --b) base_plane(b);
       for (int j = 0; j < used; ++j) {
         for (int b = map.Top(j); b >= 0; --b) order.push_back(static_cast<uint32_t>(map.Id(j, b)));
+        for (int k = 0; k < map.channels(); ++k) {
+          for (int b = map.ChannelTop(k, j); b >= 0; --b) {
+            order.push_back(static_cast<uint32_t>(map.ChannelId(k, j, b)));
+          }
+        }
       }
       break;
     case Progression::kRd: {
@@ -145,9 +169,26 @@ std::vector<uint32_t> PacketOrder(const StreamHeader& h,
       for (int b = map.base_planes() - 1; b >= 0; --b) {
         candidates.push_back(static_cast<uint32_t>(map.BaseId(b)));
       }
+      for (int k = 0; k < map.channels(); ++k) {
+        for (int j = 0; j < used; ++j) {
+          for (int b = map.ChannelTop(k, j); b >= 0; --b) {
+            candidates.push_back(static_cast<uint32_t>(map.ChannelId(k, j, b)));
+          }
+        }
+      }
       std::vector<char> sent(h.packets.length.size(), 0);
       const std::vector<uint32_t> chains = PacketChains(h);
       const DistortionEstimates estimates = ReadDistortionIndex(h, chains);
+      // Reductions compared normalised (FORMAT.md 7): the geometry's
+      // squared errors over diagonal², a channel's (peak 1) times its
+      // weight; both sides times diagonal², so that the geometry's values
+      // are its reductions as they are.
+      const double diagonal = HeaderDiagonal(h);
+      std::vector<double> channel_scale;
+      for (int k = 0; k < map.channels(); ++k) {
+        channel_scale.push_back(static_cast<double>(h.channels[static_cast<size_t>(k)].rd_weight) *
+                                diagonal * diagonal);
+      }
       while (order.size() < candidates.size()) {
         int best = -1;
         double best_value = -1;
@@ -158,8 +199,11 @@ std::vector<uint32_t> PacketOrder(const StreamHeader& h,
             ready = ready && sent[d];
           }
           if (!ready) continue;
-          const double value = estimates.reduction[id] /
-                               (h.packets.length[id] + 4.0);
+          const int k = map.Channel(id);
+          const double reduction =
+              k < 0 ? estimates.reduction[id]
+                    : estimates.reduction[id] * channel_scale[static_cast<size_t>(k)];
+          const double value = reduction / (h.packets.length[id] + 4.0);
           // The first ready packet is taken whatever its value: an untrusted
           // header may give reductions below -1 or NaN (fuzz_replay_container_fuzz).
           if (best < 0 || value > best_value ||

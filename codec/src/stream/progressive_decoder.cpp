@@ -16,8 +16,10 @@
 #include "meshwave/progression.h"
 #include "meshwave/semiregular.h"
 #include "meshwave/wavelet.h"
+#include "attributes/ycocg.h"
 #include "quant/deadzone_quantizer.h"
 #include "stream/base_mesh_decoder.h"
+#include "stream/channel_base_decoder.h"
 #include "stream/decoder_setup.h"
 #include "stream/packet_index.h"
 #include "meshwave/packet_parts.h"
@@ -30,6 +32,57 @@ namespace {
 
 bool SetUpInBackground(int requested) { return ResolveThreads(requested) >= 2; }
 
+using SignalStates = std::array<ComponentState, 3>;
+
+// Decodes bitplane b of one precinct's three components from `io` with
+// `contexts`: the geometry's and a channel's precincts alike. `parent`: the
+// parent precinct's states in the subband above (3xC, j > 0), else null.
+void DecodePrecinctComponents(const SubbandLayout& layout, SignalStates& states,
+                              const SignalStates* parent, bool parent_contexts, int b,
+                              ComponentContexts& contexts, DecoderIo& io) {
+  for (int c = 0; c < 3; ++c) {
+    ComponentState& s = states[c];
+    if (b > s.top) continue;
+    ContextSources sources;
+    if (parent != nullptr) {
+      const ComponentState& up = (*parent)[c];
+      sources = {layout.parent_position, up.mag, up.negative, {}};
+    }
+    // 3xC: the neighbour contexts too.
+    if (parent_contexts) sources.neighbour_position = layout.neighbour_position;
+    CodeBitplane(layout.tree, s, b, sources, contexts, io);
+  }
+}
+
+// Writes subband j's coefficients as far as decoded into `band` (zero
+// where nothing is known): the geometry's and a channel's alike.
+void DequantizeSubband(const std::vector<SubbandLayout>& precincts,
+                       const std::vector<SignalStates>& states,
+                       const std::vector<StreamHeader::Quantizer>& quantizers, int j, double gamma,
+                       Vec3* band) {
+  for (size_t p = 0; p < precincts.size(); ++p) {
+    for (int c = 0; c < 3; ++c) {
+      const uint32_t* coefficient = precincts[p].coefficient.data();
+      const ComponentState& s = states[p][c];
+      const StreamHeader::Quantizer& q = quantizers[3 * static_cast<size_t>(j) + c];
+      const int n = s.known_from();
+      if (n > s.top) continue;
+      const double xi0 = DeadzoneXi(static_cast<int>(q.deadzone));
+      // Dequantize(s.mag[i] >> n, n, s.negative[i], q.step, xi0, gamma)
+      // with its two ldexp calls, the same for every k, taken out of the
+      // loop (the same operations in the same order: bit-identical).
+      const double scale = std::ldexp(q.step, n);
+      const double xi_n = std::ldexp(xi0, -n);
+      for (uint32_t i : s.significant()) {
+        const uint32_t v = s.mag[i] >> n;
+        if (v == 0) continue;  // band is zero already
+        const double r = (static_cast<double>(v) + gamma - xi_n) * scale;
+        band[coefficient[i]][c] = s.negative[i] ? -r : r;
+      }
+    }
+  }
+}
+
 }  // namespace
 
 struct ProgressiveDecoder::Impl {
@@ -41,6 +94,16 @@ struct ProgressiveDecoder::Impl {
     // Each precinct's contexts after its share of the last bitplane
     // decoded: where its next part's contexts start (FORMAT.md 5.3).
     std::vector<ComponentContexts> carried;
+  };
+
+  // A channel (FORMAT.md 2.3): its base values and, per subband, per
+  // precinct of the geometry's layouts, its components' coding state
+  // (built when the channel's first packet of the subband or a finer one
+  // comes). Its packets are never split: no carried contexts.
+  struct ChannelDecoding {
+    std::vector<Vec3> base;
+    std::vector<std::vector<SignalStates>> states;  // empty until built
+    std::vector<char> touched;
   };
 
   static void InitStates(const StreamHeader& header, int j, SubbandCoding& s) {
@@ -77,6 +140,10 @@ struct ProgressiveDecoder::Impl {
   bool broken = false;
   double diagonal = 0;
   DeferredSequence<SubbandCoding> coding;  // subband by subband, coarsest first
+  std::vector<ChannelDecoding> channels;
+  // The channels' inverse transform: the geometry's without local frames
+  // (null when the geometry has none: `transform` serves).
+  std::unique_ptr<WaveletTransform> channel_transform;
   // Last, so that it stops (its thread joined) before what it builds goes.
   WorkAhead ahead;
 
@@ -135,18 +202,54 @@ struct ProgressiveDecoder::Impl {
     // Built before subband j (the sequence's order): no wait, one lock.
     const SubbandCoding* up_coding =
         parent_contexts() && j > 0 ? &coding.Get(static_cast<size_t>(j) - 1) : nullptr;
-    for (int c = 0; c < 3; ++c) {
-      ComponentState& s = subband.states[p][c];
-      if (b > s.top) continue;
-      ContextSources sources;
-      if (up_coding != nullptr) {
-        const ComponentState& up = up_coding->states[layout.parent_precinct][c];
-        sources = {layout.parent_position, up.mag, up.negative, {}};
-      }
-      // 3xC: the neighbour contexts too.
-      if (parent_contexts()) sources.neighbour_position = layout.neighbour_position;
-      CodeBitplane(layout.tree, s, b, sources, contexts, io);
+    DecodePrecinctComponents(layout, subband.states[p],
+                             up_coding ? &up_coding->states[layout.parent_precinct] : nullptr,
+                             parent_contexts(), b, contexts, io);
+  }
+
+  // Channel k's coding state of subbands 0 ... j, built where missing.
+  void EnsureChannelStates(size_t k, int j) {
+    ChannelDecoding& channel = channels[k];
+    for (int jj = 0; jj <= j; ++jj) {
+      auto& states = channel.states[static_cast<size_t>(jj)];
+      if (!states.empty()) continue;
+      const SubbandCoding& subband = coding.Get(static_cast<size_t>(jj));
+      states.resize(subband.precincts.size());
+      InitChannelStates(k, jj, subband, states);
     }
+  }
+  void InitChannelStates(size_t k, int j, const SubbandCoding& subband,
+                         std::vector<SignalStates>& states) const {
+    for (size_t p = 0; p < states.size(); ++p) {
+      for (int c = 0; c < 3; ++c) {
+        states[p][c].Init(subband.precincts[p].tree,
+                          header.channels[k].quantizer(j, c).top_bitplane);
+      }
+    }
+  }
+
+  // Decodes channel packet (j, b) of channel k, one codeword over the
+  // precincts.
+  Status DecodeChannelPacket(size_t k, int j, int b, std::string_view payload) {
+    EnsureChannelStates(k, j);
+    ChannelDecoding& channel = channels[k];
+    channel.touched[static_cast<size_t>(j)] = 1;
+    const std::vector<SubbandLayout>& precincts = coding.Get(static_cast<size_t>(j)).precincts;
+    DecoderIo io(payload);
+    ComponentContexts contexts;
+    for (size_t p = 0; p < precincts.size(); ++p) {
+      const SignalStates* parent =
+          parent_contexts() && j > 0
+              ? &channel.states[static_cast<size_t>(j) - 1][precincts[p].parent_precinct]
+              : nullptr;
+      DecodePrecinctComponents(precincts[p], channel.states[static_cast<size_t>(j)][p], parent,
+                               parent_contexts(), b, contexts, io);
+    }
+    if (io.decoder().overrun()) {
+      broken = true;
+      return ParseError("payload ends before its symbols (corrupt stream)");
+    }
+    return Status::Ok();
   }
   // One codeword holding precinct `p`'s share alone (a split packet's part).
   Status DecodePart(int j, uint32_t p, int b, std::string_view part) {
@@ -204,6 +307,22 @@ Result<std::unique_ptr<ProgressiveDecoder>> ProgressiveDecoder::Create(
   impl->transform = std::make_unique<WaveletTransform>(std::move(transform));
   impl->packets = std::make_unique<PacketLayout>(header);
   impl->estimates = ReadDistortionIndex(header, PacketChains(header));
+  for (const StreamHeader::Channel& channel : header.channels) {
+    MW_ASSIGN_OR_RETURN(std::vector<Vec3> base,
+                        DecodeChannelBase(channel, impl->hierarchy->vertex_count(0)));
+    Impl::ChannelDecoding& decoding = impl->channels.emplace_back();
+    decoding.base = std::move(base);
+    decoding.states.resize(static_cast<size_t>(impl->hierarchy->levels()));
+    decoding.touched.assign(static_cast<size_t>(impl->hierarchy->levels()), 0);
+  }
+  if (!impl->channels.empty() && impl->settings.frames == FrameMode::kLocal) {
+    TransformSettings global = impl->settings;
+    global.frames = FrameMode::kGlobal;
+    MW_ASSIGN_OR_RETURN(WaveletTransform channel_transform,
+                        WaveletTransform::Create(impl->hierarchy, global,
+                                                 WaveletTransform::Stencils::kOnFirstUse));
+    impl->channel_transform = std::make_unique<WaveletTransform>(std::move(channel_transform));
+  }
   // The octrees (about a quarter of the set-up on igea) and the finer
   // levels' stencils (about two thirds) are built on first use, the
   // octrees one subband at a time, coarsest first (a packet waits only for
@@ -262,6 +381,14 @@ void ProgressiveDecoder::Reset() {
     ForgetBaseRefinement(m.header.base, m.base);
   }
   m.touched.assign(m.coding.size(), 0);
+  for (size_t k = 0; k < m.channels.size(); ++k) {
+    Impl::ChannelDecoding& channel = m.channels[k];
+    for (size_t j = 0; j < channel.touched.size(); ++j) {
+      if (!channel.touched[j]) continue;
+      m.InitChannelStates(k, static_cast<int>(j), m.coding.Get(j), channel.states[j]);
+      channel.touched[j] = 0;
+    }
+  }
   m.held->Clear();
   m.part_bytes.assign(m.held->packet_count(), 0);
   m.chain_now = m.estimates.chain_start;
@@ -296,8 +423,11 @@ Status ProgressiveDecoder::AddPacket(uint32_t id, std::string_view payload) {
       return "packet " + std::to_string(p) + " (base refinement, plane " +
              std::to_string(m.packets->Bitplane(p)) + ")";
     }
-    return "packet " + std::to_string(p) + " (subband " + std::to_string(m.packets->Subband(p)) +
-           ", bitplane " + std::to_string(m.packets->Bitplane(p)) + ")";
+    return "packet " + std::to_string(p) + " (" +
+           (m.packets->IsChannel(p) ? "channel " + std::to_string(m.packets->Channel(p)) + ", "
+                                    : std::string()) +
+           "subband " + std::to_string(m.packets->Subband(p)) + ", bitplane " +
+           std::to_string(m.packets->Bitplane(p)) + ")";
   };
   auto what = [&] { return name(id); };
   if (m.held->Has({id})) return InvalidArgument(what() + " was already added");
@@ -316,6 +446,13 @@ Status ProgressiveDecoder::AddPacket(uint32_t id, std::string_view payload) {
     // a refinement, and the dependencies bring the planes in turn.
     if (Status s = RefineBase(m.header.base, b, payload, m.base); !s.ok()) {
       m.broken = true;
+      return s.WithContext(what());
+    }
+    Impl::Record(m, {id}, payload.size());
+    return Status::Ok();
+  }
+  if (const int k = m.packets->Channel(id); k >= 0) {
+    if (Status s = m.DecodeChannelPacket(static_cast<size_t>(k), j, b, payload); !s.ok()) {
       return s.WithContext(what());
     }
     Impl::Record(m, {id}, payload.size());
@@ -447,32 +584,44 @@ std::vector<Vec3> ProgressiveDecoder::Positions(int max_level) const {
   std::copy(m.base.positions.begin(), m.base.positions.end(), x.begin());
   for (int j = 0; j < level; ++j) {
     if (!m.touched[j]) continue;  // every detail is zero yet
-    Vec3* band = x.data() + h.vertex_count(j);
     const Impl::SubbandCoding& coding = m.coding.Get(j);
-    for (size_t p = 0; p < coding.precincts.size(); ++p) {
-      for (int c = 0; c < 3; ++c) {
-        const uint32_t* coefficient = coding.precincts[p].coefficient.data();
-        const ComponentState& s = coding.states[p][c];
-        const StreamHeader::Quantizer& q = m.header.quantizer(j, c);
-        const int n = s.known_from();
-        if (n > s.top) continue;
-        const double xi0 = DeadzoneXi(static_cast<int>(q.deadzone));
-        // Dequantize(s.mag[i] >> n, n, s.negative[i], q.step, xi0, gamma)
-        // with its two ldexp calls, the same for every k, taken out of the
-        // loop (the same operations in the same order: bit-identical).
-        const double scale = std::ldexp(q.step, n);
-        const double xi_n = std::ldexp(xi0, -n);
-        const double gamma = m.options.gamma;
-        for (uint32_t i : s.significant()) {
-          const uint32_t v = s.mag[i] >> n;
-          if (v == 0) continue;  // band is zero already
-          const double r = (static_cast<double>(v) + gamma - xi_n) * scale;
-          band[coefficient[i]][c] = s.negative[i] ? -r : r;
-        }
-      }
-    }
+    DequantizeSubband(coding.precincts, coding.states, m.header.quantizers, j, m.options.gamma,
+                      x.data() + h.vertex_count(j));
   }
   m.transform->InverseInPlace(x, level);
+  return x;
+}
+
+bool ProgressiveDecoder::HasColors() const {
+  for (const StreamHeader::Channel& channel : impl_->header.channels) {
+    if (channel.kind == StreamChannelKind::kColor) return true;
+  }
+  return false;
+}
+
+std::vector<Vec3> ProgressiveDecoder::Colors(int max_level) const {
+  const Impl& m = *impl_;
+  size_t k = 0;
+  while (k < m.header.channels.size() && m.header.channels[k].kind != StreamChannelKind::kColor) {
+    ++k;
+  }
+  if (k == m.header.channels.size()) return {};
+  const auto& h = *m.hierarchy;
+  const int level = (max_level < 0 || max_level > h.levels()) ? h.levels() : max_level;
+  const Impl::ChannelDecoding& channel = m.channels[k];
+  // As Positions: the base values, each subband's details in place, the
+  // inverse transform (without local frames), then back to RGB.
+  std::vector<Vec3> x(h.vertex_count(level), Vec3::Zero());
+  std::copy(channel.base.begin(), channel.base.end(), x.begin());
+  for (int j = 0; j < level; ++j) {
+    if (!channel.touched[static_cast<size_t>(j)]) continue;
+    DequantizeSubband(m.coding.Get(j).precincts, channel.states[static_cast<size_t>(j)],
+                      m.header.channels[k].quantizers, j, m.options.gamma,
+                      x.data() + h.vertex_count(j));
+  }
+  const WaveletTransform& transform = m.channel_transform ? *m.channel_transform : *m.transform;
+  transform.InverseInPlace(x, level);
+  for (Vec3& v : x) v = YCoCgToRgb(v).cwiseMax(0.0).cwiseMin(1.0);
   return x;
 }
 

@@ -110,7 +110,9 @@ std::vector<StreamUnit> RegionOrder(const StreamHeader& header, const StreamPrec
   for (uint32_t id = 0; id < n; ++id) {
     first_unit[id] = static_cast<uint32_t>(units.size());
     const int j = layout.Subband(id);
-    if (j >= used || (j >= 0 && j >= levels)) continue;
+    // Channels are not refined by region yet: their packets travel in the
+    // uniform orders only.
+    if (layout.IsChannel(id) || j >= used || (j >= 0 && j >= levels)) continue;
     wanted[id] = 1;
     const uint32_t parts = held.PartCount(id);
     if (parts == 0 || id >= part_lengths.size() || part_lengths[id].size() != parts) {

@@ -16,7 +16,8 @@ namespace meshwave {
 
 // The version this build writes (meshwave/stream_header.h).
 inline constexpr uint32_t kFormatVersion = kStreamFormatVersion;
-// The oldest version it reads. Version 6 is version 7 without precincts
+// The oldest version it reads. Version 7 is version 8 without channels,
+// version 6 is version 7 without precincts
 // (docs/FORMAT.md 2.2): kept readable so that a catalog written by the
 // previous release is served while `meshwave-server reencode` brings it
 // to this one (docs/DEPLOY.md, "Upgrades"). Each format change keeps the
@@ -24,8 +25,8 @@ inline constexpr uint32_t kFormatVersion = kStreamFormatVersion;
 inline constexpr uint32_t kOldestReadFormatVersion = 6;
 
 // The one check of a header's format version: one this build reads
-// (kUnsupported, naming both, otherwise), and nothing a version-6 stream
-// cannot hold (kParseError).
+// (kUnsupported, naming both, otherwise), and nothing an older version's
+// stream cannot hold (kParseError).
 inline Status CheckFormatVersion(const StreamHeader& h) {
   if (h.format_version < kOldestReadFormatVersion || h.format_version > kFormatVersion) {
     return Status(StatusCode::kUnsupported,
@@ -37,6 +38,10 @@ inline Status CheckFormatVersion(const StreamHeader& h) {
       (h.packets.precinct_coefficients != 0 || !h.packets.split_planes.empty())) {
     return ParseError("header: a version-6 stream with precincts (they came with version 7)");
   }
+  if (h.format_version < 8 && !h.channels.empty()) {
+    return ParseError("header: a version-" + std::to_string(h.format_version) +
+                      " stream with channels (they came with version 8)");
+  }
   return Status::Ok();
 }
 inline constexpr char kContainerMagic[4] = {'M', 'W', 'V', '1'};
@@ -47,6 +52,8 @@ inline constexpr uint32_t kHeaderPresentField = 14;
 // Limits on what a stream may ask a decoder to build.
 inline constexpr uint32_t kMaxBaseVertices = 1u << 24;
 inline constexpr uint32_t kMaxBaseRefinementPlanes = 20;
+// Channels a stream may have: one of each kind.
+inline constexpr uint32_t kMaxChannels = 1;
 
 inline Result<TransformSettings> ReadTransformSettings(const StreamHeader::Transform& t) {
   TransformSettings s;

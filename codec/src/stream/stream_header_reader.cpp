@@ -81,6 +81,23 @@ wire::Field ReadIndex(uint32_t number, uint32_t type, wire::WireReader& r,
   }
 }
 
+wire::Field ReadChannel(uint32_t number, uint32_t type, wire::WireReader& r, int depth,
+                        StreamHeader::Channel& c) {
+  switch (number) {
+    case 1: return wire::ReadVarint32(type, r, c.kind);
+    case 2: return wire::ReadDouble(type, r, c.base_step);
+    case 3: return wire::ReadBytes(type, r, c.base);
+    case 4:
+      if (type != kLengthDelimited) return wire::Field::kUnknown;
+      c.quantizers.emplace_back();
+      return wire::ReadEmbedded(r, depth, [&](uint32_t n, uint32_t w, wire::WireReader& f, int) {
+        return ReadQuantizer(n, w, f, c.quantizers.back());
+      });
+    case 5: return wire::ReadFloat(type, r, c.rd_weight);
+    default: return wire::Field::kUnknown;
+  }
+}
+
 wire::Field ReadHeaderField(uint32_t number, uint32_t type, wire::WireReader& r, int depth,
                             StreamHeader& h) {
   switch (number) {
@@ -120,6 +137,12 @@ wire::Field ReadHeaderField(uint32_t number, uint32_t type, wire::WireReader& r,
       });
     case 13: return wire::ReadDouble(type, r, h.base_distortion);
     case kHeaderPresentField: return wire::ReadRepeatedU32(type, r, h.present);
+    case 15:
+      if (type != kLengthDelimited) return wire::Field::kUnknown;
+      h.channels.emplace_back();
+      return wire::ReadEmbedded(r, depth, [&](uint32_t n, uint32_t w, wire::WireReader& f, int d) {
+        return ReadChannel(n, w, f, d, h.channels.back());
+      });
     default: return wire::Field::kUnknown;
   }
 }

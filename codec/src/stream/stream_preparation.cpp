@@ -140,7 +140,8 @@ Result<PreparedStream> PrepareStream(const SemiRegularMesh& input,
   // (and so every coefficient's index) follows from that order.
   MW_ASSIGN_OR_RETURN(const BaseMeshOrder order, ChooseTransmissionOrder(
       input.hierarchy->vertex_count(0), input.hierarchy->faces(0)));
-  MW_ASSIGN_OR_RETURN(out.mesh, RenumberBase(input, order.new_of_old, order.faces));
+  MW_ASSIGN_OR_RETURN(out.mesh,
+                      RenumberBase(input, order.new_of_old, order.faces, &out.input_vertex));
   const SemiRegularHierarchy& h = *out.mesh.hierarchy;
   const int levels = h.levels();
   const Aabb box = BoundingBox(out.mesh.positions);
@@ -230,14 +231,12 @@ std::vector<double> SubbandComponent(const PreparedStream& prepared, int j, int 
   return values;
 }
 
-QuantizedComponent QuantizeValues(const PreparedStream& prepared, int j, int c,
-                                  std::vector<double> values, int deadzone, double& energy) {
-  const double gain = prepared.gains.subband[static_cast<size_t>(j)];
-  const double scale = c == 0 ? 1.0 : prepared.tangent_step_scale;
+QuantizedComponent QuantizeAtStep(std::vector<double> values, double step, double weight,
+                                  double gain, int deadzone, double& energy) {
   QuantizedComponent q;
   q.value = std::move(values);
-  q.step = prepared.step0 / std::sqrt(gain) * scale;
-  q.weight = 1 / (scale * scale);
+  q.step = step;
+  q.weight = weight;
   q.xi0 = DeadzoneXi(deadzone);
   q.q0.reserve(q.value.size());
   q.negative.reserve(q.value.size());
@@ -252,8 +251,21 @@ QuantizedComponent QuantizeValues(const PreparedStream& prepared, int j, int c,
   return q;
 }
 
+QuantizedComponent QuantizeValues(const PreparedStream& prepared, int j, int c,
+                                  std::vector<double> values, int deadzone, double& energy) {
+  const double gain = prepared.gains.subband[static_cast<size_t>(j)];
+  const double scale = c == 0 ? 1.0 : prepared.tangent_step_scale;
+  return QuantizeAtStep(std::move(values), prepared.step0 / std::sqrt(gain) * scale,
+                        1 / (scale * scale), gain, deadzone, energy);
+}
+
 void AppendQuantizer(const QuantizedComponent& q, int deadzone, proto::StreamHeader& header) {
-  proto::Quantizer* pq = header.add_quantizers();
+  AppendQuantizer(q, deadzone, *header.mutable_quantizers());
+}
+
+void AppendQuantizer(const QuantizedComponent& q, int deadzone,
+                     google::protobuf::RepeatedPtrField<proto::Quantizer>& out) {
+  proto::Quantizer* pq = out.Add();
   pq->set_step(q.step);
   pq->set_deadzone(static_cast<uint32_t>(deadzone));
   pq->set_top_bitplane(q.top);

@@ -15,6 +15,8 @@ namespace meshwave {
 
 struct PreparedStream {
   SemiRegularMesh mesh;        // in the stream's vertex order
+  // Each of its vertices' index in the input mesh (attributes follow it).
+  std::vector<uint32_t> input_vertex;
   proto::StreamHeader header;  // common fields and the base mesh; no coder
   TransformSettings transform;  // the options' transform, with its SAWT plan
   Pyramid pyramid;
@@ -88,6 +90,15 @@ QuantizedComponent QuantizeComponent(PreparedStream& prepared, int j, int c,
 QuantizedComponent QuantizeValues(const PreparedStream& prepared, int j, int c,
                                   std::vector<double> values, int deadzone, double& energy);
 void AppendQuantizer(const QuantizedComponent& q, int deadzone, proto::StreamHeader& header);
+void AppendQuantizer(const QuantizedComponent& q, int deadzone,
+                     google::protobuf::RepeatedPtrField<proto::Quantizer>& out);
+
+// What every quantisation above comes down to, for any signal: `values`
+// with `step` and deadzone code `deadzone`; a unit of squared error is
+// worth `weight` (QuantizedComponent::weight), and `energy` grows by
+// weight * gain * x^2 per value x (gain: the subband's synthesis gain).
+QuantizedComponent QuantizeAtStep(std::vector<double> values, double step, double weight,
+                                  double gain, int deadzone, double& energy);
 
 }  // namespace meshwave
 

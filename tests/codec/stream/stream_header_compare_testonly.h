@@ -86,6 +86,26 @@ inline std::string HeaderDifference(const StreamHeader& r, const proto::StreamHe
   if (!SameInts(r.packets.split_planes, x.split_planes())) return "packets.split_planes";
   if (!SameBits(r.base_distortion, p.base_distortion())) return "base_distortion";
   if (!SameInts(r.present, p.present())) return "present";
+  if (r.channels.size() != static_cast<size_t>(p.channels_size())) return "channels size";
+  for (size_t k = 0; k < r.channels.size(); ++k) {
+    const auto& c = p.channels(static_cast<int>(k));
+    const StreamHeader::Channel& rc = r.channels[k];
+    if (static_cast<int32_t>(rc.kind) != c.kind()) return "channels.kind";
+    if (!SameBits(rc.base_step, c.base_step())) return "channels.base_step";
+    if (rc.base != c.base()) return "channels.base";
+    if (!SameBits(rc.rd_weight, c.rd_weight())) return "channels.rd_weight";
+    if (rc.quantizers.size() != static_cast<size_t>(c.quantizers_size())) {
+      return "channels.quantizers size";
+    }
+    for (size_t i = 0; i < rc.quantizers.size(); ++i) {
+      const auto& q = c.quantizers(static_cast<int>(i));
+      if (!SameBits(rc.quantizers[i].step, q.step())) return "channels.quantizers.step";
+      if (rc.quantizers[i].deadzone != q.deadzone()) return "channels.quantizers.deadzone";
+      if (rc.quantizers[i].top_bitplane != q.top_bitplane()) {
+        return "channels.quantizers.top_bitplane";
+      }
+    }
+  }
   return "";
 }
 

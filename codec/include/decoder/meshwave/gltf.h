@@ -21,9 +21,11 @@ enum class GltfForm {
 std::optional<GltfForm> GltfFormFromPath(const std::filesystem::path& path);
 
 // One scene, node and mesh of one indexed triangle primitive: POSITION as
-// FLOAT VEC3 with min/max, indices UNSIGNED_INT. A mesh without faces gives
-// an empty scene (glTF forbids empty buffers).
-std::string SerializeGltf(const TriMesh& mesh, GltfForm form);
+// FLOAT VEC3 with min/max, indices UNSIGNED_INT, and with `colors` (linear
+// RGB, one per vertex, clamped to [0, 1]) COLOR_0 as FLOAT VEC3. A mesh
+// without faces gives an empty scene (glTF forbids empty buffers).
+std::string SerializeGltf(const TriMesh& mesh, GltfForm form,
+                          std::span<const Vec3> colors = {});
 
 }  // namespace meshwave
 

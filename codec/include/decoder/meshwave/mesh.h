@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>  // cross products on Vec3
 #include <array>
+#include <span>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -25,8 +26,10 @@ struct TriMesh {
 
 // Binary PLY (float32) and OBJ (shortest exact decimals: lossless) bytes
 // of a mesh (WriteMesh, meshwave/mesh_io.h, writes them to files;
-// SerializeGltf: meshwave/gltf.h).
-std::string SerializePly(const TriMesh& mesh);
+// SerializeGltf: meshwave/gltf.h). With `colors` (linear RGB in [0, 1],
+// one per vertex; clamped) the PLY's vertices also have uchar red, green
+// and blue, sRGB-encoded as PLY colours are by convention.
+std::string SerializePly(const TriMesh& mesh, std::span<const Vec3> colors = {});
 std::string SerializeObj(const TriMesh& mesh);
 
 }  // namespace meshwave

@@ -112,6 +112,13 @@ class ProgressiveDecoder {
   std::vector<Face> Faces(int max_level = -1) const;
   TriMesh Mesh(int max_level = -1) const;
 
+  // Whether the stream has a colour channel (format version 8).
+  bool HasColors() const;
+  // Per vertex of Positions(max_level), its colour from the packets added
+  // so far: linear RGB, each component clamped to [0, 1]. Empty when the
+  // stream has no colour channel. Costs about what Positions does.
+  std::vector<Vec3> Colors(int max_level = -1) const;
+
  private:
   struct Impl;
   explicit ProgressiveDecoder(std::unique_ptr<Impl> impl);

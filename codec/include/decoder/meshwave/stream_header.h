@@ -23,8 +23,8 @@ namespace meshwave {
 // The stream format version this build writes (docs/FORMAT.md). 3:
 // Transform.sawt; 4: compact packet index; 5: base refinement packets; 6:
 // 3xC's significance contexts count significant neighbours; 7: precincts
-// and split packets.
-inline constexpr uint32_t kStreamFormatVersion = 7;
+// and split packets; 8: channels (per-vertex colours).
+inline constexpr uint32_t kStreamFormatVersion = 8;
 
 // Enum fields keep whatever value the bytes hold, as protobuf's open proto3
 // enums do: validation (ValidateStreamHeader), not reading, refuses values
@@ -32,6 +32,7 @@ inline constexpr uint32_t kStreamFormatVersion = 7;
 enum class StreamPredictor : int32_t { kLinear = 0, kButterfly = 1, kLoop = 2, kSawt = 3 };
 enum class StreamUpdate : int32_t { kNone = 0, kConstant = 1, kValence = 2 };
 enum class StreamCoder : int32_t { k3xC = 0, kSim = 1 };
+enum class StreamChannelKind : int32_t { kNone = 0, kColor = 1 };
 
 // Field by field as in proto/stream.proto (the comments there say what
 // each field means).
@@ -70,6 +71,17 @@ struct StreamHeader {
     uint32_t precinct_coefficients = 0;
     std::vector<uint32_t> split_planes;
   };
+  struct Channel {
+    StreamChannelKind kind = StreamChannelKind::kNone;
+    double base_step = 0;
+    std::string base;
+    std::vector<Quantizer> quantizers;  // subband-major, as the geometry's
+    float rd_weight = 0;
+
+    const Quantizer& quantizer(int j, int c) const {
+      return quantizers[3 * static_cast<size_t>(j) + static_cast<size_t>(c)];
+    }
+  };
 
   uint32_t format_version = 0;
   std::string name;
@@ -85,6 +97,7 @@ struct StreamHeader {
   PacketIndex packets;
   double base_distortion = 0;
   std::vector<uint32_t> present;
+  std::vector<Channel> channels;
 
   // The header's bytes without its `present` records: what a container
   // holding other packets starts its header with (SerializeContainerHead

@@ -65,6 +65,13 @@ struct EncodeOptions {
   // step being the finest step above (docs/ANALYSIS.md for the tuning).
   uint32_t sawt_alpha = 400;
   double sawt_lambda_scale = 64.0;
+  // The colour channel's finest step is 2^-color_precision (colours in
+  // [0, 1]): 10 puts the complete stream's colours well inside an 8-bit
+  // input's steps (1/255).
+  int color_precision = 10;
+  // The weight of the colour channel's distortion against the geometry's
+  // in the rd order (docs/FORMAT.md 7), both normalised to their peaks.
+  float color_rd_weight = 1;
   std::string name;
   // Threads for quantising and coding (subbands on workers, the largest
   // first); 0: the machine's cores. The stream does not depend on it.
@@ -86,10 +93,24 @@ struct EncodedStream {
   // filters f1..f6, and the number of regions.
   std::vector<uint32_t> sawt_filter_usage;
   uint32_t sawt_regions = 0;
+  // The encoded colours (linear RGB) in the order of `mesh`; empty without
+  // a colour channel.
+  std::vector<Vec3> colors;
+};
+
+// What a mesh carries besides its geometry, per vertex of its finest level
+// in its vertex order; each empty when absent.
+struct VertexAttributes {
+  std::vector<Vec3> colors;  // linear RGB in [0, 1]: the colour channel
 };
 
 Result<EncodedStream> EncodeMesh(const SemiRegularMesh& mesh,
                                  const EncodeOptions& options);
+// With a channel per attribute present (format version 8).
+// kInvalidArgument when an attribute does not have one finite value per
+// vertex.
+Result<EncodedStream> EncodeMesh(const SemiRegularMesh& mesh, const EncodeOptions& options,
+                                 const VertexAttributes& attributes);
 
 // The .mwv container (meshwave/container.h) holding the packets `ids`.
 std::string SerializeContainer(const EncodedStream& stream,

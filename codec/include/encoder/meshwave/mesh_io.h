@@ -46,8 +46,11 @@ Result<TriMesh> ReadMesh(const std::filesystem::path& path);
 // glTF 2.0 (.glb, .gltf: meshwave/gltf.h) by the path's extension. The file
 // is written to `<path>.tmp-<pid>`, fsynced and renamed, so a failure never
 // leaves half a file behind. IoError names the path; .off gives kUnsupported,
-// other extensions kInvalidArgument.
-Status WriteMesh(const TriMesh& mesh, const std::filesystem::path& path);
+// other extensions kInvalidArgument. `colors` (linear RGB, one per vertex)
+// go into PLY and glTF files (SerializePly, SerializeGltf); OBJ has no
+// standard place for them and leaves them out.
+Status WriteMesh(const TriMesh& mesh, const std::filesystem::path& path,
+                 std::span<const Vec3> colors = {});
 }  // namespace meshwave
 
 #endif  // MESHWAVE_MESH_IO_H_

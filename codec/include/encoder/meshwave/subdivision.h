@@ -28,10 +28,13 @@ Result<SemiRegularMesh> Subdivide(const TriMesh& base, int levels,
 // The same mesh over a reordered base: base vertex v becomes new_of_old[v]
 // and the base faces (in new indices, any order and rotation, same
 // orientation) are new_base_faces. Finer vertices are renumbered by the
-// canonical rules. Fails if the faces are not the base mesh's.
+// canonical rules. Fails if the faces are not the base mesh's. When
+// `old_of_new` is given, it receives each new vertex's index in `mesh` (for
+// per-vertex attributes to follow).
 Result<SemiRegularMesh> RenumberBase(const SemiRegularMesh& mesh,
                                      const std::vector<uint32_t>& new_of_old,
-                                     std::vector<Face> new_base_faces);
+                                     std::vector<Face> new_base_faces,
+                                     std::vector<uint32_t>* old_of_new = nullptr);
 
 struct DetectOptions {
   int max_levels = kMaxStreamLevels;  // stop after this many levels even if more exist
