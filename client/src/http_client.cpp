@@ -11,8 +11,6 @@ namespace {
 constexpr size_t kChunkBytes = 64 * 1024;
 constexpr size_t kErrorBodyLimit = 64 * 1024;
 
-auto Tuple() { return net::as_tuple(net::use_awaitable); }
-
 }  // namespace
 
 HttpClient::HttpClient(net::any_io_executor executor, ServerUrl server,

@@ -21,6 +21,10 @@ namespace beast = boost::beast;
 namespace http = boost::beast::http;
 using tcp = boost::asio::ip::tcp;
 
+// The completion token of every awaited operation here: co_await gives
+// (error_code, result...) instead of throwing.
+inline auto Tuple() { return net::as_tuple(net::use_awaitable); }
+
 }  // namespace meshwave::client
 
 #endif  // MESHWAVE_CLIENT_NET_H_

@@ -9,8 +9,6 @@
 namespace meshwave::client {
 namespace {
 
-auto Tuple() { return net::as_tuple(net::use_awaitable); }
-
 // The "error" member of the server's JSON error body, else the body itself
 // (shortened): what a person needs to see.
 std::string ErrorMessage(const std::string& body) {

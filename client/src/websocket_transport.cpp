@@ -25,8 +25,6 @@ constexpr uint64_t kMessageLimit = (uint64_t{1} << 30) + 1024;
 // "The rest of the order" in a refine (the server's largest budget).
 constexpr uint64_t kWholeOrder = uint64_t{1} << 50;
 
-auto Tuple() { return net::as_tuple(net::use_awaitable); }
-
 // Collects the header of a header-only start.
 class HeaderSink final : public StreamSink {
  public:
