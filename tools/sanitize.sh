@@ -19,9 +19,9 @@
 # without the WebAssembly module; the Release stage is gcc's.
 # Left out for time: the analysis and CLI suites (the CLI's code is the
 # libraries' that the suites above run, plus argument parsing), and under
-# ASan the long remesh and fidelity runs on shared meshes
-# (asan_excluded_tests in tools/sanitize_targets.sh; the Release stage runs
-# them).
+# ASan the long remesh and fidelity runs on shared meshes and the
+# thread-count determinism runs (asan_excluded_tests in
+# tools/sanitize_targets.sh; the Release stage runs them).
 # A report from any process (test, server, CLI) fails the stage: the
 # sanitizers write them to BUILD/sanitizer-reports/, printed here.
 # Usage: bash tools/sanitize.sh [asan|tsan|all]  (default all)
