@@ -200,7 +200,7 @@ int main(int argc, char** argv) {
   ingest->add_option("--store", ingest_options.store, "Container store (postgres:// only)")
       ->envname("MESHWAVE_STORE");
   ingest->add_option("inputs", ingest_options.inputs,
-                     "Mesh files (.ply, .obj, .off) or folders searched recursively");
+                     "Mesh files (.ply, .obj, .off, .glb, .gltf) or folders searched recursively");
   ingest->add_option("--list", ingest_options.list, "File listing mesh files, one per line");
   ingest->add_option("--fidelity", ingest_options.choices.fidelity_db,
                      "Symmetric surface PSNR (dB) each complete stream should reach against its "

@@ -120,7 +120,7 @@ TEST_F(ServerHttpTest, BadMultipartUploadsAreRefusedSayingWhyAndStoreNothing) {
       {"", Multipart({{"a.mtl", "newmtl x\n"}}), 422, "no part is a mesh file"},
       {"", Multipart({{"a.off", off}, {"b.ply", "ply"}}), 400, "say which one to read with main="},
       {"", Multipart({{"a.off", off}, {"a.off", off}}), 400, "two parts are named 'a.off'"},
-      {"", Multipart({{"../a.off", off}}), 400, "'..'"},
+      {"", Multipart({{"../a.off", off}}), 400, "segment"},
       {"", good.substr(0, good.size() / 2), 400, "truncated"},
       {"", "--" + std::string(kBoundary) + "\r\nX: y\r\n\r\nz\r\n--" + kBoundary + "--", 400,
        "no Content-Disposition"},
