@@ -104,8 +104,10 @@ Result<EncodedMesh> EncodeOriginal(const std::vector<OriginalPart>& parts, const
   }
   MW_RETURN_IF_ERROR(FormatFromPath(main).status());
   // The asset reader follows the main file's references (.bin, .mtl,
-  // images) among the original's parts, and nowhere else.
-  MemoryFileSet files(choices.limits.max_file_bytes);
+  // images) among the original's parts, and nowhere else. The set holds
+  // what was uploaded or read already (an upload's limit bounded it);
+  // choices.limits bound what the reader makes of it.
+  MemoryFileSet files;
   for (const OriginalPart& p : parts) {
     MW_RETURN_IF_ERROR(files.Add(p.name, std::string(p.bytes)));
   }

@@ -101,7 +101,13 @@ Result<UploadOutcome> IngestInWorker(const std::string& catalog,
   size_t i = 0;
   while (i < run.err.size()) {
     const size_t end = std::min(run.err.find('\n', i), run.err.size());
-    if (end > i) spdlog::info("upload {}: {}", name, std::string_view(run.err).substr(i, end - i));
+    const std::string_view line = std::string_view(run.err).substr(i, end - i);
+    // At the level the worker logged it (what the stream leaves out is a warning).
+    if (line.find("] [warning] ") != std::string_view::npos) {
+      spdlog::warn("upload {}: {}", name, line);
+    } else if (end > i) {
+      spdlog::info("upload {}: {}", name, line);
+    }
     i = end + 1;
   }
   if (run.exit_code != 0 && run.exit_code != 3) {
