@@ -37,7 +37,7 @@ niceness=${FUZZ_NICE:-19}
 all=(ply_reader_fuzz obj_reader_fuzz off_reader_fuzz container_fuzz packet_fuzz
      decoder_order_fuzz http_request_fuzz ws_message_fuzz stream_splitter_fuzz
      ws_server_message_fuzz local_state_fuzz region_fuzz gltf_asset_fuzz obj_asset_fuzz
-     image_decoder_fuzz)
+     image_decoder_fuzz multipart_form_fuzz)
 targets=("$@")
 ((${#targets[@]})) || targets=("${all[@]}")
 ledger=$root/bench/fuzz_runs.tsv

@@ -17,7 +17,7 @@ namespace {
 bool IsMeshFile(const std::filesystem::path& p) {
   std::string ext = p.extension().string();
   for (auto& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return ext == ".ply" || ext == ".obj" || ext == ".off";
+  return ext == ".ply" || ext == ".obj" || ext == ".off" || ext == ".glb" || ext == ".gltf";
 }
 
 Status AddInput(const std::filesystem::path& input, std::set<std::filesystem::path>& out) {

@@ -17,7 +17,7 @@
 
 namespace meshwave::server {
 
-// The mesh files (.ply, .obj, .off, any case) named by `inputs` (files, or
+// The mesh files (.ply, .obj, .off, .glb, .gltf, any case) named by `inputs` (files, or
 // folders searched recursively) and by `list_file` (one path per line,
 // relative to the list's folder; blank lines and '#' comments skipped;
 // empty: none), sorted, each once. kNotFound for a missing input.

@@ -11,6 +11,7 @@
 
 #include "meshwave/encoder.h"
 #include "meshwave/fidelity.h"
+#include "meshwave/mesh_asset.h"
 #include "meshwave/status.h"
 
 namespace meshwave::server {
@@ -34,6 +35,10 @@ struct EncodeChoices {
   // so that region requests can refine one part first; 0: none.
   uint32_t precinct_coefficients = EncodeOptions{}.precinct_coefficients;
   uint32_t split_bytes_per_precinct = EncodeOptions{}.split_bytes_per_precinct;
+  // Bounds on what reading the original may take (an upload's are lowered
+  // from the server's configuration: UploadAssetLimits). Like threads, not
+  // part of the settings text: they refuse inputs, never change a container.
+  AssetLimits limits;
 };
 
 // "fidelity=84 max_vertex_ratio=4 remesh=auto precinct=4096 split=48":

@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -12,13 +13,17 @@
 
 #include "core/durable_file.h"
 #include "mesh_identity.h"
-#include "meshwave/mesh_id.h"
+#include "meshwave/mesh_asset.h"
+#include "meshwave/asset_encoder.h"
 #include "meshwave/container.h"
+#include "meshwave/mesh_id.h"
 #include "meshwave/encoder.h"
 #include "meshwave/fidelity.h"
+#include "meshwave/file_set.h"
 #include "meshwave/mesh_io.h"
 #include "meshwave/progression.h"
 #include "meshwave/semiregular_input.h"
+#include "recording_file_set.h"
 #include "sha256.h"
 
 namespace meshwave::server {
@@ -29,6 +34,14 @@ const OriginalPart* FindPart(const std::vector<OriginalPart>& parts, const std::
     if (p.name == name) return &p;
   }
   return nullptr;
+}
+
+// Whether a mesh file of this name may refer to other files.
+bool HasSidecarFiles(std::string_view name) {
+  const std::string ext = std::filesystem::path(name).extension().string();
+  std::string lower;
+  for (char c : ext) lower += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return lower == ".gltf" || lower == ".obj";
 }
 
 // Writes the original's files and the container, then inserts the row,
@@ -86,53 +99,65 @@ double Since(std::chrono::steady_clock::time_point start) {
 
 Result<EncodedMesh> EncodeOriginal(const std::vector<OriginalPart>& parts, const std::string& main,
                                    const std::string& name, const EncodeChoices& choices) {
-  const OriginalPart* file = FindPart(parts, main);
-  if (!file) return InvalidArgument("the mesh file '" + main + "' is not among the files");
-  MW_ASSIGN_OR_RETURN(MeshFormat format, FormatFromPath(main));
-  auto step = std::chrono::steady_clock::now();
-  MW_ASSIGN_OR_RETURN(TriMesh mesh, ParseMesh(file->bytes, format, main));
-  spdlog::info("{}: read {} vertices, {} faces in {:.1f} s", main, mesh.positions.size(),
-               mesh.faces.size(), Since(step));
+  if (!FindPart(parts, main)) {
+    return InvalidArgument("the mesh file '" + main + "' is not among the files");
+  }
+  MW_RETURN_IF_ERROR(FormatFromPath(main).status());
+  // The asset reader follows the main file's references (.bin, .mtl,
+  // images) among the original's parts, and nowhere else. The set holds
+  // what was uploaded or read already (an upload's limit bounded it);
+  // choices.limits bound what the reader makes of it.
+  MemoryFileSet files;
+  for (const OriginalPart& p : parts) {
+    MW_RETURN_IF_ERROR(files.Add(p.name, std::string(p.bytes)));
+  }
   const bool fidelity = choices.fidelity_db > 0;
-  const TriMesh original = fidelity ? mesh : TriMesh{};
-  SemiRegularInputOptions input_options;
-  input_options.fidelity_db = choices.fidelity_db;
-  input_options.max_vertex_ratio = choices.max_vertex_ratio;
-  input_options.threads = choices.threads;
-  input_options.force_remesh = choices.force_remesh;
-  step = std::chrono::steady_clock::now();
-  MW_ASSIGN_OR_RETURN(SemiRegularInput input, ToSemiRegular(std::move(mesh), input_options));
-  for (const auto& w : input.warnings) spdlog::warn("{}: {}", main, w);
-  spdlog::info("{}: {} in {:.1f} s ({} finest vertices, {} remesh attempt(s))", main,
-               input.remeshed ? "remeshed" : "semi-regular as it is", Since(step),
-               input.mesh.positions.size(), input.remesh_attempts);
-  const bool remeshed = input.remeshed;
-  EncodeOptions options;
-  options.name = name;
-  options.threads = choices.threads;
-  options.precinct_coefficients = choices.precinct_coefficients;
-  options.split_bytes_per_precinct = choices.split_bytes_per_precinct;
-  if (fidelity) options.precision = PrecisionForFidelity(choices.fidelity_db);
-  step = std::chrono::steady_clock::now();
-  MW_ASSIGN_OR_RETURN(EncodedStream stream, EncodeMesh(input.mesh, options));
+  AssetEncodeOptions pipeline;
+  pipeline.limits = choices.limits;
+  pipeline.semiregular.fidelity_db = choices.fidelity_db;
+  pipeline.semiregular.max_vertex_ratio = choices.max_vertex_ratio;
+  pipeline.semiregular.threads = choices.threads;
+  pipeline.semiregular.force_remesh = choices.force_remesh;
+  pipeline.encode.name = name;
+  pipeline.encode.threads = choices.threads;
+  pipeline.encode.precinct_coefficients = choices.precinct_coefficients;
+  pipeline.encode.split_bytes_per_precinct = choices.split_bytes_per_precinct;
+  if (fidelity) pipeline.encode.precision = PrecisionForFidelity(choices.fidelity_db);
+  pipeline.keep_input_mesh = fidelity;
+  auto step = std::chrono::steady_clock::now();
+  pipeline.on_read = [&](const AssetRead& read) {
+    spdlog::info("{}: read {} vertices, {} faces{} in {:.1f} s", main, read.vertices, read.faces,
+                 read.colors ? " with vertex colours" : "", Since(step));
+    if (!read.left_out.empty()) spdlog::warn("{}", read.left_out);
+    step = std::chrono::steady_clock::now();
+  };
+  pipeline.on_semiregular = [&](const SemiRegularInput& input) {
+    for (const auto& w : input.warnings) spdlog::warn("{}: {}", main, w);
+    spdlog::info("{}: {} in {:.1f} s ({} finest vertices, {} remesh attempt(s))", main,
+                 input.remeshed ? "remeshed" : "semi-regular as it is", Since(step),
+                 input.mesh.positions.size(), input.remesh_attempts);
+    step = std::chrono::steady_clock::now();
+  };
+  MW_ASSIGN_OR_RETURN(AssetEncoding encoded, EncodeAsset(files, main, pipeline));
+  const EncodedStream& stream = encoded.stream;
   spdlog::info("{}: encoded {} packets in {:.1f} s", main, stream.packets.size(), Since(step));
-  input = SemiRegularInput{};  // the encoder's copy is what is left to use
   EncodedMesh out;
   if (fidelity) {
     step = std::chrono::steady_clock::now();
-    MW_ASSIGN_OR_RETURN(out.fidelity_db, CompleteStreamPsnr(original, stream, choices.threads));
+    MW_ASSIGN_OR_RETURN(out.fidelity_db,
+                        CompleteStreamPsnr(encoded.input_mesh, stream, choices.threads));
     const auto level =
         out.fidelity_db >= choices.fidelity_db ? spdlog::level::info : spdlog::level::warn;
     spdlog::log(level,
                 "{}: the complete stream is at {:.2f} dB against the upload (asked {:.2f} dB; "
                 "{} finest vertices, precision {}; measured in {:.1f} s)",
                 main, out.fidelity_db, choices.fidelity_db, stream.mesh.positions.size(),
-                options.precision, Since(step));
+                pipeline.encode.precision, Since(step));
   }
   out.container = SerializeFullContainer(stream);
-  out.header = std::move(stream.header);
+  out.header = stream.header;
   out.packets = stream.packets.size();
-  out.remeshed = remeshed;
+  out.remeshed = encoded.semiregular.remeshed;
   return out;
 }
 
@@ -173,8 +198,25 @@ Result<IngestResult> IngestMeshFile(Catalog& catalog, const std::filesystem::pat
   std::stringstream ss;
   ss << in.rdbuf();
   if (!in && !in.eof()) return IoError("cannot read " + path.string());
-  return IngestMeshBytes(catalog, ss.str(), name.empty() ? path.stem().string() : name,
-                         path.filename().string(), choices);
+  const std::string bytes = ss.str();
+  const std::string main = path.filename().string();
+  std::vector<OriginalPart> parts = {{main, bytes}};
+  // A .gltf or .obj refers to files beside it (.bin, .mtl, images): read
+  // the asset once to learn which, so that the original kept is complete.
+  // When it cannot be read, the ingest says why (and encodes the geometry).
+  DirectoryFileSet folder(path.has_parent_path() ? path.parent_path() : ".",
+                          choices.limits.max_file_bytes);
+  if (HasSidecarFiles(main)) {
+    RecordingFileSet recorder(folder);
+    (void)ParseMeshAsset(recorder, main, choices.limits);
+    for (const std::string& file : recorder.read()) {
+      if (file == main) continue;
+      MW_ASSIGN_OR_RETURN(const std::string_view sidecar, folder.Read(file));
+      parts.push_back({file, sidecar});
+    }
+  }
+  return IngestOriginal(catalog, parts, main, name.empty() ? path.stem().string() : name,
+                        choices);
 }
 
 Result<IngestResult> IngestContainer(Catalog& catalog, std::string container,

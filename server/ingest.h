@@ -40,10 +40,12 @@ struct EncodedMesh {
   double fidelity_db = 0;  // as IngestResult's
 };
 
-// Parses the original's main file (untrusted bytes; the format from its
-// extension), makes it semi-regular and encodes it as `choices` say, under
-// the name `name`. kParseError or kInvalidArgument for a mesh that cannot
-// be read or remeshed.
+// Reads the original as an asset (untrusted bytes; the format from the main
+// file's extension; sidecar files among `parts`) and encodes it through the
+// asset pipeline (meshwave/asset_encoder.h: remeshed when needed, vertex
+// colours carried) as `choices` say, under the name `name`. What the
+// stream leaves out is logged as a warning. kParseError or
+// kInvalidArgument for a mesh that cannot be read or remeshed.
 Result<EncodedMesh> EncodeOriginal(const std::vector<OriginalPart>& parts, const std::string& main,
                                    const std::string& name, const EncodeChoices& choices);
 
@@ -60,13 +62,14 @@ Result<IngestResult> IngestOriginal(Catalog& catalog, const std::vector<Original
                                     const EncodeChoices& choices = {});
 
 // One mesh file held in memory, named `source` (its extension gives the
-// format: .ply, .obj, .off).
+// format: .ply, .obj, .off, .glb, .gltf).
 Result<IngestResult> IngestMeshBytes(Catalog& catalog, std::string_view bytes,
                                      const std::string& name, const std::string& source,
                                      const EncodeChoices& choices = {});
 
-// Reads a mesh file (format from its extension) and ingests it; `name`
-// empty: the file's stem.
+// Reads a mesh file (format from its extension) and ingests it with the
+// files beside it that it refers to (a .gltf's buffers and images, an
+// .obj's material libraries and textures); `name` empty: the file's stem.
 Result<IngestResult> IngestMeshFile(Catalog& catalog, const std::filesystem::path& path,
                                     const std::string& name = "",
                                     const EncodeChoices& choices = {});

@@ -91,12 +91,12 @@ int Ingest(const IngestOptions& o) {
 }
 
 struct UploadCommand {
-  std::string catalog, store, name, source;
+  std::string catalog, store, name, source, boundary;
   EncodeChoices choices;
 };
 
-// The worker process of an upload (worker_process.h): the mesh file on
-// standard input, the outcome on standard output (upload_worker.h).
+// The worker process of an upload (worker_process.h): the mesh file (or a
+// multipart body of files, with --boundary) on standard input, the outcome on standard output (upload_worker.h).
 int IngestUpload(const UploadCommand& c) {
   // Standard output carries the outcome alone; log lines go to the server.
   spdlog::set_default_logger(spdlog::stderr_color_mt("ingest-upload"));
@@ -105,7 +105,7 @@ int IngestUpload(const UploadCommand& c) {
   for (size_t n; (n = std::fread(buffer, 1, sizeof buffer, stdin)) > 0;) bytes.append(buffer, n);
   auto catalog = Catalog::Open(c.catalog, c.store);
   Result<IngestResult> result =
-      catalog.ok() ? IngestMeshBytes(**catalog, bytes, c.name, c.source, c.choices)
+      catalog.ok() ? IngestUpload(**catalog, bytes, c.name, c.source, c.boundary, c.choices)
                    : Result<IngestResult>(catalog.status());
   std::fputs(FormatUploadOutcome(result).c_str(), stdout);
   std::fflush(stdout);
@@ -200,7 +200,7 @@ int main(int argc, char** argv) {
   ingest->add_option("--store", ingest_options.store, "Container store (postgres:// only)")
       ->envname("MESHWAVE_STORE");
   ingest->add_option("inputs", ingest_options.inputs,
-                     "Mesh files (.ply, .obj, .off) or folders searched recursively");
+                     "Mesh files (.ply, .obj, .off, .glb, .gltf) or folders searched recursively");
   ingest->add_option("--list", ingest_options.list, "File listing mesh files, one per line");
   ingest->add_option("--fidelity", ingest_options.choices.fidelity_db,
                      "Symmetric surface PSNR (dB) each complete stream should reach against its "
@@ -289,6 +289,10 @@ int main(int argc, char** argv) {
   upload->add_option("--fidelity", upload_command.choices.fidelity_db);
   upload->add_option("--max-vertex-ratio", upload_command.choices.max_vertex_ratio);
   upload->add_option("--threads", upload_command.choices.threads);
+  upload->add_option("--boundary", upload_command.boundary);  // a multipart body (upload_files.h)
+  upload->add_option("--max-file-bytes", upload_command.choices.limits.max_file_bytes);
+  upload->add_option("--max-image-bytes", upload_command.choices.limits.max_image_bytes);
+  upload->add_option("--max-image-pixels", upload_command.choices.limits.max_image_pixels);
   app.require_subcommand(0, 1);
   CLI11_PARSE(app, argc, argv);
   spdlog::set_level(spdlog::level::from_str(log_level));

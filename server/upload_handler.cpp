@@ -4,11 +4,12 @@
 #include <spdlog/spdlog.h>
 
 #include "ingest.h"
-#include "upload_worker.h"
 #include "mesh_handlers.h"
 #include "meshwave/request_target.h"
+#include "multipart_form.h"
 #include "response.h"
-#include "meshwave/mesh_io.h"
+#include "upload_files.h"
+#include "upload_worker.h"
 
 namespace meshwave::server {
 namespace {
@@ -19,39 +20,44 @@ constexpr size_t kMaxNameLength = 200;
 constexpr uint64_t kMaxUploadFidelityDb = 150;
 constexpr double kUploadMaxVertexRatio = 4;
 
-// The format of an uploaded mesh: ?format= when given, else from its first
-// bytes ("ply", an OFF header keyword), else OBJ (which has no magic).
-Result<MeshFormat> UploadFormat(const QueryParams& query, std::string_view body) {
+// The format of a single-file upload: ?format= when given, else from its
+// first bytes (the binary glTF magic, "ply", an OFF header keyword), else
+// OBJ (which has no magic). A JSON glTF needs format=gltf (and its buffers
+// as data URIs: a single body has no other files).
+Result<std::string> UploadExtension(const QueryParams& query, std::string_view body) {
   if (auto f = query.Get("format")) {
-    if (*f == "ply") return MeshFormat::kPly;
-    if (*f == "obj") return MeshFormat::kObj;
-    if (*f == "off") return MeshFormat::kOff;
-    return InvalidArgument("unknown format '" + *f + "' (ply, obj, off)");
+    for (const char* known : {"ply", "obj", "off", "glb", "gltf"}) {
+      if (*f == known) return "." + *f;
+    }
+    return InvalidArgument("unknown format '" + *f + "' (ply, obj, off, glb, gltf)");
   }
-  if (body.starts_with("ply")) return MeshFormat::kPly;
+  if (body.starts_with("glTF")) return std::string(".glb");
+  if (body.starts_with("ply")) return std::string(".ply");
   size_t i = 0;
   while (i < body.size() && (body[i] == ' ' || body[i] == '\n' || body[i] == '\r' || body[i] == '\t')) ++i;
   const std::string_view head = body.substr(i, 8);
   for (std::string_view off : {"OFF", "COFF", "NOFF", "CNOFF"}) {
-    if (head.starts_with(off)) return MeshFormat::kOff;
+    if (head.starts_with(off)) return std::string(".off");
   }
-  return MeshFormat::kObj;
+  return std::string(".obj");
 }
 
 // The upload's ingest: in a worker process at lower priority when the
 // server knows where its catalog is (always, but for the fuzz harness),
-// else here.
+// else here. `boundary` empty: the body is the file `source`; else a
+// multipart body whose main file is `source` (FilesOfMultipart).
 Result<UploadOutcome> Ingest(ServerContext& ctx, std::string_view bytes, const std::string& name,
-                             const std::string& source, const EncodeChoices& choices) {
+                             const std::string& source, const std::string& boundary,
+                             const EncodeChoices& choices) {
   if (!ctx.catalog_location().empty()) {
     WorkerOptions options;
     options.nice = static_cast<int>(ctx.config().ingest_nice());
     options.memory_limit_bytes = ctx.config().ingest_memory_limit_bytes();
     return IngestInWorker(ctx.catalog_location(), ctx.store_location(), bytes, name, source,
-                          choices, options);
+                          boundary, choices, options);
   }
   MW_ASSIGN_OR_RETURN(IngestResult result,
-                      IngestMeshBytes(ctx.catalog(), bytes, name, source, choices));
+                      IngestUpload(ctx.catalog(), bytes, name, source, boundary, choices));
   return UploadOutcome{result.entry.id, result.already_present, result.remeshed,
                        result.fidelity_db};
 }
@@ -93,7 +99,7 @@ std::optional<Response> CheckAuthorization(const ServerContext& ctx,
 
 void UploadMesh(ServerContext& ctx, Request req, const QueryParams& query,
                 std::function<void(Response)> done) {
-  if (Status s = query.CheckAllowed({"name", "format", "fidelity"}); !s.ok()) {
+  if (Status s = query.CheckAllowed({"name", "format", "fidelity", "main"}); !s.ok()) {
     return done(StatusError(s));
   }
   // fidelity=DB: the complete stream's surface PSNR to reach against the
@@ -103,6 +109,7 @@ void UploadMesh(ServerContext& ctx, Request req, const QueryParams& query,
   // One upload is ingested at a time; it uses the server's configured
   // threads, not every core of the machine.
   choices.threads = static_cast<int>(ctx.config().threads());
+  choices.limits = UploadAssetLimits(ctx.config());
   if (auto f = query.Get("fidelity")) {
     auto db = ParseUnsigned(*f, kMaxUploadFidelityDb, "fidelity");
     if (!db.ok()) return done(StatusError(db.status()));
@@ -114,14 +121,41 @@ void UploadMesh(ServerContext& ctx, Request req, const QueryParams& query,
   }
   const std::string name = query.Get("name").value_or("upload");
   if (Status s = CheckName(name); !s.ok()) return done(StatusError(s));
-  auto format = UploadFormat(query, req.body());
-  if (!format.ok()) return done(StatusError(format.status()));
-  const char* ext = *format == MeshFormat::kPly ? ".ply" : *format == MeshFormat::kOff ? ".off" : ".obj";
-  net::post(ctx.ingest_pool(), [&ctx, req = std::move(req), name, ext, choices,
+  std::string source;    // the main file's name in the original
+  std::string boundary;  // empty: the body is the one file
+  if (IsMultipartFormData(req[http::field::content_type])) {
+    if (query.Get("format")) {
+      return done(JsonError(http::status::bad_request,
+                            "format= is for a single-file body; the parts of a multipart body "
+                            "are known by their filenames"));
+    }
+    auto b = MultipartBoundary(req[http::field::content_type]);
+    if (!b.ok()) return done(StatusError(b.status()));
+    // Checked here, before any work is queued: a malformed body, a bad or
+    // repeated name or an unclear main file is the client's to fix.
+    auto files = FilesOfMultipart(req.body(), *b, query.Get("main"));
+    if (!files.ok()) {
+      return done(files.status().code() == StatusCode::kNotFound
+                      ? JsonError(http::status::unprocessable_entity, files.status().message())
+                      : StatusError(files.status()));
+    }
+    source = files->main;
+    boundary = *b;
+  } else {
+    if (query.Get("main")) {
+      return done(JsonError(http::status::bad_request,
+                            "main= names a part of a multipart/form-data body; this body is "
+                            "one file"));
+    }
+    auto ext = UploadExtension(query, req.body());
+    if (!ext.ok()) return done(StatusError(ext.status()));
+    source = name + *ext;
+  }
+  net::post(ctx.ingest_pool(), [&ctx, req = std::move(req), name, source, boundary, choices,
                                 done = std::move(done)]() mutable {
     Response r;
     try {
-      auto outcome = Ingest(ctx, req.body(), name, name + ext, choices);
+      auto outcome = Ingest(ctx, req.body(), name, source, boundary, choices);
       Result<std::optional<CatalogEntry>> entry =
           outcome.ok() ? ctx.catalog().Find(outcome->id) : outcome.status();
       if (entry.ok() && !*entry) {

@@ -1,5 +1,5 @@
 // The authenticated endpoints: POST /v1/meshes (upload and ingest a mesh
-// file) and DELETE /v1/meshes/{id}. A bearer token from the configuration
+// file or a mesh with its files) and DELETE /v1/meshes/{id}. A bearer token from the configuration
 // guards both; without a configured token they are refused (403).
 #ifndef MESHWAVE_SERVER_UPLOAD_HANDLER_H_
 #define MESHWAVE_SERVER_UPLOAD_HANDLER_H_
@@ -20,9 +20,11 @@ namespace meshwave::server {
 std::optional<Response> CheckAuthorization(const ServerContext& ctx,
                                            const http::request_header<>& header);
 
-// Parses, remeshes when needed, encodes and stores the body on the ingest
-// worker, then calls `done` there with 201 (new), 200 (already present) or
-// a 4xx/5xx error.
+// Parses, remeshes when needed, encodes and stores the upload (one mesh
+// file, or a multipart/form-data body of a mesh and its files: checked
+// here, 400/422 before any work is queued) on the ingest worker, then
+// calls `done` there with 201 (new), 200 (already present) or a 4xx/5xx
+// error.
 void UploadMesh(ServerContext& ctx, Request req, const QueryParams& query,
                 std::function<void(Response)> done);
 

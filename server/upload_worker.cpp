@@ -4,6 +4,8 @@
 
 #include <charconv>
 
+#include "upload_files.h"
+
 namespace meshwave::server {
 
 std::string FormatUploadOutcome(const Result<IngestResult>& result) {
@@ -69,23 +71,43 @@ Result<UploadOutcome> ParseUploadOutcome(std::string_view text) {
   return o;
 }
 
+Result<IngestResult> IngestUpload(Catalog& catalog, std::string_view body, const std::string& name,
+                                  const std::string& source, const std::string& boundary,
+                                  const EncodeChoices& choices) {
+  if (boundary.empty()) return IngestMeshBytes(catalog, body, name, source, choices);
+  MW_ASSIGN_OR_RETURN(UploadFiles files, FilesOfMultipart(body, boundary, source));
+  return IngestOriginal(catalog, files.parts, files.main, name, choices);
+}
+
 Result<UploadOutcome> IngestInWorker(const std::string& catalog,
                                      const std::filesystem::path& store, std::string_view bytes,
                                      const std::string& name, const std::string& source,
-                                     const EncodeChoices& choices, const WorkerOptions& options) {
+                                     const std::string& boundary, const EncodeChoices& choices,
+                                     const WorkerOptions& options) {
   std::vector<std::string> args = {"ingest-upload", "--catalog", catalog, "--name", name,
                                    "--source", source};
   if (!store.empty()) args.insert(args.end(), {"--store", store.string()});
+  // "--boundary=B": a boundary may begin with dashes.
+  if (!boundary.empty()) args.push_back("--boundary=" + boundary);
   args.insert(args.end(), {"--fidelity", std::to_string(choices.fidelity_db),
                            "--max-vertex-ratio", std::to_string(choices.max_vertex_ratio),
-                           "--threads", std::to_string(choices.threads)});
+                           "--threads", std::to_string(choices.threads),
+                           "--max-file-bytes", std::to_string(choices.limits.max_file_bytes),
+                           "--max-image-bytes", std::to_string(choices.limits.max_image_bytes),
+                           "--max-image-pixels", std::to_string(choices.limits.max_image_pixels)});
   MW_ASSIGN_OR_RETURN(WorkerResult run, RunWorker(args, bytes, options));
   // The worker's own log lines (remesh warnings, fidelity reached) go to
   // the server's log.
   size_t i = 0;
   while (i < run.err.size()) {
     const size_t end = std::min(run.err.find('\n', i), run.err.size());
-    if (end > i) spdlog::info("upload {}: {}", name, std::string_view(run.err).substr(i, end - i));
+    const std::string_view line = std::string_view(run.err).substr(i, end - i);
+    // At the level the worker logged it (what the stream leaves out is a warning).
+    if (line.find("] [warning] ") != std::string_view::npos) {
+      spdlog::warn("upload {}: {}", name, line);
+    } else if (end > i) {
+      spdlog::info("upload {}: {}", name, line);
+    }
     i = end + 1;
   }
   if (run.exit_code != 0 && run.exit_code != 3) {

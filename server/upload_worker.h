@@ -30,14 +30,22 @@ std::string FormatUploadOutcome(const Result<IngestResult>& result);
 // kInternal when the text is neither.
 Result<UploadOutcome> ParseUploadOutcome(std::string_view text);
 
-// Runs the worker on `bytes` (the file `source` of the upload named
-// `name`) against the catalog at `catalog` (+ `store`), and returns its
-// outcome; a worker that dies (out of memory, a signal) is a kInternal
-// error saying how it ended.
+// Ingests an upload's body: with `boundary` empty, the one file `source`;
+// else a multipart/form-data body (upload_files.h) whose main file is
+// `source`, all its parts kept as the original.
+Result<IngestResult> IngestUpload(Catalog& catalog, std::string_view body, const std::string& name,
+                                  const std::string& source, const std::string& boundary,
+                                  const EncodeChoices& choices);
+
+// Runs the worker on `bytes` (IngestUpload's body, `source` and `boundary`
+// for the upload named `name`) against the catalog at `catalog` (+
+// `store`), and returns its outcome; a worker that dies (out of memory, a
+// signal) is a kInternal error saying how it ended.
 Result<UploadOutcome> IngestInWorker(const std::string& catalog,
                                      const std::filesystem::path& store, std::string_view bytes,
                                      const std::string& name, const std::string& source,
-                                     const EncodeChoices& choices, const WorkerOptions& options);
+                                     const std::string& boundary, const EncodeChoices& choices,
+                                     const WorkerOptions& options);
 
 }  // namespace meshwave::server
 

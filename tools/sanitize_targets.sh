@@ -11,7 +11,8 @@ asan_suites=(core_test mesh_test asset_test entropy_test stream_test wavelet_tes
 fuzz_targets=(ply_reader_fuzz obj_reader_fuzz off_reader_fuzz container_fuzz packet_fuzz
               decoder_order_fuzz stream_header_fuzz http_request_fuzz ws_message_fuzz
               stream_splitter_fuzz ws_server_message_fuzz local_state_fuzz region_fuzz
-              stream_units_fuzz gltf_asset_fuzz obj_asset_fuzz image_decoder_fuzz)
+              stream_units_fuzz gltf_asset_fuzz obj_asset_fuzz image_decoder_fuzz
+              multipart_form_fuzz)
 # Left out of the ASan stage for time (about 2.5 minutes of its 10 on two
 # cores): long runs of the remesh, fidelity and metrics code on the shared
 # meshes. Shorter tests of the same suites run that code under ASan; these

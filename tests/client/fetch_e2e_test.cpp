@@ -16,6 +16,7 @@
 #include "meshwave/client/blocking_session.h"
 #include "meshwave.pb.h"
 #include "meshwave/container.h"
+#include "meshwave/mesh_asset.h"
 #include "server/http_client_testonly.h"
 #include "server/sample_catalog_testonly.h"
 #include "server/server_process_testonly.h"
@@ -119,7 +120,8 @@ class ClientE2eTest : public ::testing::Test {
     dir_ = new TempDir();
     catalog_ = *dir_ / "catalog";
     ASSERT_NO_FATAL_FAILURE(testing::CopySampleCatalog(
-        catalog_, {testing::SampleMesh("holes.off"), testing::SampleMesh("elephant.off")}));
+        catalog_, {testing::SampleMesh("holes.off"), testing::SampleMesh("elephant.off"),
+                   testing::SampleMesh("textured/hue_ball.ply")}));
     std::filesystem::create_directories(*dir_ / "server");
     server_ = new ServerProcess(catalog_, *dir_ / "server");
     ASSERT_TRUE(server_->running()) << ReadBytes(server_->log());
@@ -132,9 +134,11 @@ class ClientE2eTest : public ::testing::Test {
     for (const auto& m : list.meshes()) {
       if (m.source().find("holes") != std::string::npos) holes_ = m.id();
       if (m.source().find("elephant") != std::string::npos) elephant_ = m.id();
+      if (m.source().find("hue_ball") != std::string::npos) hue_ball_ = m.id();
     }
     ASSERT_FALSE(holes_.empty()) << reply.body;
     ASSERT_FALSE(elephant_.empty()) << reply.body;
+    ASSERT_FALSE(hue_ball_.empty()) << reply.body;
   }
   static void TearDownTestSuite() {
     delete server_;
@@ -179,7 +183,7 @@ class ClientE2eTest : public ::testing::Test {
   static inline TempDir* dir_ = nullptr;
   static inline std::filesystem::path catalog_;
   static inline ServerProcess* server_ = nullptr;
-  static inline std::string holes_, elephant_;
+  static inline std::string holes_, elephant_, hue_ball_;
 };
 
 TEST_F(ClientE2eTest, CatalogListsTheIngestedMeshes) {
@@ -208,6 +212,28 @@ TEST_F(ClientE2eTest, FetchAtABudgetEqualsDecodeOfTheSameTruncation) {
       }
     }
   }
+}
+
+// A stream with a colour channel (hue_ball.ply, ingested with its colours):
+// fetch writes them as decode does, into a .glb (COLOR_0) or a .ply.
+TEST_F(ClientE2eTest, FetchWritesTheColoursOfAColouredStream) {
+  TempDir dir;
+  const auto container = HttpGet(server_->port(), "/v1/meshes/" + hue_ball_ + "/container");
+  ASSERT_EQ(container.status, 200u);
+  WriteFile(dir / "whole.mwv", container.body);
+  for (const std::string ext : {".glb", ".ply"}) {
+    const auto fetched =
+        RunCli({"fetch", Url(hue_ball_), "--out", (dir / ("fetched" + ext)).string()});
+    ASSERT_EQ(fetched.exit_code, 0) << fetched.err;
+    EXPECT_NE(fetched.out.find("with vertex colours"), std::string::npos) << fetched.out;
+    const auto decoded = RunCli(
+        {"decode", (dir / "whole.mwv").string(), (dir / ("decoded" + ext)).string()});
+    ASSERT_EQ(decoded.exit_code, 0) << decoded.err;
+    EXPECT_EQ(ReadBytes(dir / ("fetched" + ext)), ReadBytes(dir / ("decoded" + ext))) << ext;
+  }
+  auto asset = ReadMeshAsset(dir / "fetched.glb");
+  ASSERT_TRUE(asset.ok()) << asset.status().ToString();
+  EXPECT_FALSE(asset->color.empty());
 }
 
 TEST_F(ClientE2eTest, MaxLevelFetchEqualsDecodeWithTheSameLimit) {

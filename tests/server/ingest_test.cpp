@@ -126,6 +126,33 @@ TEST(IngestSqliteTest, RemeshesIrregularInput) {
   EXPECT_GE(r->entry.levels, 1u);
 }
 
+// An .obj is ingested with the files it refers to (its .mtl, the .mtl's
+// texture): the original kept is complete, so a re-encode can read it all.
+// A coloured PLY keeps its colours in the container (the asset pipeline).
+TEST(IngestSqliteTest, AnAssetIsKeptWithItsSidecarFilesAndItsColours) {
+  TempDir tmp;
+  auto catalog = Catalog::Open(tmp / "c").value();
+  auto r = IngestMeshFile(*catalog, SampleMesh("textured/die.obj"));
+  ASSERT_TRUE(r.ok()) << r.status().ToString();
+  auto original = catalog->FindOriginal(r->entry.original);
+  ASSERT_TRUE(original.ok() && original->has_value());
+  EXPECT_EQ((*original)->main, "die.obj");
+  std::vector<std::string> names;
+  for (const OriginalFile& f : (*original)->files) {
+    names.push_back(f.name);
+    EXPECT_EQ(ReadBytes(OriginalBlobPath(catalog->store_dir(), f.sha256)),
+              ReadBytes(SampleMesh("textured/" + f.name)));
+  }
+  EXPECT_EQ(names, (std::vector<std::string>{"die.mtl", "die.obj", "die.png"}));
+
+  r = IngestMeshFile(*catalog, SampleMesh("textured/hue_ball.ply"));
+  ASSERT_TRUE(r.ok()) << r.status().ToString();
+  const std::string container = ReadBytes(catalog->ContainerPath(r->entry));
+  auto parsed = ParseContainer(container);
+  ASSERT_TRUE(parsed.ok());
+  EXPECT_EQ(parsed->header.channels.size(), 1u);
+}
+
 TEST_P(IngestTest, RejectsMalformedMeshLeavingNothing) {
   auto catalog = OpenCatalog();
   ASSERT_TRUE(catalog);

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "core/parallel_for.h"
+#include "meshwave/mesh_io.h"
 
 namespace meshwave::cli {
 
@@ -179,6 +180,14 @@ int OutputLevel(const ProgressiveDecoder& decoder, int max_level, int extra_leve
   const int levels = static_cast<int>(decoder.header().transform.levels);
   const int cap = (max_level < 0 || max_level > levels) ? levels : max_level;
   return std::min(cap, decoder.DetailLevels() + std::max(extra_levels, 0));
+}
+
+DecodedMesh DecodeLevel(const ProgressiveDecoder& decoder, int level) {
+  return {decoder.Mesh(level), decoder.Colors(level)};
+}
+
+Status WriteDecodedMesh(const DecodedMesh& decoded, const std::string& path) {
+  return WriteMesh(decoded.mesh, path, decoded.colors);
 }
 
 void AddFidelityOptions(CLI::App* cmd, double& fidelity_db, double& max_vertex_ratio,

@@ -7,10 +7,12 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
 #include "meshwave/encoder.h"
+#include "meshwave/mesh.h"
 #include "meshwave/progressive_decoder.h"
 #include "meshwave/status.h"
 
@@ -64,6 +66,18 @@ Status ApplyQuantizerOption(const QuantizerArgs& args, EncodeOptions& options);
 // (about +0.1 dB; docs/RD_RESULTS.md, "Decoded vertex count").
 int OutputLevel(const ProgressiveDecoder& decoder, int max_level, int extra_levels);
 inline constexpr int kDefaultExtraLevels = 1;
+
+// The mesh a decoder gives at a level, with its vertex colours (linear RGB,
+// one per vertex; empty when the stream has no colour channel).
+struct DecodedMesh {
+  TriMesh mesh;
+  std::vector<Vec3> colors;
+};
+DecodedMesh DecodeLevel(const ProgressiveDecoder& decoder, int level);
+// Writes it by the path's extension (WriteMesh: the colours go into .ply
+// and glTF files; .obj has no place for them): the one writer of `meshwave
+// decode`, `fetch` and `refine`.
+Status WriteDecodedMesh(const DecodedMesh& decoded, const std::string& path);
 inline constexpr const char* kExtraLevelsHelp =
     "Levels subdivided past the finest level that received detail (zero details: "
     "each smooths the surface and quadruples the faces); 12 writes every level up "

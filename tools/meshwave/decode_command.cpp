@@ -69,10 +69,11 @@ Status Run(const DecodeArgs& args) {
     MW_RETURN_IF_ERROR((*decoder)->AddPacket(id, parsed->payloads[slot[id]]));
   }
   const int level = OutputLevel(**decoder, max_level, args.extra_levels);
-  const TriMesh mesh = (*decoder)->Mesh(level);
-  const std::vector<Vec3> colors = (*decoder)->Colors(level);
+  const DecodedMesh decoded = DecodeLevel(**decoder, level);
+  const TriMesh& mesh = decoded.mesh;
+  const std::vector<Vec3>& colors = decoded.colors;
   const double decode_ms = MillisecondsSince(start);
-  MW_RETURN_IF_ERROR(WriteMesh(mesh, args.out, colors));
+  MW_RETURN_IF_ERROR(WriteDecodedMesh(decoded, args.out));
   if (args.json) {
     proto::DecodeReport report;
     report.set_output(args.out);

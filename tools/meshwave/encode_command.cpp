@@ -12,13 +12,12 @@
 #include "cli_util.h"
 #include "commands.h"
 #include "core/durable_file.h"
-#include "meshwave/attribute_transfer.h"
+#include "meshwave/asset_encoder.h"
 #include "meshwave/container.h"
 #include "meshwave/encoder.h"
 #include "meshwave/fidelity.h"
+#include "meshwave/file_set.h"
 #include "meshwave/mesh.h"
-#include "meshwave/mesh_asset.h"
-#include "meshwave/mesh_io.h"
 #include "meshwave/semiregular.h"
 #include "meshwave/semiregular_input.h"
 #include "stream.pb.h"
@@ -41,18 +40,22 @@ struct EncodeArgs {
   int threads = 0;
 };
 
-Result<SemiRegularInput> LoadSemiRegular(const EncodeArgs& args, TriMesh mesh) {
+SemiRegularInputOptions SemiRegularOptions(const EncodeArgs& args) {
   SemiRegularInputOptions options;
   options.force_remesh = args.force_remesh;
   options.levels = args.levels;
   options.fidelity_db = args.fidelity_db;
   options.max_vertex_ratio = args.max_vertex_ratio;
   options.threads = args.threads;
-  MW_ASSIGN_OR_RETURN(SemiRegularInput input, ToSemiRegular(std::move(mesh), options));
+  return options;
+}
+
+// What ToSemiRegular did, as the pipeline reaches it.
+void ReportSemiRegular(const EncodeArgs& args, const SemiRegularInput& input) {
   if (!input.remeshed) {
     std::cerr << args.in << ": semi-regular, " << input.levels
               << " levels over " << input.base_faces << " base faces\n";
-    return input;
+    return;
   }
   if (!args.force_remesh) {
     std::cerr << args.in << ": not semi-regular ("
@@ -67,37 +70,6 @@ Result<SemiRegularInput> LoadSemiRegular(const EncodeArgs& args, TriMesh mesh) {
                  input.remesh_psnr_db, input.remesh_attempts,
                  input.remesh_attempts == 1 ? "" : "s");
   }
-  return input;
-}
-
-// What the stream leaves out of the input, in one line: the codec codes the
-// geometry and vertex colours (issue 35), so UVs, materials and images are
-// named, never dropped silently. Empty when the file holds none of them.
-std::string AttributesLeftOut(const std::string& file, const Result<MeshAsset>& asset) {
-  if (!asset.ok()) {
-    return file + ": the stream holds the geometry only; the file's attributes could not "
-                  "be read (" + asset.status().ToString() + ")";
-  }
-  auto count = [](size_t n, const char* one, const char* many) {
-    return std::to_string(n) + " " + (n == 1 ? one : many);
-  };
-  std::vector<std::string> parts;
-  if (!asset->uv.empty()) parts.push_back("UVs");
-  if (!asset->materials.empty()) {
-    parts.push_back(count(asset->materials.size(), "material", "materials"));
-  }
-  if (!asset->images.empty()) {
-    parts.push_back(count(asset->images.size(), "texture image", "texture images"));
-  }
-  if (!asset->notes.empty()) {
-    parts.push_back(count(asset->notes.size(), "feature", "features") +
-                    " the reader leaves out (meshwave info lists them)");
-  }
-  if (parts.empty()) return "";
-  std::string line = file + ": the stream holds the geometry" +
-                     (asset->color.empty() ? "" : " and vertex colours") + "; not coded yet: ";
-  for (size_t i = 0; i < parts.size(); ++i) line += (i == 0 ? "" : ", ") + parts[i];
-  return line;
 }
 
 // What --fidelity reached: the complete stream against the file as read.
@@ -140,18 +112,23 @@ Status Run(const EncodeArgs& args) {
   MW_RETURN_IF_ERROR(ApplyQuantizerOption(args.quantizer, options));
   options.name = std::filesystem::path(args.in).stem().string();
   options.threads = args.threads;
-  MW_ASSIGN_OR_RETURN(TriMesh original, ReadMesh(args.in));
-  const Result<MeshAsset> asset = ReadMeshAsset(args.in);
-  if (const std::string left_out = AttributesLeftOut(args.in, asset); !left_out.empty()) {
-    std::cerr << "warning: " << left_out << "\n";
-  }
-  MW_ASSIGN_OR_RETURN(SemiRegularInput input,
-                      LoadSemiRegular(args, args.fidelity_db > 0 ? original : std::move(original)));
-  VertexAttributes attributes;
-  if (asset.ok()) {
-    MW_ASSIGN_OR_RETURN(attributes, TransferAttributes(*asset, input.mesh, args.threads));
-  }
-  MW_ASSIGN_OR_RETURN(EncodedStream stream, EncodeMesh(input.mesh, options, attributes));
+  AssetEncodeOptions pipeline;
+  pipeline.encode = options;
+  pipeline.semiregular = SemiRegularOptions(args);
+  pipeline.source_name = args.in;
+  pipeline.keep_input_mesh = args.fidelity_db > 0;  // ReportFidelity measures against it
+  pipeline.on_read = [](const AssetRead& read) {
+    if (!read.left_out.empty()) std::cerr << "warning: " << read.left_out << "\n";
+  };
+  pipeline.on_semiregular = [&args](const SemiRegularInput& input) {
+    ReportSemiRegular(args, input);
+  };
+  const std::filesystem::path in(args.in);
+  DirectoryFileSet files(in.has_parent_path() ? in.parent_path() : std::filesystem::path("."),
+                         pipeline.limits.max_file_bytes);
+  MW_ASSIGN_OR_RETURN(AssetEncoding encoded,
+                      EncodeAsset(files, in.filename().string(), pipeline));
+  const EncodedStream& stream = encoded.stream;
   const std::string bytes = SerializeFullContainer(stream);
   MW_RETURN_IF_ERROR(WriteFileDurably(args.out, bytes));
   uint64_t payload = 0;
@@ -205,7 +182,10 @@ Status Run(const EncodeArgs& args) {
     }
     std::printf("\n");
   }
-  if (args.fidelity_db > 0) MW_RETURN_IF_ERROR(ReportFidelity(args, original, input, stream, precision));
+  if (args.fidelity_db > 0) {
+    MW_RETURN_IF_ERROR(
+        ReportFidelity(args, encoded.input_mesh, encoded.semiregular, stream, precision));
+  }
   return Status::Ok();
 }
 

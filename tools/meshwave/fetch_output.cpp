@@ -81,13 +81,12 @@ Result<std::unique_ptr<FetchOutput>> FetchOutput::Create(
 // original, so no vertex-to-vertex matching measures it).
 double FetchOutput::SurfacePsnr(const ProgressiveDecoder& decoder) const {
   if (!reference_) return 0;
-  auto d = SymmetricSurfaceDistance(*reference_, OutputMesh(decoder));
+  auto d = SymmetricSurfaceDistance(*reference_, OutputMesh(decoder).mesh);
   return d.ok() ? d->PsnrDb(d->rms) : 0;
 }
 
-TriMesh FetchOutput::OutputMesh(const ProgressiveDecoder& decoder) const {
-  return decoder.Mesh(
-      OutputLevel(decoder, options_.max_level, options_.extra_levels));
+DecodedMesh FetchOutput::OutputMesh(const ProgressiveDecoder& decoder) const {
+  return DecodeLevel(decoder, OutputLevel(decoder, options_.max_level, options_.extra_levels));
 }
 
 void FetchOutput::OnProgress(const client::Progress& p,
@@ -104,7 +103,7 @@ void FetchOutput::OnProgress(const client::Progress& p,
     std::snprintf(name, sizeof name, "lod_%04zu.ply", p.packets);
     const std::string path =
         (std::filesystem::path(options_.lods) / name).string();
-    lod_error_ = WriteMesh(OutputMesh(decoder), path);
+    lod_error_ = WriteDecodedMesh(OutputMesh(decoder), path);
     step->set_lod_file(path);
   }
   step->set_elapsed_ms(MsSince(start_));
@@ -142,8 +141,9 @@ Status FetchOutput::Finish(const ProgressiveDecoder* decoder, const client::Prog
   MW_RETURN_IF_ERROR(lod_error_);
   if (decoder == nullptr)
     return Status(StatusCode::kInternal, "no stream header received");
-  const TriMesh mesh = OutputMesh(*decoder);
-  if (!options_.out.empty()) MW_RETURN_IF_ERROR(WriteMesh(mesh, options_.out));
+  const DecodedMesh decoded = OutputMesh(*decoder);
+  const TriMesh& mesh = decoded.mesh;
+  if (!options_.out.empty()) MW_RETURN_IF_ERROR(WriteDecodedMesh(decoded, options_.out));
 
   report_.set_mesh_url(url);
   report_.set_order(order);
@@ -170,9 +170,9 @@ Status FetchOutput::Finish(const ProgressiveDecoder* decoder, const client::Prog
   }
   if (!options_.out.empty()) {
     std::printf(
-        "wrote %s: %zu vertices, %zu faces (complete levels %d of %d)\n",
+        "wrote %s: %zu vertices, %zu faces (complete levels %d of %d)%s\n",
         options_.out.c_str(), mesh.positions.size(), mesh.faces.size(), p.level,
-        p.levels);
+        p.levels, decoded.colors.empty() ? "" : ", with vertex colours");
   }
   std::printf(
       "%zu of %zu %s, %llu bytes (%llu received), estimated "

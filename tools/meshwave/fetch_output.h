@@ -20,7 +20,7 @@
 namespace meshwave::cli {
 
 struct FetchOutputOptions {
-  std::string out;        // final mesh (.ply or .obj)
+  std::string out;        // final mesh (.ply, .obj, .glb, .gltf; colours but in .obj)
   std::string lods;       // directory for one mesh per refinement, or empty
   std::string reference;  // original mesh for the surface PSNR, or empty
   bool json = false;
@@ -58,8 +58,8 @@ class FetchOutput {
   explicit FetchOutput(FetchOutputOptions options)
       : options_(std::move(options)) {}
   double SurfacePsnr(const ProgressiveDecoder& decoder) const;
-  // The mesh written and measured (OutputLevel).
-  TriMesh OutputMesh(const ProgressiveDecoder& decoder) const;
+  // The mesh written (with its colours) and measured (OutputLevel).
+  DecodedMesh OutputMesh(const ProgressiveDecoder& decoder) const;
   void OnProgress(const client::Progress& p, const ProgressiveDecoder& decoder);
 
   FetchOutputOptions options_;

@@ -1,0 +1,118 @@
+#include "meshwave/asset_encoder.h"
+
+#include <cctype>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "asset/asset_readers.h"
+#include "meshwave/attribute_transfer.h"
+#include "meshwave/mesh_io.h"
+
+namespace meshwave {
+namespace {
+
+bool IsGltf(std::string_view name) {
+  const size_t dot = name.rfind('.');
+  if (dot == std::string_view::npos) return false;
+  std::string ext(name.substr(dot));
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".glb" || ext == ".gltf";
+}
+
+// The main file's geometry alone, for when the asset reader refuses the
+// files: what ReadMesh gives (a .gltf's buffers still come from the set).
+Result<TriMesh> GeometryOnly(FileSet& files, std::string_view main_file,
+                             const std::string& source_name, const AssetLimits& limits) {
+  MW_ASSIGN_OR_RETURN(const MeshFormat format, FormatFromPath(std::string(main_file)));
+  MW_ASSIGN_OR_RETURN(const std::string_view bytes, files.Read(main_file));
+  if (IsGltf(main_file)) {
+    GltfReadOptions geometry;
+    geometry.load_images = false;
+    MW_ASSIGN_OR_RETURN(MeshAsset asset,
+                        ParseGltfAsset(bytes, files, main_file, limits, geometry));
+    return std::move(asset.mesh);
+  }
+  return ParseMesh(bytes, format, source_name);
+}
+
+// Whether a step after remeshing samples the input's surface (so its
+// geometry must outlive ToSemiRegular): vertex colours today.
+bool NeedsInputSurface(const MeshAsset& asset) { return !asset.color.empty(); }
+
+}  // namespace
+
+std::string AttributesLeftOut(std::string_view file, const Result<MeshAsset>& asset) {
+  const std::string name(file);
+  if (!asset.ok()) {
+    return name + ": the stream holds the geometry only; the file's attributes could not "
+                  "be read (" + asset.status().ToString() + ")";
+  }
+  auto count = [](size_t n, const char* one, const char* many) {
+    return std::to_string(n) + " " + (n == 1 ? one : many);
+  };
+  std::vector<std::string> parts;
+  if (!asset->uv.empty()) parts.push_back("UVs");
+  if (!asset->materials.empty()) {
+    parts.push_back(count(asset->materials.size(), "material", "materials"));
+  }
+  if (!asset->images.empty()) {
+    parts.push_back(count(asset->images.size(), "texture image", "texture images"));
+  }
+  if (!asset->notes.empty()) {
+    parts.push_back(count(asset->notes.size(), "feature", "features") +
+                    " the reader leaves out (meshwave info lists them)");
+  }
+  if (parts.empty()) return "";
+  std::string line = name + ": the stream holds the geometry" +
+                     (asset->color.empty() ? "" : " and vertex colours") + "; not coded yet: ";
+  for (size_t i = 0; i < parts.size(); ++i) line += (i == 0 ? "" : ", ") + parts[i];
+  return line;
+}
+
+Result<AssetEncoding> EncodeAsset(FileSet& files, std::string_view main_file,
+                                  const AssetEncodeOptions& options) {
+  const std::string source =
+      options.source_name.empty() ? std::string(main_file) : options.source_name;
+  AssetEncoding out;
+
+  // 1. Read. The asset reader parses the geometry too, so the main file is
+  // parsed once; only when it refuses the files is the geometry read alone.
+  Result<MeshAsset> read = ParseMeshAsset(files, main_file, options.limits);
+  out.read.left_out = AttributesLeftOut(source, read);
+  MeshAsset asset;
+  if (read.ok()) {
+    asset = std::move(read).value();
+  } else {
+    out.read.attributes_read = false;
+    MW_ASSIGN_OR_RETURN(asset.mesh, GeometryOnly(files, main_file, source, options.limits));
+  }
+  out.read.vertices = asset.mesh.positions.size();
+  out.read.faces = asset.mesh.faces.size();
+  out.read.colors = !asset.color.empty();
+  if (options.on_read) options.on_read(out.read);
+
+  // 2. Geometry: semi-regular as it is, or remeshed.
+  if (options.keep_input_mesh) out.input_mesh = asset.mesh;
+  TriMesh geometry = NeedsInputSurface(asset) ? asset.mesh : std::move(asset.mesh);
+  MW_ASSIGN_OR_RETURN(out.semiregular, ToSemiRegular(std::move(geometry), options.semiregular));
+  if (options.on_semiregular) options.on_semiregular(out.semiregular);
+
+  // 3. Attributes sampled from the input's surface onto the finest level.
+  MW_ASSIGN_OR_RETURN(VertexAttributes attributes,
+                      TransferAttributes(asset, out.semiregular.mesh, options.encode.threads));
+
+  // 4. Texture bake: the place where the asset's textures and materials
+  // (asset.uv, asset.materials, asset.images) are baked onto the
+  // semi-regular mesh, BakeTexture(asset, out.semiregular, options), and
+  // handed to EncodeMesh beside the colours. Until it is wired in, they
+  // are what AssetRead::left_out names.
+
+  // 5. Encode.
+  MW_ASSIGN_OR_RETURN(out.stream,
+                      EncodeMesh(out.semiregular.mesh, options.encode, attributes));
+  out.semiregular.mesh = SemiRegularMesh{};  // the stream's copy is what callers use
+  return out;
+}
+
+}  // namespace meshwave
