@@ -6,7 +6,9 @@
 #include "cli_util.h"
 #include "commands.h"
 #include "meshwave.pb.h"
+#include "core/durable_file.h"
 #include "meshwave/container.h"
+#include "meshwave/gltf.h"
 #include "meshwave/mesh.h"
 #include "meshwave/mesh_io.h"
 #include "meshwave/progression.h"
@@ -71,8 +73,30 @@ Status Run(const DecodeArgs& args) {
   const int level = OutputLevel(**decoder, max_level, args.extra_levels);
   const TriMesh mesh = (*decoder)->Mesh(level);
   const std::vector<Vec3> colors = (*decoder)->Colors(level);
+  // The texture: every vertex's UV from the atlas and each map's finest
+  // level held (none held yet: the mesh alone).
+  std::vector<TextureImage> images;
+  std::vector<float> uvs;
+  if ((*decoder)->HasTexture()) {
+    for (size_t m = 0; m < (*decoder)->texture().maps.size(); ++m) {
+      if (auto image = (*decoder)->BestTextureLevel(m)) images.push_back(*std::move(image));
+    }
+    if (!images.empty()) uvs = (*decoder)->TextureCoordinates(level);
+  }
   const double decode_ms = MillisecondsSince(start);
-  MW_RETURN_IF_ERROR(WriteMesh(mesh, args.out, colors));
+  const std::optional<GltfForm> gltf = GltfFormFromPath(args.out);
+  if (!images.empty() && gltf) {
+    MW_RETURN_IF_ERROR(WriteFileDurably(
+        args.out, SerializeTexturedGltf(mesh, *gltf, uvs, images,
+                                        (*decoder)->texture().material, colors)));
+  } else {
+    if ((*decoder)->HasTexture()) {
+      std::cerr << "warning: " << args.out
+                << ": the stream's texture is not written (only .glb and .gltf outputs carry "
+                   "it)\n";
+    }
+    MW_RETURN_IF_ERROR(WriteMesh(mesh, args.out, colors));
+  }
   if (args.json) {
     proto::DecodeReport report;
     report.set_output(args.out);
@@ -89,9 +113,18 @@ Status Run(const DecodeArgs& args) {
     PrintJson(report);
     return Status::Ok();
   }
-  std::printf("wrote %s: %zu vertices, %zu faces (level %d of %d)%s\n", args.out.c_str(),
-              mesh.positions.size(), mesh.faces.size(), level, levels,
-              colors.empty() ? "" : ", with vertex colours");
+  std::string texture;
+  for (const TextureImage& image : images) {
+    texture += std::string(texture.empty() ? ", textured: " : ", ") +
+               std::string(TextureRoleName(image.role)) + " " + std::to_string(image.width) +
+               " x " + std::to_string(image.height);
+  }
+  // A written vertex per (vertex, UV): the validator counts those.
+  const size_t written =
+      images.empty() || !gltf ? mesh.positions.size() : TexturedVertexCount(mesh, uvs);
+  std::printf("wrote %s: %zu vertices, %zu faces (level %d of %d)%s%s\n", args.out.c_str(),
+              written, mesh.faces.size(), level, levels,
+              colors.empty() ? "" : ", with vertex colours", texture.c_str());
   std::printf("%zu of %zu packets in %s order, %llu bytes, estimated PSNR %.2f dB "
               "(against the encoded mesh)\n",
               selection.ids.size(), order.size(), ProgressionName(progression),
