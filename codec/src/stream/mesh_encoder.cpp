@@ -128,7 +128,7 @@ Result<EncodedStream> EncodeMesh(const SemiRegularMesh& input, const EncodeOptio
   // The texture's levels last, a chain per map (FORMAT.md 2.4).
   if (attributes.texture) {
     MW_ASSIGN_OR_RETURN(EncodedTexture texture,
-                        EncodeTexture(*attributes.texture, input, prepared,
+                        EncodeTexture(*attributes.texture, input, out.mesh, prepared.input_vertex,
                                       static_cast<uint32_t>(out.packets.size()), options));
     if (model.geometry_chains > model.chain_start.size()) {
       model.geometry_chains = model.chain_start.size();

@@ -19,9 +19,10 @@ proto::TextureRole ToProto(TextureRole role) {
 // triangle it owns, its corner i on t's corner (i + r) mod 3. Empty when
 // every face kept its place and rotation (the field is then left out).
 Result<std::vector<uint32_t>> FaceTriangles(const SemiRegularMesh& input,
-                                            const PreparedStream& prepared) {
+                                            const SemiRegularMesh& stream,
+                                            const std::vector<uint32_t>& input_vertex) {
   const std::vector<Face>& before = input.hierarchy->faces(0);
-  const std::vector<Face>& after = prepared.mesh.hierarchy->faces(0);
+  const std::vector<Face>& after = stream.hierarchy->faces(0);
   // Each input face by its vertices rotated to put the smallest first.
   auto key = [](const Face& f) {
     const int first = static_cast<int>(std::min_element(f.begin(), f.end()) - f.begin());
@@ -33,7 +34,7 @@ Result<std::vector<uint32_t>> FaceTriangles(const SemiRegularMesh& input,
   bool identity = true;
   for (uint32_t f = 0; f < after.size(); ++f) {
     Face old;
-    for (int i = 0; i < 3; ++i) old[i] = prepared.input_vertex[after[f][i]];
+    for (int i = 0; i < 3; ++i) old[i] = input_vertex[after[f][i]];
     const auto found = face_of.find(key(old));
     if (found == face_of.end()) {
       return InvalidArgument("texture: stream base face " + std::to_string(f) +
@@ -52,8 +53,9 @@ Result<std::vector<uint32_t>> FaceTriangles(const SemiRegularMesh& input,
 }  // namespace
 
 Result<EncodedTexture> EncodeTexture(const BakedTexture& texture, const SemiRegularMesh& input,
-                                     const PreparedStream& prepared, uint32_t first_packet,
-                                     const EncodeOptions& options) {
+                                     const SemiRegularMesh& stream,
+                                     const std::vector<uint32_t>& input_vertex,
+                                     uint32_t first_packet, const EncodeOptions& options) {
   const auto base_faces = static_cast<uint32_t>(input.hierarchy->faces(0).size());
   const TextureAtlas& a = texture.atlas;
   auto created = AtlasLayout::Create(base_faces, a.cell, a.gutter, a.columns);
@@ -77,7 +79,7 @@ Result<EncodedTexture> EncodeTexture(const BakedTexture& texture, const SemiRegu
   header.set_cell(atlas.cell());
   header.set_gutter(atlas.gutter());
   header.set_columns(atlas.columns());
-  MW_ASSIGN_OR_RETURN(std::vector<uint32_t> triangles, FaceTriangles(input, prepared));
+  MW_ASSIGN_OR_RETURN(std::vector<uint32_t> triangles, FaceTriangles(input, stream, input_vertex));
   for (uint32_t t : triangles) header.add_face_triangles(t);
   header.set_metallic_factor(material.metallic_factor);
   header.set_roughness_factor(material.roughness_factor);

@@ -12,7 +12,7 @@
 #include "meshwave/status.h"
 #include "meshwave/texture.h"
 #include "stream.pb.h"
-#include "stream/stream_preparation.h"
+#include "meshwave/semiregular.h"
 
 namespace meshwave {
 
@@ -33,10 +33,12 @@ struct EncodedTexture {
 // accepts for the input's base faces; finite material scalars and a
 // finite positive options.texture_rd_weight. `input` is the mesh the
 // texture was baked on (its base faces own the atlas's triangles);
-// `prepared` the stream's order of it.
+// `stream` the same mesh in the stream's order, input_vertex[v] the input's
+// index of its vertex v (PreparedStream).
 Result<EncodedTexture> EncodeTexture(const BakedTexture& texture, const SemiRegularMesh& input,
-                                     const PreparedStream& prepared, uint32_t first_packet,
-                                     const EncodeOptions& options);
+                                     const SemiRegularMesh& stream,
+                                     const std::vector<uint32_t>& input_vertex,
+                                     uint32_t first_packet, const EncodeOptions& options);
 
 }  // namespace meshwave
 
