@@ -3,6 +3,7 @@
 #include <array>
 #include <bit>
 #include <charconv>
+#include <cmath>
 #include <cstring>
 #include <limits>
 #include <string>
@@ -72,6 +73,65 @@ SplitVertices Split(const TriMesh& mesh, std::span<const float> corner_uvs) {
   return out;
 }
 
+// Per written vertex a unit normal and a unit tangent with its handedness
+// (w = ±1), as glTF's NORMAL and TANGENT: normals area-weighted over the
+// faces around the mesh vertex (the same on both sides of a UV cut);
+// tangents the direction of increasing u, from each face's UV gradient
+// (Lengyel, "Computing Tangent Space Basis Vectors for an Arbitrary Mesh",
+// 2001), summed per written vertex and made orthogonal to the normal.
+struct TangentSpace {
+  std::vector<Eigen::Vector3f> normals;
+  std::vector<Eigen::Vector4f> tangents;
+};
+
+Eigen::Vector3d AnyPerpendicular(const Eigen::Vector3d& n) {
+  const Eigen::Vector3d other =
+      std::abs(n.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+  return n.cross(other).normalized();
+}
+
+TangentSpace ComputeTangentSpace(const TriMesh& mesh, const SplitVertices& split) {
+  std::vector<Eigen::Vector3d> vertex_normal(mesh.positions.size(), Eigen::Vector3d::Zero());
+  const size_t n = split.source.size();
+  std::vector<Eigen::Vector3d> t(n, Eigen::Vector3d::Zero()), b(n, Eigen::Vector3d::Zero());
+  for (size_t f = 0; f < mesh.faces.size(); ++f) {
+    const Face& face = mesh.faces[f];
+    const Vec3 e1 = mesh.positions[face[1]] - mesh.positions[face[0]];
+    const Vec3 e2 = mesh.positions[face[2]] - mesh.positions[face[0]];
+    const Vec3 area_normal = e1.cross(e2);  // twice the area, outward
+    for (uint32_t v : face) vertex_normal[v] += area_normal;
+    const std::array<uint32_t, 3> w = {split.corner[3 * f], split.corner[3 * f + 1],
+                                       split.corner[3 * f + 2]};
+    const double du1 = split.uv[w[1]][0] - split.uv[w[0]][0];
+    const double dv1 = split.uv[w[1]][1] - split.uv[w[0]][1];
+    const double du2 = split.uv[w[2]][0] - split.uv[w[0]][0];
+    const double dv2 = split.uv[w[2]][1] - split.uv[w[0]][1];
+    const double det = du1 * dv2 - du2 * dv1;
+    if (det == 0) continue;  // no UV area: no direction
+    const Vec3 tangent = (e1 * dv2 - e2 * dv1) / det;
+    const Vec3 bitangent = (e2 * du1 - e1 * du2) / det;
+    for (uint32_t k : w) {
+      t[k] += tangent;
+      b[k] += bitangent;
+    }
+  }
+  TangentSpace out;
+  out.normals.reserve(n);
+  out.tangents.reserve(n);
+  for (size_t k = 0; k < n; ++k) {
+    Eigen::Vector3d normal = vertex_normal[split.source[k]];
+    normal = normal.norm() > 0 ? normal.normalized() : Eigen::Vector3d::UnitZ();
+    Eigen::Vector3d tangent = t[k] - normal * normal.dot(t[k]);
+    const double length = tangent.norm();
+    tangent = length > 1e-12 ? Eigen::Vector3d(tangent / length) : AnyPerpendicular(normal);
+    const float handedness = normal.cross(tangent).dot(b[k]) < 0 ? -1.0f : 1.0f;
+    out.normals.push_back(normal.cast<float>());
+    out.tangents.emplace_back(static_cast<float>(tangent.x()), static_cast<float>(tangent.y()),
+                              static_cast<float>(tangent.z()), handedness);
+  }
+  return out;
+}
+
 const char* MaterialSlot(TextureRole role) {
   switch (role) {
     case TextureRole::kBaseColor: return "baseColorTexture";
@@ -127,11 +187,40 @@ std::string SerializeTexturedGltf(const TriMesh& mesh, GltfForm form,
     AppendBytes(bin, uv[1]);
   }
   views.push_back({views[1].offset + views[1].length, 8 * n});
+  // Further vertex attributes, each a FLOAT accessor of its own view.
+  struct Attribute {
+    const char* name;
+    const char* type;
+    size_t components;
+  };
+  std::vector<Attribute> attributes;
+  auto add_view = [&](size_t bytes) {
+    views.push_back({views.back().offset + views.back().length, bytes});
+  };
   if (colored) {
     for (uint32_t v : split.source) {
       for (int a = 0; a < 3; ++a) AppendBytes(bin, static_cast<float>(std::clamp(colors[v][a], 0.0, 1.0)));
     }
-    views.push_back({views.back().offset + views.back().length, 12 * n});
+    add_view(12 * n);
+    attributes.push_back({"COLOR_0", "VEC3", 3});
+  }
+  // A normal map needs a tangent space: the file carries it (NORMAL and
+  // TANGENT) rather than leave each viewer to make up its own.
+  const bool normal_map = std::any_of(images.begin(), images.end(), [](const TextureImage& i) {
+    return i.role == TextureRole::kNormal;
+  });
+  if (normal_map) {
+    const TangentSpace space = ComputeTangentSpace(mesh, split);
+    for (const Eigen::Vector3f& normal : space.normals) {
+      for (int a = 0; a < 3; ++a) AppendBytes(bin, normal[a]);
+    }
+    add_view(12 * n);
+    attributes.push_back({"NORMAL", "VEC3", 3});
+    for (const Eigen::Vector4f& tangent : space.tangents) {
+      for (int a = 0; a < 4; ++a) AppendBytes(bin, tangent[a]);
+    }
+    add_view(16 * n);
+    attributes.push_back({"TANGENT", "VEC4", 4});
   }
   const size_t image_views = views.size();
   for (const TextureImage& image : images) {
@@ -143,7 +232,10 @@ std::string SerializeTexturedGltf(const TriMesh& mesh, GltfForm form,
   std::string json = R"({"asset":{"version":"2.0","generator":"meshwave"},"scene":0,)";
   json += R"("scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)";
   json += R"("meshes":[{"primitives":[{"attributes":{"POSITION":0,"TEXCOORD_0":2)";
-  if (colored) json += R"(,"COLOR_0":3)";
+  for (size_t a = 0; a < attributes.size(); ++a) {
+    json += std::string(",\"") + attributes[a].name + "\":";
+    AppendJsonNumber(json, uint64_t{3 + a});
+  }
   json += R"(},"indices":1,"material":0,"mode":4}]}],)";
   json += R"("accessors":[{"bufferView":0,"componentType":5126,"count":)";
   AppendJsonNumber(json, uint64_t{n});
@@ -162,10 +254,12 @@ std::string SerializeTexturedGltf(const TriMesh& mesh, GltfForm form,
   json += R"(,"type":"SCALAR"},{"bufferView":2,"componentType":5126,"count":)";
   AppendJsonNumber(json, uint64_t{n});
   json += R"(,"type":"VEC2"})";
-  if (colored) {
-    json += R"(,{"bufferView":3,"componentType":5126,"count":)";
+  for (size_t a = 0; a < attributes.size(); ++a) {
+    json += R"(,{"bufferView":)";
+    AppendJsonNumber(json, uint64_t{3 + a});
+    json += R"(,"componentType":5126,"count":)";
     AppendJsonNumber(json, uint64_t{n});
-    json += R"(,"type":"VEC3"})";
+    json += std::string(R"(,"type":")") + attributes[a].type + "\"}";
   }
   json += R"(],"bufferViews":[)";
   for (size_t i = 0; i < views.size(); ++i) {

@@ -30,7 +30,9 @@ std::string SerializeGltf(const TriMesh& mesh, GltfForm form,
                           std::span<const Vec3> colors = {});
 
 // The same with a texture (format version 9): one primitive of POSITION,
-// TEXCOORD_0 (FLOAT VEC2), optional COLOR_0 and indices, and one material
+// TEXCOORD_0 (FLOAT VEC2), optional COLOR_0, with a normal map NORMAL and
+// TANGENT (area-weighted normals, tangents along increasing u from the
+// faces' UV gradients), and indices, and one material
 // whose maps are `images` (at most one per role), embedded in the buffer
 // (bufferViews with their mimeType), sampled with CLAMP_TO_EDGE and
 // linear, mipmapped filtering. `corner_uvs` holds 6 floats a face (u0 v0
