@@ -108,24 +108,21 @@ namespace {
 // The quality order's texture levels (FORMAT.md 7): each map's levels
 // coarsest first, each level before the first packet of `order` from which
 // on no packet is worth more per byte (`value`) than it.
+// `queues`: per map, its levels kept, coarsest first.
 std::vector<uint32_t> MergeTextureLevels(const std::vector<uint32_t>& order,
-                                         const std::vector<uint32_t>& textures,
+                                         const std::vector<std::vector<uint32_t>>& queues,
                                          const std::vector<double>& value) {
-  if (textures.empty()) return order;
+  size_t levels = 0;
+  for (const auto& queue : queues) levels += queue.size();
+  if (levels == 0) return order;
   // The best value from each position of `order` on.
   std::vector<double> rest(order.size() + 1, -std::numeric_limits<double>::infinity());
   for (size_t i = order.size(); i-- > 0;) rest[i] = std::max(rest[i + 1], value[order[i]]);
-  // Each map's levels in order: a queue per map, in `textures`'s order.
-  std::vector<std::vector<uint32_t>> queues;
-  for (size_t t = 0; t < textures.size(); ++t) {
-    if (t == 0 || textures[t] != textures[t - 1] + 1) queues.emplace_back();
-    queues.back().push_back(textures[t]);
-  }
   std::vector<size_t> next(queues.size(), 0);
   std::vector<uint32_t> out;
-  out.reserve(order.size() + textures.size());
+  out.reserve(order.size() + levels);
   // The most valuable next level of any map worth at least `floor` (ties:
-  // the lower id), or -1.
+  // the lower map), or none.
   auto take = [&](double floor) {
     int best = -1;
     for (size_t q = 0; q < queues.size(); ++q) {
@@ -191,10 +188,14 @@ std::vector<uint32_t> PacketOrder(const StreamHeader& h,
     return std::max(0, levels - (map.TextureLevels(m) - 1 - map.Bitplane(id)));
   };
   std::vector<uint32_t> textures;  // map by map, coarsest first
+  std::vector<std::vector<uint32_t>> texture_queues;  // the same, per map
   for (int m = 0; m < map.texture_maps(); ++m) {
+    texture_queues.emplace_back();
     for (int k = 0; k < map.TextureLevels(m); ++k) {
       const auto id = static_cast<uint32_t>(map.TextureId(m, k));
-      if (texture_level_of(id) <= used) textures.push_back(id);
+      if (texture_level_of(id) > used) continue;
+      textures.push_back(id);
+      texture_queues.back().push_back(id);
     }
   }
   // Every packet's reduction per byte, normalised as the rd order compares
@@ -237,7 +238,7 @@ std::vector<uint32_t> PacketOrder(const StreamHeader& h,
         channel_plane(n);
       }
       for (; b >= 0; --b) base_plane(b);  // finer than every detail bitplane
-      order = MergeTextureLevels(order, textures, value);
+      order = MergeTextureLevels(order, texture_queues, value);
       break;
     }
     case Progression::kResolution: {
