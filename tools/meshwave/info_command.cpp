@@ -245,7 +245,8 @@ Status DescribeStream(const InfoArgs& args) {
                 (present[level.packet] ? "" : ", not held") + ")";
     }
     line("texture map:", std::string(TextureRoleName(static_cast<TextureRole>(map.role))) + ", " +
-                             map.mime_type + ", " + num(map.levels.size()) + " levels: " + levels);
+                             map.mime_type + ", " + num(map.levels.size()) +
+                             (map.levels.size() == 1 ? " level: " : " levels: ") + levels);
   }
   return Status::Ok();
 }
