@@ -3,9 +3,13 @@
 
 #include <google/protobuf/util/json_util.h>
 
+#include <algorithm>
 #include <fstream>
 
+#include "codec/texture/png_testonly.h"
 #include "e2e/cli_runner.h"
+#include "meshwave/encoder.h"
+#include "meshwave/subdivision.h"
 #include "meshwave.pb.h"
 #include "meshwave/mesh_io.h"
 #include "meshwave/metrics.h"
@@ -278,6 +282,49 @@ TEST(EncodeDecodeCliTest, SimAndLinearOptionsWork) {
   r = RunCli({"encode", in.string(), (dir / "t.mwv").string(), "--coder", "zip"});
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.err.find("zip"), std::string::npos) << r.err;
+}
+
+// A textured stream (format version 9, made with EncodeMesh: the CLI's
+// encoder does not bake textures): info lists its maps, decode writes the
+// texture into glTF and says in one line that PLY leaves it out.
+TEST(EncodeDecodeCliTest, TexturedStreamInfoAndDecode) {
+  TempDir dir;
+  TriMesh octahedron;
+  octahedron.positions = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  octahedron.faces = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
+                      {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+  auto mesh = Subdivide(octahedron, 2, SubdivisionScheme::kMidpoint);
+  ASSERT_TRUE(mesh.ok());
+  VertexAttributes attributes;
+  BakedTexture texture;
+  texture.atlas = {16, 1, 2};  // 4 cells: 32 x 32 texels
+  texture.maps.push_back({TextureRole::kBaseColor, "image/png",
+                          {testing::SolidPng(16, 16, 250, 0, 0), testing::SolidPng(32, 32, 0, 250, 0)}});
+  attributes.texture = texture;
+  auto stream = EncodeMesh(*mesh, EncodeOptions{}, attributes);
+  ASSERT_TRUE(stream.ok()) << stream.status().ToString();
+  const auto mwv = dir / "oct.mwv";
+  {
+    std::ofstream out(mwv, std::ios::binary);
+    out << SerializeFullContainer(*stream);
+  }
+  auto info = RunCli({"info", mwv.string()});
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  EXPECT_NE(info.out.find("format version 9"), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("texture map:            base colour, image/png, 2 levels: 16 x 16"),
+            std::string::npos)
+      << info.out;
+  auto glb = RunCli({"decode", mwv.string(), (dir / "oct.glb").string()});
+  ASSERT_EQ(glb.exit_code, 0) << glb.err;
+  EXPECT_NE(glb.out.find("textured: base colour 32 x 32"), std::string::npos) << glb.out;
+  EXPECT_EQ(glb.err, "");
+  const std::string bytes = testing::ReadBytes(dir / "oct.glb");
+  EXPECT_NE(bytes.find(R"("mimeType":"image/png")"), std::string::npos);
+  EXPECT_NE(bytes.find(testing::SolidPng(32, 32, 0, 250, 0)), std::string::npos);
+  auto ply = RunCli({"decode", mwv.string(), (dir / "oct.ply").string()});
+  ASSERT_EQ(ply.exit_code, 0) << ply.err;
+  EXPECT_NE(ply.err.find("texture is not written"), std::string::npos) << ply.err;
+  EXPECT_EQ(std::count(ply.err.begin(), ply.err.end(), '\n'), 1);
 }
 
 }  // namespace

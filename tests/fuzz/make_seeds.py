@@ -189,6 +189,30 @@ def header_seeds():
     put("stream_header_fuzz", "unpacked_and_merged",
         f(14, 0, 3) + f(14, 0, 1) + f(7, 2, f(4, 0, 2)) + f(7, 2, f(5, 2, f(1, 0, 9))))
     put("stream_header_fuzz", "utf8_name", f(2, 2, "caf\u00e9".encode()))
+    put("stream_header_fuzz", "tetrahedron_sr2_header_texture",
+        tetrahedron_texture_header(f, "image/png".encode()))
+    put("stream_header_fuzz", "texture_mime_not_utf8",
+        tetrahedron_texture_header(f, b"image/\xff"))
+
+
+def tetrahedron_texture_header(f, mime):
+    """The tetrahedron fixture's header as version 9 with a texture field
+    (format section 2.4): a 2-cell atlas of 8-texel cells over its 4 base
+    faces, one rotated face, the material's scalars, a PNG base colour map
+    of two levels (8 x 4, 16 x 8) naming packets 22 and 23."""
+    data = open(os.path.join(HERE, "data", "tetrahedron_sr2.mwv"), "rb").read()
+    (length,) = struct.unpack("<I", data[4:8])
+    floats = lambda *v: struct.pack("<%df" % len(v), *v)
+    level = lambda packet, w, h: f(1, 0, packet) + f(2, 0, w) + f(3, 0, h)
+    texture_map = (f(1, 0, 0) + f(2, 2, mime) + f(3, 2, level(22, 8, 4)) +
+                   f(3, 2, level(23, 16, 8)))
+    texture = (f(1, 0, 8) + f(2, 0, 0) + f(3, 0, 2) +
+               f(4, 2, b"".join(varint(v) for v in (0, 3, 7, 11))) +
+               bytes([0x2d]) + floats(1.0) + bytes([0x35]) + floats(0.5) +
+               f(7, 2, floats(0.0, 0.1, 0.2)) + bytes([0x45]) + floats(1.0) +
+               bytes([0x4d]) + floats(1.0) + f(11, 0, 1) + f(12, 2, texture_map) +
+               bytes([0x6d]) + floats(1.0))
+    return data[8:8 + length] + f(1, 0, 9) + f(16, 2, texture)
 
 
 def ws_seeds():

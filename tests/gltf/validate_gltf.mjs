@@ -23,6 +23,7 @@ for (const file of files) {
   const info = report.info ?? {};
   console.log(`${file}: ${numErrors} errors, ${numWarnings} warnings; ` +
               `${info.totalVertexCount ?? '?'} vertices, ${info.totalTriangleCount ?? '?'} triangles`);
+  if (info.hasTextures) console.log(`  textures: ${info.maxUVs ?? '?'} UV sets`);
   for (const m of messages.filter((m) => m.severity <= 1).slice(0, 10)) {
     console.log(`  ${m.severity === 0 ? 'error' : 'warning'} ${m.code} ${m.pointer ?? ''}: ${m.message}`);
   }

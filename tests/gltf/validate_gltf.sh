@@ -4,7 +4,11 @@
 # budget into both forms, each valid (no error, no warning) and holding the
 # decoded mesh's vertex and triangle counts; a truncated GLB refused.
 #
-# Usage: validate_gltf.sh WORK_DIR MESHWAVE_CLI SAMPLE_MESH
+# A sample that is already a stream (.mwv) is decoded as it is; one with a
+# texture must give files the validator finds textures in (at least the
+# whole stream's).
+#
+# Usage: validate_gltf.sh WORK_DIR MESHWAVE_CLI SAMPLE_MESH_OR_STREAM
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 work=${1:?work dir} cli=${2:?meshwave binary} sample=${3:?sample mesh}
@@ -13,7 +17,13 @@ command -v node > /dev/null || fail "node not found (bash deploy/install-deps.sh
 modules=$(bash "$here/../../web/npm_ci.sh" "$work/npm")
 out=$work/out
 rm -rf "$out" && mkdir -p "$out"
-"$cli" encode "$sample" "$out/s.mwv" > /dev/null
+if [[ $sample == *.mwv ]]; then
+  cp "$sample" "$out/s.mwv"
+else
+  "$cli" encode "$sample" "$out/s.mwv" > /dev/null
+fi
+textured=no
+"$cli" info "$out/s.mwv" 2>/dev/null | grep -q '^texture map:' && textured=yes
 files=()
 for budget in 6000 all; do
   args=()
@@ -27,6 +37,9 @@ for budget in 6000 all; do
     report=$(node "$here/validate_gltf.mjs" "$modules" "$f") || { echo "$report"; fail "$f is not valid glTF 2.0"; }
     echo "$report"
     grep -q "; $counts$" <<< "$report" || fail "$f: expected $counts"
+    if [[ $textured == yes && $budget == all ]]; then
+      grep -q "textures:" <<< "$report" || fail "$f: the stream's texture is missing"
+    fi
     files+=("$f")
   done
 done

@@ -5,10 +5,13 @@
 #include <algorithm>
 #include <cctype>
 #include <fstream>
+#include <optional>
 #include <iostream>
 #include <sstream>
 
 #include "core/parallel_for.h"
+#include "core/durable_file.h"
+#include "meshwave/gltf.h"
 #include "meshwave/mesh_io.h"
 
 namespace meshwave::cli {
@@ -183,10 +186,33 @@ int OutputLevel(const ProgressiveDecoder& decoder, int max_level, int extra_leve
 }
 
 DecodedMesh DecodeLevel(const ProgressiveDecoder& decoder, int level) {
-  return {decoder.Mesh(level), decoder.Colors(level)};
+  DecodedMesh out;
+  out.mesh = decoder.Mesh(level);
+  out.colors = decoder.Colors(level);
+  out.textured = decoder.HasTexture();
+  if (out.textured) {
+    // Every vertex's UV comes from the atlas; with no level held yet the
+    // mesh is written alone.
+    for (size_t m = 0; m < decoder.texture().maps.size(); ++m) {
+      if (auto image = decoder.BestTextureLevel(m)) out.images.push_back(*std::move(image));
+    }
+    if (!out.images.empty()) out.uvs = decoder.TextureCoordinates(level);
+    out.material = decoder.texture().material;
+  }
+  return out;
 }
 
 Status WriteDecodedMesh(const DecodedMesh& decoded, const std::string& path) {
+  const std::optional<GltfForm> gltf = GltfFormFromPath(path);
+  if (!decoded.images.empty() && gltf) {
+    return WriteFileDurably(path, SerializeTexturedGltf(decoded.mesh, *gltf, decoded.uvs,
+                                                        decoded.images, decoded.material,
+                                                        decoded.colors));
+  }
+  if (decoded.textured && !gltf) {
+    std::cerr << "warning: " << path
+              << ": the stream's texture is not written (only .glb and .gltf outputs carry it)\n";
+  }
   return WriteMesh(decoded.mesh, path, decoded.colors);
 }
 

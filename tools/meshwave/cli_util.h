@@ -72,10 +72,18 @@ inline constexpr int kDefaultExtraLevels = 1;
 struct DecodedMesh {
   TriMesh mesh;
   std::vector<Vec3> colors;
+  // With a texture: each map's finest level held (views into the decoder:
+  // valid while it lives and is not reset) and, when any is held, the UVs
+  // per face corner; `textured` says whether the stream has a texture.
+  bool textured = false;
+  std::vector<TextureImage> images;
+  std::vector<float> uvs;
+  TextureMaterial material;
 };
 DecodedMesh DecodeLevel(const ProgressiveDecoder& decoder, int level);
 // Writes it by the path's extension (WriteMesh: the colours go into .ply
-// and glTF files; .obj has no place for them): the one writer of `meshwave
+// and glTF files; .obj has no place for them; the texture into glTF files
+// only, with a warning line for the others): the one writer of `meshwave
 // decode`, `fetch` and `refine`.
 Status WriteDecodedMesh(const DecodedMesh& decoded, const std::string& path);
 inline constexpr const char* kExtraLevelsHelp =

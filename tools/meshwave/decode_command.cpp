@@ -6,7 +6,9 @@
 #include "cli_util.h"
 #include "commands.h"
 #include "meshwave.pb.h"
+#include "core/durable_file.h"
 #include "meshwave/container.h"
+#include "meshwave/gltf.h"
 #include "meshwave/mesh.h"
 #include "meshwave/mesh_io.h"
 #include "meshwave/progression.h"
@@ -90,9 +92,19 @@ Status Run(const DecodeArgs& args) {
     PrintJson(report);
     return Status::Ok();
   }
-  std::printf("wrote %s: %zu vertices, %zu faces (level %d of %d)%s\n", args.out.c_str(),
-              mesh.positions.size(), mesh.faces.size(), level, levels,
-              colors.empty() ? "" : ", with vertex colours");
+  std::string texture;
+  for (const TextureImage& image : decoded.images) {
+    texture += std::string(texture.empty() ? ", textured: " : ", ") +
+               std::string(TextureRoleName(image.role)) + " " + std::to_string(image.width) +
+               " x " + std::to_string(image.height);
+  }
+  // A written vertex per (vertex, UV): the validator counts those.
+  const size_t written = decoded.images.empty() || !GltfFormFromPath(args.out)
+                             ? mesh.positions.size()
+                             : TexturedVertexCount(mesh, decoded.uvs);
+  std::printf("wrote %s: %zu vertices, %zu faces (level %d of %d)%s%s\n", args.out.c_str(),
+              written, mesh.faces.size(), level, levels,
+              colors.empty() ? "" : ", with vertex colours", texture.c_str());
   std::printf("%zu of %zu packets in %s order, %llu bytes, estimated PSNR %.2f dB "
               "(against the encoded mesh)\n",
               selection.ids.size(), order.size(), ProgressionName(progression),

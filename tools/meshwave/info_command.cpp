@@ -1,11 +1,15 @@
 // meshwave info FILE [--json]: what a mesh file holds.
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 
 #include "cli_util.h"
 #include "commands.h"
 #include "meshwave.pb.h"
+#include "meshwave/container.h"
 #include "meshwave/gltf.h"
+#include "meshwave/progression.h"
+#include "meshwave/texture.h"
 #include "meshwave/mesh.h"
 #include "meshwave/mesh_asset.h"
 #include "meshwave/mesh_clean.h"
@@ -197,6 +201,56 @@ void PrintHuman(const proto::MeshInfo& i) {
                           : "not readable: " + i.asset().error());
 }
 
+// A stream (.mwv): its header's counts, channels and texture, and the
+// packets the file holds.
+Status DescribeStream(const InfoArgs& args) {
+  if (args.json) return InvalidArgument("--json describes mesh files, not .mwv streams");
+  MW_ASSIGN_OR_RETURN(std::string bytes, ReadFileBytes(args.file));
+  auto parsed = ParseContainer(bytes, /*allow_truncated=*/true);
+  if (!parsed.ok()) return parsed.status().WithContext(args.file);
+  const StreamHeader& h = parsed->header;
+  MW_RETURN_IF_ERROR(ValidateStreamHeader(h).WithContext(args.file));
+  auto line = [](const char* key, const std::string& value) {
+    std::printf("%-23s %s\n", key, value.c_str());
+  };
+  auto num = [](uint64_t v) { return std::to_string(v); };
+  line("file:", args.file + " (meshwave stream, format version " + num(h.format_version) +
+                    (parsed->missing_bytes > 0
+                         ? ", cut short: " + num(parsed->missing_bytes) + " bytes missing"
+                         : std::string()) +
+                    ")");
+  if (!h.name.empty()) line("name:", h.name);
+  line("mesh:", num(h.vertices) + " vertices, " + num(h.faces) + " faces, " +
+                    num(h.transform.levels) + " levels over a base of " +
+                    num(h.base.vertex_count) + " vertices, " + num(h.base.face_count) +
+                    " faces");
+  uint64_t held = 0;
+  for (std::string_view payload : parsed->payloads) held += payload.size();
+  line("packets:", num(parsed->ids.size()) + " of " + num(h.packets.length.size()) +
+                       " held (" + num(held) + " payload bytes)");
+  for (const StreamHeader::Channel& channel : h.channels) {
+    line("channel:", channel.kind == StreamChannelKind::kColor ? "vertex colours" : "unknown");
+  }
+  if (!h.texture) return Status::Ok();
+  const StreamHeader::Texture& t = *h.texture;
+  line("texture atlas:", num(t.columns) + " columns of " + num(t.cell) + "-texel cells, gutter " +
+                             num(t.gutter));
+  std::vector<char> present(h.packets.length.size(), 0);
+  for (uint32_t id : parsed->ids) present[id] = 1;
+  for (const StreamHeader::Texture::Map& map : t.maps) {
+    std::string levels;
+    for (const StreamHeader::Texture::Level& level : map.levels) {
+      levels += (levels.empty() ? "" : ", ") + num(level.width) + " x " + num(level.height) +
+                " (" + num(h.packets.length[level.packet]) + " bytes" +
+                (present[level.packet] ? "" : ", not held") + ")";
+    }
+    line("texture map:", std::string(TextureRoleName(static_cast<TextureRole>(map.role))) + ", " +
+                             map.mime_type + ", " + num(map.levels.size()) +
+                             (map.levels.size() == 1 ? " level: " : " levels: ") + levels);
+  }
+  return Status::Ok();
+}
+
 }  // namespace
 
 void AddInfoCommand(CLI::App& app, int& exit_code) {
@@ -204,15 +258,19 @@ void AddInfoCommand(CLI::App& app, int& exit_code) {
   CLI::App* cmd = app.add_subcommand(
       "info", "Describe a mesh file: counts, topology, bounding box, "
               "semi-regular levels, and its UVs, colours, materials and "
-              "images");
+              "images; or a stream (.mwv): its counts, packets and texture maps");
   cmd->add_option("file", args->file,
-                  "Mesh file (.ply, .obj, .off, .glb, .gltf)")
+                  "Mesh file (.ply, .obj, .off, .glb, .gltf) or stream (.mwv)")
       ->required();
   cmd->add_flag("--json", args->json, "Print JSON instead of text");
   cmd->add_option("--max-levels", args->max_levels,
                   "Stop looking for subdivision levels after this many")
       ->check(CLI::Range(0, kMaxStreamLevels));
   cmd->callback([args, &exit_code] {
+    if (std::filesystem::path(args->file).extension() == ".mwv") {
+      if (const Status s = DescribeStream(*args); !s.ok()) exit_code = Fail("info", s);
+      return;
+    }
     auto info = Describe(*args);
     if (!info.ok()) {
       exit_code = Fail("info", info.status());

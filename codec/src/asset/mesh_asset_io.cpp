@@ -11,6 +11,7 @@
 #include "asset/weld.h"
 #include "mesh/ply_header.h"
 #include "meshwave/mesh_asset.h"
+#include "meshwave/mesh_io.h"
 
 namespace meshwave {
 namespace {

@@ -1,9 +1,14 @@
 #include "stream/decoder_setup.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
+#include "core/quoted.h"
 #include "meshwave/stream_limits.h"
+#include "meshwave/texture.h"
+#include "stream/packet_index.h"
+#include "texture/atlas_layout.h"
 #include "quant/deadzone_quantizer.h"
 #include "stream/sawt_field_decoder.h"
 #include "stream/stream_format.h"
@@ -77,6 +82,97 @@ Status ValidateChannels(const StreamHeader& h) {
       return ParseError("header: " + owner + std::to_string(channel.base.size()) +
                         " bytes of base values for " + std::to_string(h.base.vertex_count) +
                         " base vertices (3 varints each)");
+    }
+  }
+  return Status::Ok();
+}
+
+Status ValidateTexture(const StreamHeader& h) {
+  if (!h.texture) return Status::Ok();
+  const StreamHeader::Texture& t = *h.texture;
+  const uint32_t faces = h.base.face_count;
+  if (t.columns == 0) return ParseError("header: texture: the atlas has 0 columns");
+  auto atlas = AtlasLayout::Create(faces, t.cell, t.gutter, t.columns);
+  if (!atlas.ok()) return ParseError("header: texture: " + atlas.status().message());
+  if (!t.face_triangles.empty()) {
+    if (t.face_triangles.size() != faces) {
+      return ParseError("header: texture: " + std::to_string(t.face_triangles.size()) +
+                        " face triangles for " + std::to_string(faces) + " base faces");
+    }
+    std::vector<char> used(faces, 0);
+    for (uint32_t f = 0; f < faces; ++f) {
+      const uint32_t triangle = t.face_triangles[f] / 3;
+      if (triangle >= faces || used[triangle]) {
+        return ParseError("header: texture: base face " + std::to_string(f) + " names triangle " +
+                          std::to_string(triangle) +
+                          (triangle >= faces ? " (out of range)" : " (named twice)"));
+      }
+      used[triangle] = 1;
+    }
+  }
+  const float scalars[] = {t.metallic_factor, t.roughness_factor, t.normal_scale,
+                           t.occlusion_strength};
+  bool finite = t.emissive_factor.size() == 3;
+  for (float v : scalars) finite = finite && std::isfinite(v);
+  for (float v : t.emissive_factor) finite = finite && std::isfinite(v);
+  if (!finite) {
+    return ParseError("header: texture: a material scalar is not finite (or not 3 emissive "
+                      "factors)");
+  }
+  if (!(t.rd_weight > 0) || !std::isfinite(t.rd_weight)) {
+    return ParseError("header: texture: rd weight not finite and positive");
+  }
+  if (t.maps.empty() || t.maps.size() > kMaxTextureMaps) {
+    return ParseError("header: texture: " + std::to_string(t.maps.size()) + " maps (1 to " +
+                      std::to_string(kMaxTextureMaps) + ")");
+  }
+  // Texture packets follow every other packet (FORMAT.md 2.1).
+  PacketLayout layout(h);
+  uint32_t id = static_cast<uint32_t>(layout.count());
+  for (const StreamHeader::Texture::Map& map : t.maps) id -= static_cast<uint32_t>(
+      std::min<size_t>(map.levels.size(), kMaxTextureLevels));
+  for (size_t m = 0; m < t.maps.size(); ++m) {
+    const StreamHeader::Texture::Map& map = t.maps[m];
+    const std::string owner = "header: texture map " + std::to_string(m) + ": ";
+    if (map.role < 0 || map.role > static_cast<int32_t>(TextureRole::kEmissive)) {
+      return ParseError(owner + "unknown role " + std::to_string(map.role));
+    }
+    for (size_t other = 0; other < m; ++other) {
+      if (t.maps[other].role == map.role) return ParseError(owner + "a second map of its role");
+    }
+    bool known = false;
+    for (const char* mime : kTextureMimeTypes) known = known || map.mime_type == mime;
+    if (!known) {
+      return ParseError(owner + "image type " + Quoted(map.mime_type) +
+                        " (image/jpeg or image/png)");
+    }
+    const size_t levels = map.levels.size();
+    if (levels == 0 || levels > kMaxTextureLevels) {
+      return ParseError(owner + std::to_string(levels) + " levels (1 to " +
+                        std::to_string(kMaxTextureLevels) + ")");
+    }
+    const uint32_t width = atlas->width(), height = atlas->height();
+    for (size_t k = 0; k < levels; ++k) {
+      const StreamHeader::Texture::Level& level = map.levels[k];
+      const uint32_t shift = static_cast<uint32_t>(levels - 1 - k);
+      const uint32_t divisor = 1u << shift;
+      if (width % divisor != 0 || height % divisor != 0) {
+        return ParseError(owner + "the atlas of " + std::to_string(width) + " x " +
+                          std::to_string(height) + " texels does not halve " +
+                          std::to_string(shift) + " times");
+      }
+      if (level.width != width / divisor || level.height != height / divisor) {
+        return ParseError(owner + "level " + std::to_string(k) + " is " +
+                          std::to_string(level.width) + " x " + std::to_string(level.height) +
+                          ", not " + std::to_string(width / divisor) + " x " +
+                          std::to_string(height / divisor) + " (the atlas's size / 2^" +
+                          std::to_string(shift) + ")");
+      }
+      if (level.packet != id) {
+        return ParseError(owner + "level " + std::to_string(k) + " names packet " +
+                          std::to_string(level.packet) + ", not " + std::to_string(id));
+      }
+      ++id;
     }
   }
   return Status::Ok();

@@ -28,6 +28,15 @@ Status ValidateQuantizers(const StreamHeader& h);
 // base step and rd weight, and room for 3 base values per base vertex.
 Status ValidateChannels(const StreamHeader& h);
 
+// A texture (format version 9, docs/FORMAT.md 2.4), when the header has
+// one: 1 to kMaxTextureMaps maps of distinct known roles, each of 1 to
+// kMaxTextureLevels levels of a known image type, the level sizes the
+// atlas's halved, each level naming its packet in the index order; an
+// atlas AtlasLayout accepts for the base faces, face_triangles empty or a
+// permutation of them with a rotation each; finite material scalars and a
+// finite positive rd weight.
+Status ValidateTexture(const StreamHeader& h);
+
 // Decodes the base mesh (at most `max_base_vertices`) into `base`, builds
 // `hierarchy` and checks the header's vertex and face counts and bounding
 // box against it; returns the header's transform settings (with the SAWT

@@ -16,6 +16,13 @@ HeldUnits::HeldUnits(const StreamHeader& header, PrecinctParents parents)
     const int j = layout.Subband(id);
     const int b = layout.Bitplane(id);
     subband_.push_back(j);
+    if (layout.IsTexture(id)) {
+      // A texture level is one whole image: it needs nothing.
+      up_.push_back(-1);
+      parent_.push_back(-1);
+      part_count_.push_back(0);
+      continue;
+    }
     if (const int k = layout.Channel(id); k >= 0) {
       // A channel's packets need their channel's only, and are never split.
       up_.push_back(layout.ChannelId(k, j, b + 1));

@@ -18,6 +18,7 @@
 #include "stream/stream_format_writer.h"
 #include "stream/signal_encoder.h"
 #include "stream/stream_preparation.h"
+#include "stream/texture_encoder.h"
 #include "wavelet/sawt_choice.h"
 
 namespace meshwave {
@@ -123,6 +124,27 @@ Result<EncodedStream> EncodeMesh(const SemiRegularMesh& input, const EncodeOptio
       }
     }
     *header.add_channels() = std::move(channel.header);
+  }
+  // The texture's levels last, a chain per map (FORMAT.md 2.4).
+  if (attributes.texture) {
+    MW_ASSIGN_OR_RETURN(EncodedTexture texture,
+                        EncodeTexture(*attributes.texture, input, out.mesh, prepared.input_vertex,
+                                      static_cast<uint32_t>(out.packets.size()), options));
+    if (model.geometry_chains > model.chain_start.size()) {
+      model.geometry_chains = model.chain_start.size();
+    }
+    const auto first_chain = static_cast<uint32_t>(model.chain_start.size());
+    model.chain_start.insert(model.chain_start.end(), texture.chain_start.begin(),
+                             texture.chain_start.end());
+    size_t next = 0;
+    for (int m = 0; m < texture.header.maps_size(); ++m) {
+      for (int k = 0; k < texture.header.maps(m).levels_size(); ++k, ++next) {
+        AddCodedPacket(texture.packets[next], first_chain + static_cast<uint32_t>(m),
+                       texture.reduction[next], index, model);
+        out.packets.push_back(std::move(texture.packets[next]));
+      }
+    }
+    *header.mutable_texture() = std::move(texture.header);
   }
   WriteDistortionIndex(model, prepared.zero_packet_distortion, header);
   MW_ASSIGN_OR_RETURN(out.header, ToStreamHeader(header));

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/crc.h"
+#include "meshwave/stream_limits.h"
 #include "stream/stream_format.h"
 
 namespace meshwave {
@@ -63,6 +64,27 @@ PacketLayout::PacketLayout(const StreamHeader& h) {
       count_ += top + 1;
     }
   }
+  channel_.resize(static_cast<size_t>(count_), -1);
+  texture_.assign(static_cast<size_t>(count_), -1);
+  if (h.texture) {
+    // Clamped for headers not validated yet (ValidateTexture refuses more).
+    const size_t maps = std::min<size_t>(h.texture->maps.size(), kMaxTextureMaps);
+    for (size_t m = 0; m < maps; ++m) {
+      const auto map_levels = static_cast<int>(
+          std::min<size_t>(h.texture->maps[m].levels.size(), kMaxTextureLevels));
+      texture_first_.push_back(count_);
+      texture_levels_.push_back(map_levels);
+      subband_.insert(subband_.end(), static_cast<size_t>(map_levels), -1);
+      channel_.insert(channel_.end(), static_cast<size_t>(map_levels), -1);
+      texture_.insert(texture_.end(), static_cast<size_t>(map_levels), static_cast<int>(m));
+      count_ += map_levels;
+    }
+  }
+}
+
+int PacketLayout::TextureId(int map, int level) const {
+  if (map < 0 || map >= texture_maps() || level < 0 || level >= TextureLevels(map)) return -1;
+  return texture_first_[static_cast<size_t>(map)] + level;
 }
 
 int PacketLayout::BaseId(int plane) const {
@@ -84,7 +106,7 @@ int PacketLayout::Id(int j, int b) const {
 
 PacketLayout::Needs PacketLayout::Dependencies(uint32_t id, bool parent_contexts) const {
   Needs needs;
-  if (id >= static_cast<uint32_t>(count())) return needs;
+  if (id >= static_cast<uint32_t>(count()) || IsTexture(id)) return needs;
   if (IsBase(id)) {
     if (int up = BaseId(Bitplane(id) + 1); up >= 0) {
       needs.ids[needs.count++] = static_cast<uint32_t>(up);
@@ -106,6 +128,9 @@ PacketLayout::Needs PacketLayout::Dependencies(uint32_t id, bool parent_contexts
 
 int PacketLayout::Bitplane(uint32_t id) const {
   if (IsBase(id)) return base_planes_ - 1 - (static_cast<int>(id) - detail_count_);
+  if (const int m = TextureMap(id); m >= 0) {
+    return static_cast<int>(id) - texture_first_[static_cast<size_t>(m)];
+  }
   const auto j = static_cast<size_t>(subband_[id]);
   if (const int k = Channel(id); k >= 0) {
     const auto kk = static_cast<size_t>(k);
@@ -123,9 +148,19 @@ std::vector<uint32_t> PacketChains(const StreamHeader& header) {
     const auto u = static_cast<uint32_t>(id);
     int c = layout.IsBase(u) ? levels : layout.Subband(u);
     if (const int k = layout.Channel(u); k >= 0) c = levels + 1 + k * levels + layout.Subband(u);
+    if (const int m = layout.TextureMap(u); m >= 0) {
+      c = levels + 1 + layout.channels() * levels + m;
+    }
     chain[static_cast<size_t>(id)] = static_cast<uint32_t>(c);
   }
   return chain;
+}
+
+size_t ChainCount(const StreamHeader& header) {
+  const PacketLayout layout(header);
+  const auto levels = static_cast<size_t>(layout.levels());
+  return levels + 1 + static_cast<size_t>(layout.channels()) * levels +
+         static_cast<size_t>(layout.texture_maps());
 }
 
 double HeaderDiagonal(const StreamHeader& header) {
@@ -158,7 +193,8 @@ DistortionEstimates ReadDistortionIndex(const StreamHeader& header,
   out.base = header.base_distortion;
   for (float e : index.chain_distortion) out.chain_start.push_back(e);
   const size_t channel_chains =
-      std::min<size_t>(header.channels.size(), kMaxChannels) * header.transform.levels;
+      std::min<size_t>(header.channels.size(), kMaxChannels) * header.transform.levels +
+      (header.texture ? std::min<size_t>(header.texture->maps.size(), kMaxTextureMaps) : 0);
   out.geometry_chains =
       out.chain_start.size() - std::min(out.chain_start.size(), channel_chains);
   std::vector<double> current = out.chain_start;

@@ -43,7 +43,8 @@ bool PacketCheckMatches(const StreamHeader::PacketIndex& index, uint32_t id,
 // Packet ids <-> (subband, bitplane), from the quantizers' top bitplanes:
 // ids run subband by subband, bitplanes descending, then the base
 // refinement's packets, planes descending, then each channel's packets
-// as the geometry's, channel by channel (FORMAT.md 2.1, 2.3).
+// as the geometry's, channel by channel, then each texture map's levels,
+// coarsest first, map by map (FORMAT.md 2.1, 2.3, 2.4).
 class PacketLayout {
  public:
   explicit PacketLayout(const StreamHeader& h);
@@ -64,6 +65,15 @@ class PacketLayout {
     return id < channel_.size() ? channel_[id] : -1;
   }
   bool IsChannel(uint32_t id) const { return Channel(id) >= 0; }
+  // The texture map packet `id` is a level of; -1 for every other packet.
+  int TextureMap(uint32_t id) const {
+    return id < texture_.size() ? texture_[id] : -1;
+  }
+  bool IsTexture(uint32_t id) const { return TextureMap(id) >= 0; }
+  int texture_maps() const { return static_cast<int>(texture_levels_.size()); }
+  int TextureLevels(int map) const { return texture_levels_[static_cast<size_t>(map)]; }
+  // Id of level `level` of texture map `map`, -1 when it does not exist.
+  int TextureId(int map, int level) const;
   // Whether detail packet `id` holds one codeword per precinct behind a
   // table of their lengths (PacketIndex.split_planes).
   bool IsSplit(uint32_t id) const {
@@ -79,15 +89,16 @@ class PacketLayout {
     return id >= static_cast<uint32_t>(detail_count_) &&
            id < static_cast<uint32_t>(detail_count_ + base_planes_);
   }
-  // The subband (-1 for a base refinement packet; a channel packet's
-  // subband of its channel) and bitplane (the base refinement's plane) of
-  // packet `id` (0 <= id < count()).
+  // The subband (-1 for a base refinement or texture packet; a channel
+  // packet's subband of its channel) and bitplane (the base refinement's
+  // plane, a texture packet's level) of packet `id` (0 <= id < count()).
   int Subband(uint32_t id) const { return subband_[id]; }
   int Bitplane(uint32_t id) const;
   // The packets `id` needs first (PacketDependencies): the one above it in
   // its subband (or in the base refinement) and, with parent contexts
   // (3xC), the parent subband's at the same bitplane, both of its own
-  // signal (the geometry or its channel). Empty for an id out of range. At most two, so no allocation: the decoder asks for every
+  // signal (the geometry or its channel). Empty for a texture packet (a
+  // whole image) and an id out of range. At most two, so no allocation: the decoder asks for every
   // packet it is offered.
   struct Needs {
     std::array<uint32_t, 2> ids{};
@@ -104,6 +115,8 @@ class PacketLayout {
   std::vector<std::vector<int>> channel_top_;
   std::vector<int> subband_;  // per id; -1 for the base refinement's
   std::vector<int> channel_;  // per id; -1 for the geometry's
+  std::vector<int> texture_;  // per id; -1 but for texture packets
+  std::vector<int> texture_first_, texture_levels_;  // per map
   std::vector<uint32_t> split_planes_;  // per subband, as in the header
   int detail_count_ = 0;
   int base_planes_ = 0;
@@ -118,7 +131,7 @@ class PacketLayout {
 struct DistortionEstimates {
   double base = 0;
   // The chains of the geometry, which Estimate sums: the first ones, the
-  // channels' chains following them.
+  // channels' and the texture maps' chains following them.
   size_t geometry_chains = 0;
   std::vector<double> chain_start;  // per chain
   std::vector<uint32_t> chain;      // per packet
@@ -132,8 +145,11 @@ struct DistortionEstimates {
 DistortionEstimates ReadDistortionIndex(const StreamHeader& header,
                                         std::span<const uint32_t> chain_of);
 // The chain of each packet: its subband (3xC and SIM), J for the base
-// refinement's packets, J + 1 + k J + j for subband j of channel k.
+// refinement's packets, J + 1 + k J + j for subband j of channel k, then
+// J + 1 + K J + m for texture map m (K channels).
 std::vector<uint32_t> PacketChains(const StreamHeader& header);
+// How many chains a header's packets form (the count PacketChains uses).
+size_t ChainCount(const StreamHeader& header);
 
 // The estimated PSNR rule, the one ProgressiveDecoder::EstimatedPsnr and
 // EstimatedPsnrCurve share: dB with the bounding-box diagonal of the header

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "core/protobuf_wire.h"
 #include "core/quoted.h"
@@ -69,11 +70,11 @@ Status ValidateStreamHeader(const StreamHeader& h) {
     }
   }
   MW_RETURN_IF_ERROR(ValidateChannels(h));
+  MW_RETURN_IF_ERROR(ValidateTexture(h));
   const PacketLayout map(h);
   // One chain per subband and the base refinement's, then one per subband
-  // of each channel.
-  MW_RETURN_IF_ERROR(ValidateCompactIndex(
-      h, map.count(), static_cast<int>(levels) * (1 + static_cast<int>(h.channels.size())) + 1));
+  // of each channel, then one per texture map.
+  MW_RETURN_IF_ERROR(ValidateCompactIndex(h, map.count(), static_cast<int>(ChainCount(h))));
   const uint64_t refinement_bytes = BaseRefinementBytes(h.base.vertex_count);
   for (int id = 0; id < map.count(); ++id) {
     const uint32_t length = index.length[static_cast<size_t>(id)];
@@ -102,6 +103,56 @@ int BaseQualityShift(const StreamHeader& h) {
   return static_cast<int>(std::floor(std::log2(ratio) + 0.5));
 }
 
+namespace {
+
+// The quality order's texture levels (FORMAT.md 7): each map's levels
+// coarsest first, each level before the first packet of `order` from which
+// on no packet is worth more per byte (`value`) than it.
+// `queues`: per map, its levels kept, coarsest first.
+std::vector<uint32_t> MergeTextureLevels(const std::vector<uint32_t>& order,
+                                         const std::vector<std::vector<uint32_t>>& queues,
+                                         const std::vector<double>& value) {
+  size_t levels = 0;
+  for (const auto& queue : queues) levels += queue.size();
+  if (levels == 0) return order;
+  // The best value from each position of `order` on.
+  std::vector<double> rest(order.size() + 1, -std::numeric_limits<double>::infinity());
+  for (size_t i = order.size(); i-- > 0;) rest[i] = std::max(rest[i + 1], value[order[i]]);
+  std::vector<size_t> next(queues.size(), 0);
+  std::vector<uint32_t> out;
+  out.reserve(order.size() + levels);
+  // The most valuable next level of any map worth at least `floor` (ties:
+  // the lower map), or none.
+  auto take = [&](double floor) {
+    int best = -1;
+    for (size_t q = 0; q < queues.size(); ++q) {
+      if (next[q] == queues[q].size()) continue;
+      const uint32_t id = queues[q][next[q]];
+      // NaN from an untrusted header never wins; it goes at the end.
+      if (!(value[id] >= floor)) continue;
+      if (best < 0 || value[id] > value[queues[static_cast<size_t>(best)][next[static_cast<size_t>(best)]]]) {
+        best = static_cast<int>(q);
+      }
+    }
+    if (best < 0) return false;
+    out.push_back(queues[static_cast<size_t>(best)][next[static_cast<size_t>(best)]++]);
+    return true;
+  };
+  for (size_t i = 0; i < order.size(); ++i) {
+    while (take(rest[i])) {
+    }
+    out.push_back(order[i]);
+  }
+  while (take(-std::numeric_limits<double>::infinity())) {
+  }
+  for (size_t q = 0; q < queues.size(); ++q) {  // NaN values: last, in order
+    for (; next[q] < queues[q].size(); ++next[q]) out.push_back(queues[q][next[q]]);
+  }
+  return out;
+}
+
+}  // namespace
+
 std::vector<uint32_t> PacketOrder(const StreamHeader& h,
                                   Progression progression, int max_level) {
   const PacketLayout map(h);
@@ -129,6 +180,47 @@ std::vector<uint32_t> PacketOrder(const StreamHeader& h,
   // weighs it as any other chain.
   const int base_planes = map.base_planes();
   auto base_plane = [&](int b) { order.push_back(static_cast<uint32_t>(map.BaseId(b))); };
+  // Texture levels (FORMAT.md 7): level k of a map of L matches the mesh of
+  // level J - (L-1-k) (both double their resolution a level), and is sent
+  // only where that level is.
+  auto texture_level_of = [&](uint32_t id) {
+    const int m = map.TextureMap(id);
+    return std::max(0, levels - (map.TextureLevels(m) - 1 - map.Bitplane(id)));
+  };
+  std::vector<uint32_t> textures;  // map by map, coarsest first
+  std::vector<std::vector<uint32_t>> texture_queues;  // the same, per map
+  for (int m = 0; m < map.texture_maps(); ++m) {
+    texture_queues.emplace_back();
+    for (int k = 0; k < map.TextureLevels(m); ++k) {
+      const auto id = static_cast<uint32_t>(map.TextureId(m, k));
+      if (texture_level_of(id) > used) continue;
+      textures.push_back(id);
+      texture_queues.back().push_back(id);
+    }
+  }
+  // Every packet's reduction per byte, normalised as the rd order compares
+  // them (FORMAT.md 7): the geometry's squared errors over diagonal², a
+  // channel's and the texture's (peak 1) times their weights; all times
+  // diagonal², so that the geometry's values are its reductions as they
+  // are. Computed only for streams with textures or for the rd order.
+  std::vector<double> value;
+  if (!textures.empty() || progression == Progression::kRd) {
+    const DistortionEstimates estimates = ReadDistortionIndex(h, PacketChains(h));
+    const double diagonal = HeaderDiagonal(h);
+    const double texture_scale =
+        h.texture ? static_cast<double>(h.texture->rd_weight) * diagonal * diagonal : 0;
+    value.assign(static_cast<size_t>(map.count()), 0);
+    for (uint32_t id = 0; id < value.size() && id < estimates.reduction.size(); ++id) {
+      double reduction = estimates.reduction[id];
+      if (const int k = map.Channel(id); k >= 0) {
+        reduction *= static_cast<double>(h.channels[static_cast<size_t>(k)].rd_weight) *
+                     diagonal * diagonal;
+      } else if (map.IsTexture(id)) {
+        reduction *= texture_scale;
+      }
+      value[id] = reduction / (h.packets.length[id] + 4.0);
+    }
+  }
   switch (progression) {
     case Progression::kQuality: {
       const int shift = BaseQualityShift(h);
@@ -146,10 +238,18 @@ std::vector<uint32_t> PacketOrder(const StreamHeader& h,
         channel_plane(n);
       }
       for (; b >= 0; --b) base_plane(b);  // finer than every detail bitplane
+      order = MergeTextureLevels(order, texture_queues, value);
       break;
     }
-    case Progression::kResolution:
+    case Progression::kResolution: {
+      // The texture levels of mesh level n: after the packets that make it.
+      auto texture_levels = [&](int n) {
+        for (uint32_t id : textures) {
+          if (texture_level_of(id) == n) order.push_back(id);
+        }
+      };
       for (int b = base_planes - 1; b >= 0; --b) base_plane(b);
+      texture_levels(0);
       for (int j = 0; j < used; ++j) {
         for (int b = map.Top(j); b >= 0; --b) order.push_back(static_cast<uint32_t>(map.Id(j, b)));
         for (int k = 0; k < map.channels(); ++k) {
@@ -157,8 +257,10 @@ std::vector<uint32_t> PacketOrder(const StreamHeader& h,
             order.push_back(static_cast<uint32_t>(map.ChannelId(k, j, b)));
           }
         }
+        texture_levels(j + 1);
       }
       break;
+    }
     case Progression::kRd: {
       // Greedy: among the packets whose dependencies are sent, the one with
       // the largest distortion reduction per byte (ties: lower id).
@@ -176,19 +278,8 @@ std::vector<uint32_t> PacketOrder(const StreamHeader& h,
           }
         }
       }
+      candidates.insert(candidates.end(), textures.begin(), textures.end());
       std::vector<char> sent(h.packets.length.size(), 0);
-      const std::vector<uint32_t> chains = PacketChains(h);
-      const DistortionEstimates estimates = ReadDistortionIndex(h, chains);
-      // Reductions compared normalised (FORMAT.md 7): the geometry's
-      // squared errors over diagonal², a channel's (peak 1) times its
-      // weight; both sides times diagonal², so that the geometry's values
-      // are its reductions as they are.
-      const double diagonal = HeaderDiagonal(h);
-      std::vector<double> channel_scale;
-      for (int k = 0; k < map.channels(); ++k) {
-        channel_scale.push_back(static_cast<double>(h.channels[static_cast<size_t>(k)].rd_weight) *
-                                diagonal * diagonal);
-      }
       while (order.size() < candidates.size()) {
         int best = -1;
         double best_value = -1;
@@ -198,18 +289,16 @@ std::vector<uint32_t> PacketOrder(const StreamHeader& h,
           for (uint32_t d : map.Dependencies(id, h.coder == StreamCoder::k3xC)) {
             ready = ready && sent[d];
           }
+          // A map's levels, each a whole image, go coarsest first: each
+          // level's reduction is counted from the one before.
+          if (map.IsTexture(id) && map.Bitplane(id) > 0) ready = ready && sent[id - 1];
           if (!ready) continue;
-          const int k = map.Channel(id);
-          const double reduction =
-              k < 0 ? estimates.reduction[id]
-                    : estimates.reduction[id] * channel_scale[static_cast<size_t>(k)];
-          const double value = reduction / (h.packets.length[id] + 4.0);
+          const double v = value[id];
           // The first ready packet is taken whatever its value: an untrusted
           // header may give reductions below -1 or NaN (fuzz_replay_container_fuzz).
-          if (best < 0 || value > best_value ||
-              (value == best_value && static_cast<int>(id) < best)) {
+          if (best < 0 || v > best_value || (v == best_value && static_cast<int>(id) < best)) {
             best = static_cast<int>(id);
-            best_value = value;
+            best_value = v;
           }
         }
         if (best < 0) break;  // nothing ready: cannot happen on a validated header

@@ -26,11 +26,36 @@
 #include "stream/precinct_partition.h"
 #include "stream/sawt_field_decoder.h"
 #include "stream/stream_format.h"
+#include "texture/atlas_coordinates.h"
+#include "texture/atlas_layout.h"
 
 namespace meshwave {
 namespace {
 
 bool SetUpInBackground(int requested) { return ResolveThreads(requested) >= 2; }
+
+// The texture as a validated header describes it.
+TextureInfo TextureInfoOf(const StreamHeader::Texture& t) {
+  TextureInfo out;
+  out.atlas = {t.cell, t.gutter, t.columns};
+  TextureMaterial& material = out.material;
+  material.metallic_factor = t.metallic_factor;
+  material.roughness_factor = t.roughness_factor;
+  material.emissive_factor = {t.emissive_factor[0], t.emissive_factor[1], t.emissive_factor[2]};
+  material.normal_scale = t.normal_scale;
+  material.occlusion_strength = t.occlusion_strength;
+  material.alpha_blend = t.alpha_blend;
+  material.double_sided = t.double_sided;
+  for (const StreamHeader::Texture::Map& map : t.maps) {
+    TextureMapInfo& info = out.maps.emplace_back();
+    info.role = static_cast<TextureRole>(map.role);
+    info.mime_type = map.mime_type;
+    for (const StreamHeader::Texture::Level& level : map.levels) {
+      info.levels.push_back({level.width, level.height});
+    }
+  }
+  return out;
+}
 
 using SignalStates = std::array<ComponentState, 3>;
 
@@ -144,6 +169,12 @@ struct ProgressiveDecoder::Impl {
   // The channels' inverse transform: the geometry's without local frames
   // (null when the geometry has none: `transform` serves).
   std::unique_ptr<WaveletTransform> channel_transform;
+  // The texture (FORMAT.md 2.4): its description, its atlas, and the bytes
+  // of each texture packet held (empty when not), from first_texture on.
+  TextureInfo texture;
+  std::optional<AtlasLayout> atlas;
+  uint32_t first_texture = 0;
+  std::vector<std::string> texture_bytes;
   // Last, so that it stops (its thread joined) before what it builds goes.
   WorkAhead ahead;
 
@@ -306,6 +337,15 @@ Result<std::unique_ptr<ProgressiveDecoder>> ProgressiveDecoder::Create(
                                                WaveletTransform::Stencils::kOnFirstUse));
   impl->transform = std::make_unique<WaveletTransform>(std::move(transform));
   impl->packets = std::make_unique<PacketLayout>(header);
+  impl->first_texture = static_cast<uint32_t>(impl->packets->count());
+  if (header.texture) {
+    const StreamHeader::Texture& t = *header.texture;
+    MW_ASSIGN_OR_RETURN(AtlasLayout atlas,
+                        AtlasLayout::Create(header.base.face_count, t.cell, t.gutter, t.columns));
+    impl->atlas = atlas;
+    impl->texture = TextureInfoOf(t);
+    impl->first_texture = static_cast<uint32_t>(impl->packets->TextureId(0, 0));
+  }
   impl->estimates = ReadDistortionIndex(header, PacketChains(header));
   for (const StreamHeader::Channel& channel : header.channels) {
     MW_ASSIGN_OR_RETURN(std::vector<Vec3> base,
@@ -390,6 +430,7 @@ void ProgressiveDecoder::Reset() {
     }
   }
   m.held->Clear();
+  m.texture_bytes.assign(m.held->packet_count() - m.first_texture, std::string());
   m.part_bytes.assign(m.held->packet_count(), 0);
   m.chain_now = m.estimates.chain_start;
   m.distortion = m.estimates.start();
@@ -419,6 +460,11 @@ Status ProgressiveDecoder::AddPacket(uint32_t id, std::string_view payload) {
   // A packet's name, for errors only: built on the way out (it was a
   // tenth of a small packet's decoding time).
   auto name = [&](uint32_t p) {
+    if (m.packets->IsTexture(p)) {
+      return "packet " + std::to_string(p) + " (texture map " +
+             std::to_string(m.packets->TextureMap(p)) + ", level " +
+             std::to_string(m.packets->Bitplane(p)) + ")";
+    }
     if (m.packets->IsBase(p)) {
       return "packet " + std::to_string(p) + " (base refinement, plane " +
              std::to_string(m.packets->Bitplane(p)) + ")";
@@ -448,6 +494,12 @@ Status ProgressiveDecoder::AddPacket(uint32_t id, std::string_view payload) {
       m.broken = true;
       return s.WithContext(what());
     }
+    Impl::Record(m, {id}, payload.size());
+    return Status::Ok();
+  }
+  if (m.packets->IsTexture(id)) {
+    // A whole encoded image, kept as it came: whoever shows it decodes it.
+    m.texture_bytes[id - m.first_texture].assign(payload);
     Impl::Record(m, {id}, payload.size());
     return Status::Ok();
   }
@@ -623,6 +675,37 @@ std::vector<Vec3> ProgressiveDecoder::Colors(int max_level) const {
   transform.InverseInPlace(x, level);
   for (Vec3& v : x) v = YCoCgToRgb(v).cwiseMax(0.0).cwiseMin(1.0);
   return x;
+}
+
+bool ProgressiveDecoder::HasTexture() const { return impl_->atlas.has_value(); }
+
+const TextureInfo& ProgressiveDecoder::texture() const { return impl_->texture; }
+
+std::vector<float> ProgressiveDecoder::TextureCoordinates(int max_level) const {
+  const Impl& m = *impl_;
+  if (!m.atlas) return {};
+  const int levels = m.hierarchy->levels();
+  const int level = (max_level < 0 || max_level > levels) ? levels : max_level;
+  return AtlasCoordinates(*m.atlas, m.header.texture->face_triangles, level);
+}
+
+std::optional<TextureImage> ProgressiveDecoder::BestTextureLevel(size_t map) const {
+  const Impl& m = *impl_;
+  if (map >= m.texture.maps.size()) return std::nullopt;
+  const TextureMapInfo& info = m.texture.maps[map];
+  for (int k = static_cast<int>(info.levels.size()) - 1; k >= 0; --k) {
+    const auto id = static_cast<uint32_t>(m.packets->TextureId(static_cast<int>(map), k));
+    if (!m.held->Has({id})) continue;
+    TextureImage image;
+    image.role = info.role;
+    image.mime_type = info.mime_type;
+    image.level = k;
+    image.width = info.levels[static_cast<size_t>(k)].width;
+    image.height = info.levels[static_cast<size_t>(k)].height;
+    image.bytes = m.texture_bytes[id - m.first_texture];
+    return image;
+  }
+  return std::nullopt;
 }
 
 std::vector<Face> ProgressiveDecoder::Faces(int max_level) const {

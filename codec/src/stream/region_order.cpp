@@ -110,6 +110,17 @@ std::vector<StreamUnit> RegionOrder(const StreamHeader& header, const StreamPrec
   for (uint32_t id = 0; id < n; ++id) {
     first_unit[id] = static_cast<uint32_t>(units.size());
     const int j = layout.Subband(id);
+    if (layout.IsTexture(id)) {
+      // Texture levels are global (one image for the whole surface): each
+      // one where the uniform orders send it (its mesh level within
+      // max_level), ranked with the region's units by its value.
+      const int m = layout.TextureMap(id);
+      const int level = layout.levels() - (layout.TextureLevels(m) - 1 - layout.Bitplane(id));
+      if (std::max(level, 0) > used) continue;
+      wanted[id] = 1;
+      units.push_back({id, StreamUnit::kWholePacket});
+      continue;
+    }
     // Channels are not refined by region yet: their packets travel in the
     // uniform orders only.
     if (layout.IsChannel(id) || j >= used || (j >= 0 && j >= levels)) continue;
@@ -147,7 +158,12 @@ std::vector<StreamUnit> RegionOrder(const StreamHeader& header, const StreamPrec
     const int j = layout.Subband(u.id);
     const int b = layout.Bitplane(u.id);
     double w = 0;
-    if (j < 0) {
+    if (layout.IsTexture(u.id)) {
+      // Normalised as PacketOrder's rd order weighs it (FORMAT.md 7).
+      const double diagonal = HeaderDiagonal(header);
+      w = static_cast<double>(header.texture->rd_weight) * diagonal * diagonal;
+      in_region[k] = 1;
+    } else if (j < 0) {
       w = levels > 0 ? subband_weight[0] : 1;
       in_region[k] = levels == 0 || subband_inside[0];
     } else if (u.whole()) {
@@ -167,7 +183,10 @@ std::vector<StreamUnit> RegionOrder(const StreamHeader& header, const StreamPrec
     gain[k] = g > 0 ? g : 0;
     cost[k] = bytes == 0 ? 0 : bytes + 4.0;
     std::vector<std::pair<int, int>> needs;  // (packet, its subband)
-    if (j < 0) {
+    if (layout.IsTexture(u.id)) {
+      // A map's levels go coarsest first, as in the rd order.
+      if (b > 0) needs.push_back({static_cast<int>(u.id) - 1, -1});
+    } else if (j < 0) {
       needs.push_back({layout.BaseId(b + 1), -1});
     } else {
       needs.push_back({layout.Id(j, b + 1), j});

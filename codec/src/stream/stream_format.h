@@ -16,7 +16,8 @@ namespace meshwave {
 
 // The version this build writes (meshwave/stream_header.h).
 inline constexpr uint32_t kFormatVersion = kStreamFormatVersion;
-// The oldest version it reads. Version 7 is version 8 without channels,
+// The oldest version it reads. Version 8 is version 9 without textures,
+// version 7 is version 8 without channels,
 // version 6 is version 7 without precincts
 // (docs/FORMAT.md 2.2): kept readable so that a catalog written by the
 // previous release is served while `meshwave-server reencode` brings it
@@ -41,6 +42,10 @@ inline Status CheckFormatVersion(const StreamHeader& h) {
   if (h.format_version < 8 && !h.channels.empty()) {
     return ParseError("header: a version-" + std::to_string(h.format_version) +
                       " stream with channels (they came with version 8)");
+  }
+  if (h.format_version < 9 && h.texture) {
+    return ParseError("header: a version-" + std::to_string(h.format_version) +
+                      " stream with a texture (textures came with version 9)");
   }
   return Status::Ok();
 }

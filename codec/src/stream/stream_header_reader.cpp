@@ -98,6 +98,60 @@ wire::Field ReadChannel(uint32_t number, uint32_t type, wire::WireReader& r, int
   }
 }
 
+wire::Field ReadTextureLevel(uint32_t number, uint32_t type, wire::WireReader& r,
+                             StreamHeader::Texture::Level& l) {
+  switch (number) {
+    case 1: return wire::ReadVarint32(type, r, l.packet);
+    case 2: return wire::ReadVarint32(type, r, l.width);
+    case 3: return wire::ReadVarint32(type, r, l.height);
+    default: return wire::Field::kUnknown;
+  }
+}
+
+wire::Field ReadTextureMap(uint32_t number, uint32_t type, wire::WireReader& r, int depth,
+                           StreamHeader::Texture::Map& m) {
+  switch (number) {
+    case 1: return wire::ReadVarint32(type, r, m.role);
+    case 2: {
+      const wire::Field f = wire::ReadBytes(type, r, m.mime_type);
+      if (f == wire::Field::kRead && !IsValidUtf8(m.mime_type)) return wire::Field::kError;
+      return f;
+    }
+    case 3:
+      if (type != kLengthDelimited) return wire::Field::kUnknown;
+      m.levels.emplace_back();
+      return wire::ReadEmbedded(r, depth, [&](uint32_t n, uint32_t w, wire::WireReader& f, int) {
+        return ReadTextureLevel(n, w, f, m.levels.back());
+      });
+    default: return wire::Field::kUnknown;
+  }
+}
+
+wire::Field ReadTexture(uint32_t number, uint32_t type, wire::WireReader& r, int depth,
+                        StreamHeader::Texture& t) {
+  switch (number) {
+    case 1: return wire::ReadVarint32(type, r, t.cell);
+    case 2: return wire::ReadVarint32(type, r, t.gutter);
+    case 3: return wire::ReadVarint32(type, r, t.columns);
+    case 4: return wire::ReadRepeatedU32(type, r, t.face_triangles);
+    case 5: return wire::ReadFloat(type, r, t.metallic_factor);
+    case 6: return wire::ReadFloat(type, r, t.roughness_factor);
+    case 7: return wire::ReadRepeatedFixed<float>(type, r, t.emissive_factor);
+    case 8: return wire::ReadFloat(type, r, t.normal_scale);
+    case 9: return wire::ReadFloat(type, r, t.occlusion_strength);
+    case 10: return wire::ReadBool(type, r, t.alpha_blend);
+    case 11: return wire::ReadBool(type, r, t.double_sided);
+    case 12:
+      if (type != kLengthDelimited) return wire::Field::kUnknown;
+      t.maps.emplace_back();
+      return wire::ReadEmbedded(r, depth, [&](uint32_t n, uint32_t w, wire::WireReader& f, int d) {
+        return ReadTextureMap(n, w, f, d, t.maps.back());
+      });
+    case 13: return wire::ReadFloat(type, r, t.rd_weight);
+    default: return wire::Field::kUnknown;
+  }
+}
+
 wire::Field ReadHeaderField(uint32_t number, uint32_t type, wire::WireReader& r, int depth,
                             StreamHeader& h) {
   switch (number) {
@@ -142,6 +196,13 @@ wire::Field ReadHeaderField(uint32_t number, uint32_t type, wire::WireReader& r,
       h.channels.emplace_back();
       return wire::ReadEmbedded(r, depth, [&](uint32_t n, uint32_t w, wire::WireReader& f, int d) {
         return ReadChannel(n, w, f, d, h.channels.back());
+      });
+    case 16:
+      if (type != kLengthDelimited) return wire::Field::kUnknown;
+      // A repeated embedded message merges into the one already read.
+      if (!h.texture) h.texture = StreamHeader::Texture();
+      return wire::ReadEmbedded(r, depth, [&](uint32_t n, uint32_t w, wire::WireReader& f, int d) {
+        return ReadTexture(n, w, f, d, *h.texture);
       });
     default: return wire::Field::kUnknown;
   }

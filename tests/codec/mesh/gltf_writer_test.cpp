@@ -146,6 +146,69 @@ TEST(GltfWriterTest, GltfEmbedsTheGlbBufferAsBase64) {
             glb.json.substr(0, glb.json.find_last_not_of(' ') + 1) + "\n");
 }
 
+TEST(GltfWriterTest, TexturedGlbSplitsVerticesByUvAndEmbedsTheImages) {
+  TriMesh mesh;
+  mesh.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  mesh.faces = {{0, 1, 2}, {0, 2, 3}};
+  // Vertex 0 has one UV in both faces, vertex 2 two (a cut between them).
+  const std::vector<float> uvs = {0.1f, 0.1f, 0.9f, 0.1f, 0.9f, 0.9f,
+                                  0.1f, 0.1f, 0.5f, 0.5f, 0.1f, 0.9f};
+  const std::string png("\x89PNG\r\n\x1a\nnot really", 18);
+  std::vector<TextureImage> images(2);
+  images[0].role = TextureRole::kBaseColor;
+  images[0].mime_type = "image/png";
+  images[0].bytes = png;
+  images[1].role = TextureRole::kNormal;
+  images[1].mime_type = "image/jpeg";
+  images[1].bytes = "\xff\xd8jpeg";
+  TextureMaterial material;
+  material.normal_scale = 0.5f;
+  material.alpha_blend = true;
+  EXPECT_EQ(TexturedVertexCount(mesh, uvs), 5u);
+  const std::string bytes = SerializeTexturedGltf(mesh, GltfForm::kBinary, uvs, images, material);
+  const Glb glb = SplitGlb(bytes);
+  EXPECT_THAT(glb.json, HasSubstr(R"("attributes":{"POSITION":0,"TEXCOORD_0":2,"NORMAL":3,"TANGENT":4},"indices":1,"material":0)"));
+  EXPECT_THAT(glb.json, HasSubstr(R"({"bufferView":0,"componentType":5126,"count":5,)"));
+  EXPECT_THAT(glb.json, HasSubstr(R"({"bufferView":2,"componentType":5126,"count":5,"type":"VEC2"})"));
+  EXPECT_THAT(glb.json, HasSubstr(R"("baseColorTexture":{"index":0})"));
+  EXPECT_THAT(glb.json, HasSubstr(R"("normalTexture":{"index":1,"scale":0.5})"));
+  EXPECT_THAT(glb.json, HasSubstr(R"("alphaMode":"BLEND")"));
+  EXPECT_THAT(glb.json, HasSubstr(R"("samplers":[{"magFilter":9729,"minFilter":9987,"wrapS":33071,"wrapT":33071}])"));
+  EXPECT_THAT(glb.json, HasSubstr(R"("images":[{"bufferView":5,"mimeType":"image/png"},{"bufferView":6,"mimeType":"image/jpeg"}])"));
+  // Positions 5 x 12 bytes, indices 6 x 4, UVs 5 x 8, normals 5 x 12 and
+  // tangents 5 x 16 (a normal map needs them), then the images at
+  // 4-aligned offsets.
+  EXPECT_EQ(glb.bin.substr(264, png.size()), png);
+  EXPECT_THAT(glb.json, HasSubstr(R"({"buffer":0,"byteOffset":264,"byteLength":18})"));
+  EXPECT_EQ(glb.bin.substr(284, 6), images[1].bytes);
+  // The square lies in z = 0: normal +z everywhere, right-handed; face 0
+  // maps u along x, so its own vertices (written 1 and 2) have tangent +x.
+  for (size_t v = 0; v < 5; ++v) {
+    EXPECT_EQ(F32(glb.bin, 124 + 12 * v + 8), 1.0f) << v;
+    EXPECT_EQ(F32(glb.bin, 184 + 16 * v + 12), 1.0f) << v;
+  }
+  for (size_t v : {1, 2}) EXPECT_NEAR(F32(glb.bin, 184 + 16 * v), 1.0f, 1e-6) << v;
+  // Corner UVs as written: face 1's corner 1 (vertex 2) got a vertex of its
+  // own, the fourth written, at vertex 2's position.
+  EXPECT_EQ(U32(glb.bin, 60 + 16), 3u);
+  EXPECT_EQ(F32(glb.bin, 84 + 3 * 8), 0.5f);
+  EXPECT_EQ(F32(glb.bin, 3 * 12), 1.0f);
+  EXPECT_EQ(F32(glb.bin, 3 * 12 + 4), 1.0f);
+  // The geometry reads back (the reader welds the split vertex again).
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("meshwave_gltf_textured_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  { std::ofstream(dir / "t.glb", std::ios::binary) << bytes; }
+  const Result<TriMesh> back = ReadMesh(dir / "t.glb");
+  std::filesystem::remove_all(dir);
+  ASSERT_TRUE(back.ok()) << back.status().ToString();
+  EXPECT_EQ(back->positions.size(), 4u);
+  EXPECT_EQ(back->faces, mesh.faces);
+  // Without images: the untextured file.
+  EXPECT_EQ(SerializeTexturedGltf(mesh, GltfForm::kBinary, uvs, {}, material),
+            SerializeGltf(mesh, GltfForm::kBinary));
+}
+
 TEST(GltfWriterTest, AMeshWithoutFacesIsAnEmptyScene) {
   TriMesh mesh;
   const std::string glb = SerializeGltf(mesh, GltfForm::kBinary);

@@ -38,7 +38,9 @@ const SemiRegularMesh& Mesh() {
 
 const EncodedStream& Colored() {
   static const EncodedStream stream = [] {
-    auto s = EncodeMesh(Mesh(), EncodeOptions{}, {ColorsOf(Mesh().positions)});
+    VertexAttributes attributes;
+    attributes.colors = ColorsOf(Mesh().positions);
+    auto s = EncodeMesh(Mesh(), EncodeOptions{}, attributes);
     EXPECT_TRUE(s.ok()) << s.status().ToString();
     return *std::move(s);
   }();
@@ -59,7 +61,7 @@ double ColorPsnr(const EncodedStream& s, const std::vector<uint32_t>& order, siz
 TEST(ColorChannelTest, FullStreamGivesTheEncodedColours) {
   const EncodedStream& s = Colored();
   ASSERT_EQ(s.header.channels.size(), 1u);
-  EXPECT_EQ(s.header.format_version, 8u);
+  EXPECT_EQ(s.header.format_version, kStreamFormatVersion);
   ASSERT_EQ(s.colors.size(), Mesh().positions.size());
   const auto order = PacketOrder(s.header, Progression::kQuality);
   EXPECT_EQ(order.size(), s.packets.size());
@@ -224,7 +226,7 @@ TEST(ColorChannelTest, BaseValuesAreCheckedAsTheyAreRead) {
 TEST(ColorChannelTest, AVersionSevenStreamStillDecodes) {
   auto plain = EncodeMesh(Mesh(), EncodeOptions{});
   ASSERT_TRUE(plain.ok());
-  EXPECT_EQ(plain->header.format_version, 8u);
+  EXPECT_EQ(plain->header.format_version, kStreamFormatVersion);
   EXPECT_TRUE(plain->header.channels.empty());
   EncodedStream old = *plain;
   old.header = Edited(*plain, [](proto::StreamHeader& p) { p.set_format_version(7); });

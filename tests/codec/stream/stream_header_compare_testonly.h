@@ -106,6 +106,40 @@ inline std::string HeaderDifference(const StreamHeader& r, const proto::StreamHe
       }
     }
   }
+  if (r.texture.has_value() != p.has_texture()) return "texture presence";
+  if (r.texture) {
+    const auto& px = p.texture();
+    const StreamHeader::Texture& rt = *r.texture;
+    if (rt.cell != px.cell() || rt.gutter != px.gutter() || rt.columns != px.columns()) {
+      return "texture.atlas";
+    }
+    if (!SameInts(rt.face_triangles, px.face_triangles())) return "texture.face_triangles";
+    if (!SameBits(rt.metallic_factor, px.metallic_factor()) ||
+        !SameBits(rt.roughness_factor, px.roughness_factor()) ||
+        !SameFloats(rt.emissive_factor, px.emissive_factor()) ||
+        !SameBits(rt.normal_scale, px.normal_scale()) ||
+        !SameBits(rt.occlusion_strength, px.occlusion_strength()) ||
+        rt.alpha_blend != px.alpha_blend() || rt.double_sided != px.double_sided()) {
+      return "texture.material";
+    }
+    if (!SameBits(rt.rd_weight, px.rd_weight())) return "texture.rd_weight";
+    if (rt.maps.size() != static_cast<size_t>(px.maps_size())) return "texture.maps size";
+    for (size_t m = 0; m < rt.maps.size(); ++m) {
+      const auto& map = px.maps(static_cast<int>(m));
+      if (rt.maps[m].role != static_cast<int32_t>(map.role())) return "texture.maps.role";
+      if (rt.maps[m].mime_type != map.mime_type()) return "texture.maps.mime_type";
+      if (rt.maps[m].levels.size() != static_cast<size_t>(map.levels_size())) {
+        return "texture.maps.levels size";
+      }
+      for (size_t k = 0; k < rt.maps[m].levels.size(); ++k) {
+        const auto& l = map.levels(static_cast<int>(k));
+        const StreamHeader::Texture::Level& rl = rt.maps[m].levels[k];
+        if (rl.packet != l.packet() || rl.width != l.width() || rl.height != l.height()) {
+          return "texture.maps.levels";
+        }
+      }
+    }
+  }
   return "";
 }
 

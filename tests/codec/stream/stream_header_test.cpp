@@ -201,13 +201,16 @@ TEST(StreamHeaderTest, ProtoHasTheFieldsTheReaderKnows) {
   };
   using V = std::vector<int>;
   EXPECT_EQ(numbers(proto::StreamHeader::descriptor()),
-            (V{1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15}));
+            (V{1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16}));
   EXPECT_EQ(numbers(proto::Transform::descriptor()), (V{1, 2, 3, 4, 5}));
   EXPECT_EQ(numbers(proto::SawtChoices::descriptor()), (V{1, 2, 3, 4}));
   EXPECT_EQ(numbers(proto::BaseMesh::descriptor()), (V{1, 2, 3, 4, 6, 7}));
   EXPECT_EQ(numbers(proto::Quantizer::descriptor()), (V{1, 2, 3}));
   EXPECT_EQ(numbers(proto::PacketIndex::descriptor()), (V{3, 6, 7, 8, 9, 10}));
   EXPECT_EQ(numbers(proto::Channel::descriptor()), (V{1, 2, 3, 4, 5}));
+  EXPECT_EQ(numbers(proto::Texture::descriptor()), (V{1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13}));
+  EXPECT_EQ(numbers(proto::TextureMap::descriptor()), (V{1, 2, 3}));
+  EXPECT_EQ(numbers(proto::TextureLevel::descriptor()), (V{1, 2, 3}));
 }
 
 TEST(StreamHeaderTest, RefusalSaysWhat) {

@@ -5,9 +5,11 @@
 
 #include <filesystem>
 #include <optional>
+#include <span>
 #include <string>
 
 #include "meshwave/mesh.h"
+#include "meshwave/texture.h"
 
 namespace meshwave {
 
@@ -26,6 +28,25 @@ std::optional<GltfForm> GltfFormFromPath(const std::filesystem::path& path);
 // without faces gives an empty scene (glTF forbids empty buffers).
 std::string SerializeGltf(const TriMesh& mesh, GltfForm form,
                           std::span<const Vec3> colors = {});
+
+// The same with a texture (format version 9): one primitive of POSITION,
+// TEXCOORD_0 (FLOAT VEC2), optional COLOR_0, with a normal map NORMAL and
+// TANGENT (area-weighted normals, tangents along increasing u from the
+// faces' UV gradients), and indices, and one material
+// whose maps are `images` (at most one per role), embedded in the buffer
+// (bufferViews with their mimeType), sampled with CLAMP_TO_EDGE and
+// linear, mipmapped filtering. `corner_uvs` holds 6 floats a face (u0 v0
+// u1 v1 u2 v2, ProgressiveDecoder::TextureCoordinates): a vertex whose
+// corners have different UVs (along base-mesh edges, where the atlas cuts)
+// is written once per UV. Without faces or images, or with corner_uvs not
+// 6 per face, it writes what SerializeGltf writes.
+std::string SerializeTexturedGltf(const TriMesh& mesh, GltfForm form,
+                                  std::span<const float> corner_uvs,
+                                  std::span<const TextureImage> images,
+                                  const TextureMaterial& material,
+                                  std::span<const Vec3> colors = {});
+// How many vertices SerializeTexturedGltf writes for `mesh` (with images).
+size_t TexturedVertexCount(const TriMesh& mesh, std::span<const float> corner_uvs);
 
 }  // namespace meshwave
 

@@ -36,7 +36,7 @@ using PrecinctParents = std::vector<std::vector<uint32_t>>;
 // (every part of a split one); a part needs its precinct's share of the
 // packet one bitplane up and, with 3xC, its parent precinct's share of the
 // parent subband's packet at the same bitplane (a share: that part, or the
-// packet whole where it is not split).
+// packet whole where it is not split). A texture packet needs nothing.
 class HeldUnits {
  public:
   // `header` validated (ValidateStreamHeader); `parents` from its

@@ -27,7 +27,11 @@ const char* ProgressionName(Progression p);
 
 // The packets (ids into the header's index) of subbands below max_level
 // (-1: all) in the given order. The header must have passed validation
-// (ProgressiveDecoder::Create or ValidateStreamHeader).
+// (ProgressiveDecoder::Create or ValidateStreamHeader). Texture levels
+// (format version 9) go where docs/FORMAT.md 7 places them: by value per
+// byte among the others (quality, rd), after the subband of their
+// resolution (resolution); those matching a mesh level above max_level are
+// left out.
 std::vector<uint32_t> PacketOrder(const StreamHeader& header,
                                   Progression progression, int max_level = -1);
 

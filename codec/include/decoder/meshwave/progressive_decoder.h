@@ -7,6 +7,7 @@
 #define MESHWAVE_PROGRESSIVE_DECODER_H_
 
 #include <memory>
+#include <optional>
 #include <string_view>
 #include <vector>
 
@@ -14,6 +15,7 @@
 #include "meshwave/mesh.h"
 #include "meshwave/status.h"
 #include "meshwave/stream_header.h"
+#include "meshwave/texture.h"
 
 namespace meshwave {
 
@@ -118,6 +120,19 @@ class ProgressiveDecoder {
   // so far: linear RGB, each component clamped to [0, 1]. Empty when the
   // stream has no colour channel. Costs about what Positions does.
   std::vector<Vec3> Colors(int max_level = -1) const;
+
+  // Whether the stream has a texture (format version 9, docs/FORMAT.md
+  // 2.4), and its description: atlas, material scalars, and per map its
+  // role, image type and level sizes (no maps without a texture).
+  bool HasTexture() const;
+  const TextureInfo& texture() const;
+  // Per face corner of Faces(max_level), its texture coordinates from the
+  // atlas (they never travel): 6 floats a face, u0 v0 u1 v1 u2 v2, glTF's
+  // convention (v down the image). Empty without a texture.
+  std::vector<float> TextureCoordinates(int max_level = -1) const;
+  // The finest level of map `map` (an index into texture().maps) held, or
+  // nullopt when none of its levels is (or there is no such map).
+  std::optional<TextureImage> BestTextureLevel(size_t map) const;
 
  private:
   struct Impl;

@@ -23,8 +23,8 @@ namespace meshwave {
 // The stream format version this build writes (docs/FORMAT.md). 3:
 // Transform.sawt; 4: compact packet index; 5: base refinement packets; 6:
 // 3xC's significance contexts count significant neighbours; 7: precincts
-// and split packets; 8: channels (per-vertex colours).
-inline constexpr uint32_t kStreamFormatVersion = 8;
+// and split packets; 8: channels (per-vertex colours); 9: textures.
+inline constexpr uint32_t kStreamFormatVersion = 9;
 
 // Enum fields keep whatever value the bytes hold, as protobuf's open proto3
 // enums do: validation (ValidateStreamHeader), not reading, refuses values
@@ -83,6 +83,34 @@ struct StreamHeader {
     }
   };
 
+  // Version 9 (docs/FORMAT.md 2.4). Fields left out on the wire read as
+  // protobuf's defaults (0), whatever the material's defaults are.
+  struct Texture {
+    struct Level {
+      uint32_t packet = 0;
+      uint32_t width = 0;
+      uint32_t height = 0;
+    };
+    struct Map {
+      int32_t role = 0;  // TextureRole's values; validation refuses others
+      std::string mime_type;
+      std::vector<Level> levels;  // coarsest first
+    };
+    uint32_t cell = 0;
+    uint32_t gutter = 0;
+    uint32_t columns = 0;
+    std::vector<uint32_t> face_triangles;  // empty: base face f owns triangle f
+    float metallic_factor = 0;
+    float roughness_factor = 0;
+    std::vector<float> emissive_factor;
+    float normal_scale = 0;
+    float occlusion_strength = 0;
+    bool alpha_blend = false;
+    bool double_sided = false;
+    std::vector<Map> maps;
+    float rd_weight = 0;
+  };
+
   uint32_t format_version = 0;
   std::string name;
   uint64_t vertices = 0;
@@ -98,6 +126,7 @@ struct StreamHeader {
   double base_distortion = 0;
   std::vector<uint32_t> present;
   std::vector<Channel> channels;
+  std::optional<Texture> texture;  // present or not, as on the wire
 
   // The header's bytes without its `present` records: what a container
   // holding other packets starts its header with (SerializeContainerHead

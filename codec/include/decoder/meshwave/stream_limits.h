@@ -16,6 +16,13 @@ inline constexpr int kMaxStreamLevels = 12;
 // stream cannot make a reader buffer without bound.
 inline constexpr uint32_t kMaxHeaderBytes = 64u << 20;
 
+// Textures (docs/FORMAT.md 2.4): at most one map per role, each of at most
+// kMaxTextureLevels levels (8 levels of a 16384-texel atlas go down to 128
+// texels), each level one whole image of one of these types.
+inline constexpr uint32_t kMaxTextureMaps = 5;
+inline constexpr uint32_t kMaxTextureLevels = 8;
+inline constexpr const char* kTextureMimeTypes[] = {"image/jpeg", "image/png"};
+
 }  // namespace meshwave
 
 #endif  // MESHWAVE_STREAM_LIMITS_H_

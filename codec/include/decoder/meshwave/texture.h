@@ -63,6 +63,32 @@ struct BakedTexture {
   std::vector<TextureMap> maps;
 };
 
+// A map as a stream's header describes it (ProgressiveDecoder::texture()).
+struct TextureLevelSize {
+  uint32_t width = 0;
+  uint32_t height = 0;
+};
+struct TextureMapInfo {
+  TextureRole role = TextureRole::kBaseColor;
+  std::string mime_type;
+  std::vector<TextureLevelSize> levels;  // coarsest first
+};
+struct TextureInfo {
+  TextureAtlas atlas;
+  TextureMaterial material;
+  std::vector<TextureMapInfo> maps;
+};
+
+// The finest level of a map a decoder holds: one whole encoded image.
+struct TextureImage {
+  TextureRole role = TextureRole::kBaseColor;
+  std::string mime_type;
+  int level = 0;  // of the map's levels, coarsest 0
+  uint32_t width = 0;
+  uint32_t height = 0;
+  std::string_view bytes;  // the decoder's copy: valid until Reset or its end
+};
+
 }  // namespace meshwave
 
 #endif  // MESHWAVE_TEXTURE_H_

@@ -3,6 +3,7 @@
 #ifndef MESHWAVE_ENCODER_H_
 #define MESHWAVE_ENCODER_H_
 
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -10,6 +11,7 @@
 #include "meshwave/semiregular.h"
 #include "meshwave/status.h"
 #include "meshwave/stream_header.h"
+#include "meshwave/texture.h"
 #include "meshwave/wavelet.h"
 
 namespace meshwave {
@@ -72,6 +74,9 @@ struct EncodeOptions {
   // The weight of the colour channel's distortion against the geometry's
   // in the rd order (docs/FORMAT.md 7), both normalised to their peaks.
   float color_rd_weight = 1;
+  // The weight of the texture's distortion against the geometry's in the
+  // packet orders (docs/FORMAT.md 7).
+  float texture_rd_weight = 1;
   std::string name;
   // Threads for quantising and coding (subbands on workers, the largest
   // first); 0: the machine's cores. The stream does not depend on it.
@@ -98,17 +103,22 @@ struct EncodedStream {
   std::vector<Vec3> colors;
 };
 
-// What a mesh carries besides its geometry, per vertex of its finest level
-// in its vertex order; each empty when absent.
+// What a mesh carries besides its geometry: per vertex of its finest level
+// in its vertex order (each empty when absent), and its texture baked into
+// the atlas of its base faces (format version 9): base face f of the mesh
+// given to EncodeMesh owns triangle f of the atlas, corners in order (the
+// stream reorders the base; its header says where each face went).
 struct VertexAttributes {
   std::vector<Vec3> colors;  // linear RGB in [0, 1]: the colour channel
+  std::optional<BakedTexture> texture;
 };
 
 Result<EncodedStream> EncodeMesh(const SemiRegularMesh& mesh,
                                  const EncodeOptions& options);
-// With a channel per attribute present (format version 8).
-// kInvalidArgument when an attribute does not have one finite value per
-// vertex.
+// With a channel per attribute present (format version 8) and the
+// texture's maps as packets (version 9). kInvalidArgument when an
+// attribute does not have one finite value per vertex, or the texture does
+// not fit the mesh (stream/texture_encoder.h says what is checked).
 Result<EncodedStream> EncodeMesh(const SemiRegularMesh& mesh, const EncodeOptions& options,
                                  const VertexAttributes& attributes);
 

@@ -67,7 +67,9 @@ Result<std::vector<uint32_t>> PartLengths(const HeldUnits& units, uint32_t id,
 // its packet's (the header's estimate) in proportion to its bytes, weighted
 // by RegionWeight of its precinct's ball; a whole packet's is weighted by
 // its precincts' weights in proportion to their shares of the subband; the
-// base refinement by subband 0's. Units of subbands at or above
+// base refinement by subband 0's. Texture levels are global: counted
+// inside the region, valued as the rd order values them, each after the
+// level before. Units of subbands at or above
 // `max_level` (>= 0) are left out, as PacketOrder leaves them out.
 // part_lengths[id]: PartLengths of every packet.
 std::vector<StreamUnit> RegionOrder(const StreamHeader& header, const StreamPrecincts& precincts,
