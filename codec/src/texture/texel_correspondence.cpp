@@ -111,7 +111,24 @@ TexelSource TexelCorrespondence::AtPoint(double x, double y, uint32_t& hint) con
   const Vec3 point = fine.barycentric[0] * remesh_.positions[corners[0]] +
                      fine.barycentric[1] * remesh_.positions[corners[1]] +
                      fine.barycentric[2] * remesh_.positions[corners[2]];
-  const metrics::TriangleBvh::Hit hit = bvh_.ClosestPoint(point, hint);
+  metrics::TriangleBvh::Hit hit = bvh_.ClosestPoint(point, hint);
+  const Vec3& a = remesh_.positions[corners[0]];
+  const Vec3& b = remesh_.positions[corners[1]];
+  const Vec3& c = remesh_.positions[corners[2]];
+  const Vec3 normal = (b - a).cross(c - a);
+  if (hit.face != metrics::TriangleBvh::kNoFace && !FacesAlike(hit.face, normal)) {
+    // The nearest point is on a face turned away: on a thin part (a shell's
+    // rim, a sheet's two sides) the other side may be nearer than the side
+    // the remesh face stands for. Take the nearest face turned the same way
+    // if it is within a finest edge's length more.
+    const double reach = std::sqrt(hit.distance_squared) +
+                         std::sqrt(std::max({(b - a).squaredNorm(), (c - b).squaredNorm(),
+                                             (a - c).squaredNorm()}));
+    const metrics::TriangleBvh::Hit alike = bvh_.ClosestPointIf(
+        point, metrics::TriangleBvh::kNoFace,
+        [&](uint32_t face) { return FacesAlike(face, normal); }, reach * reach);
+    if (alike.face != metrics::TriangleBvh::kNoFace) hit = alike;
+  }
   hint = hit.face;
   source.finest_face = fine.face;
   if (hit.face == metrics::TriangleBvh::kNoFace) return source;
@@ -122,6 +139,12 @@ TexelSource TexelCorrespondence::AtPoint(double x, double y, uint32_t& hint) con
   source.w1 = static_cast<float>(w[1]);
   source.w2 = static_cast<float>(w[2]);
   return source;
+}
+
+bool TexelCorrespondence::FacesAlike(uint32_t original_face, const Vec3& normal) const {
+  const Face& f = original_faces_[original_face];
+  const Vec3& p0 = original_positions_[f[0]];
+  return (original_positions_[f[1]] - p0).cross(original_positions_[f[2]] - p0).dot(normal) >= 0;
 }
 
 void TexelCorrespondence::Cell(uint32_t cell_index, std::vector<TexelSource>& out) const {

@@ -3,7 +3,8 @@
 // nearest point, so gutters repeat the edge and stay safe under mipmaps);
 // its barycentric coordinates descend the 1-to-4 splits to a face of the
 // remesh's finest level, whose point is projected onto the original
-// surface. Every baked map samples the original there, so the geometric
+// surface (onto its nearest face turned the same way as the remesh's face,
+// when one is nearly as near: thin parts have two sides close together). Every baked map samples the original there, so the geometric
 // work is done once for all of them.
 #ifndef MESHWAVE_TEXTURE_TEXEL_CORRESPONDENCE_H_
 #define MESHWAVE_TEXTURE_TEXEL_CORRESPONDENCE_H_
@@ -84,6 +85,9 @@ class TexelCorrespondence {
   TexelSource AtPoint(double x, double y, uint32_t& hint) const;
 
  private:
+  // Whether the original face turns the way `normal` does (not away).
+  bool FacesAlike(uint32_t original_face, const Vec3& normal) const;
+
   const AtlasLayout& layout_;
   const SemiRegularMesh& remesh_;
   const std::vector<Vec3>& original_positions_;

@@ -358,6 +358,50 @@ TEST(TextureBakeTest, CarriesNormalsIntoTheAtlasTangentFrame) {
   EXPECT_GT(checked, 50);
 }
 
+TEST(TextureBakeTest, TakesTheSideOfAThinPartTheRemeshFaces) {
+  // A thin sheet: a red top facing +z and, 0.02 below, a blue bottom facing
+  // -z. The remesh runs just below the middle, nearer the bottom, facing
+  // up: it stands for the top.
+  MeshAsset asset;
+  const TriMesh top = testing::GridPatch(4, 0, 0, 1);
+  TriMesh bottom = testing::Translated(top, Vec3(0, 0, -0.02));
+  for (Face& f : bottom.faces) std::swap(f[1], f[2]);
+  asset.mesh = top;
+  const auto offset = static_cast<uint32_t>(top.positions.size());
+  asset.mesh.positions.insert(asset.mesh.positions.end(), bottom.positions.begin(),
+                              bottom.positions.end());
+  for (const Face& f : bottom.faces) {
+    asset.mesh.faces.push_back({f[0] + offset, f[1] + offset, f[2] + offset});
+  }
+  asset.materials.resize(2);
+  asset.materials[0].base_color_factor = {1.0f, 0.0f, 0.0f, 1.0f};
+  asset.materials[1].base_color_factor = {0.0f, 0.0f, 1.0f, 1.0f};
+  asset.face_material.assign(top.faces.size(), 0);
+  asset.face_material.resize(asset.mesh.faces.size(), 1);
+  const SemiRegularMesh mesh =
+      Refined(testing::Translated(testing::GridPatch(2, 0, 0, 1), Vec3(0, 0, -0.012)), 2);
+  TextureBakeOptions options;
+  options.cell = 16;
+  options.levels = 1;
+  auto baked = BakeTexture(asset, mesh, options);
+  ASSERT_TRUE(baked.ok()) << baked.status().ToString();
+  ASSERT_TRUE(baked->has_value());
+  const DecodedImage image = Decode((*baked)->maps[0].levels.back());
+  auto layout = AtlasLayout::Create(static_cast<uint32_t>(mesh.hierarchy->faces(0).size()), 16,
+                                    (*baked)->atlas.gutter, (*baked)->atlas.columns);
+  ASSERT_TRUE(layout.ok());
+  int red = 0, owned = 0;
+  for (uint32_t y = 0; y < image.height; ++y) {
+    for (uint32_t x = 0; x < image.width; ++x) {
+      if (OwnerOfAtlasPoint(*layout, x + 0.5, y + 0.5).base_face >= layout->base_faces()) continue;
+      const uint8_t* p = &image.rgba[(size_t{y} * image.width + x) * 4];
+      ++owned;
+      red += p[0] > 200 && p[2] < 60;
+    }
+  }
+  EXPECT_EQ(red, owned);
+}
+
 TEST(TextureBakeTest, GivesNothingForAnAssetWithoutTextures) {
   MeshAsset asset;
   asset.mesh = testing::GridPatch(2, 0, 0, 1);
