@@ -11,7 +11,7 @@
 // across a seam).
 //
 //   texture_bake_bench ASSET... [--threads 2] [--points 100000] [--fidelity DB]
-//                      [--dump DIR]
+//                      [--max-side 4096] [--dump DIR]
 //
 // --fidelity is ToSemiRegular's (default: the encoder's, kDefaultFidelityDb;
 // 0 remeshes once at the first density). --dump writes each map's full level to DIR/<asset>_<role>.<jpg|png>.
@@ -39,6 +39,7 @@
 #include "texture/atlas_layout.h"
 #include "texture/material_sampler.h"
 #include "texture/texel_correspondence.h"
+#include "texture/texture_density.h"
 
 namespace {
 
@@ -145,7 +146,7 @@ const char* RoleName(meshwave::TextureRole role) {
 }
 
 int Run(const std::string& path, int threads, int points, double fidelity_db,
-        const std::string& dump) {
+        uint32_t max_side, const std::string& dump) {
   using namespace meshwave;
   auto asset = ReadMeshAsset(path);
   auto mesh = ReadMesh(path);
@@ -169,6 +170,7 @@ int Run(const std::string& path, int threads, int points, double fidelity_db,
 
   TextureBakeOptions options;
   options.threads = threads;
+  options.max_side = max_side;
   TextureBakeNotes notes;
   start = std::chrono::steady_clock::now();
   auto baked = BakeTexture(*asset, remesh, options, &notes);
@@ -191,6 +193,10 @@ int Run(const std::string& path, int threads, int points, double fidelity_db,
   std::printf("  bake %.2f s (%d threads): atlas %u x %u, cell %u, gutter %u, %zu levels\n",
               bake_seconds, threads, layout->width(), layout->height(), texture.atlas.cell,
               texture.atlas.gutter, texture.maps[0].levels.size());
+  const double gutter = texture.atlas.gutter;
+  const double leg = texture.atlas.cell - 2 * gutter - std::ceil(std::sqrt(2.0) * gutter);
+  std::printf("  texels: the original's textures spend %.0f, the atlas's triangles hold %.0f\n",
+              TexelsOfOriginal(*asset), base_faces * 0.5 * leg * leg);
   for (const TextureMap& map : texture.maps) {
     size_t all = 0;
     for (const std::string& level : map.levels) all += level.size();
@@ -283,6 +289,7 @@ int main(int argc, char** argv) {
   std::setvbuf(stdout, nullptr, _IOLBF, 0);  // each asset's lines as they come
   int threads = 2, points = 100000;
   double fidelity_db = meshwave::kDefaultFidelityDb;
+  uint32_t max_side = 4096;
   std::string dump;
   std::vector<std::string> paths;
   for (int i = 1; i < argc; ++i) {
@@ -293,6 +300,8 @@ int main(int argc, char** argv) {
       points = std::max(1, std::atoi(argv[++i]));
     } else if (arg == "--fidelity" && i + 1 < argc) {
       fidelity_db = std::atof(argv[++i]);
+    } else if (arg == "--max-side" && i + 1 < argc) {
+      max_side = static_cast<uint32_t>(std::atoi(argv[++i]));
     } else if (arg == "--dump" && i + 1 < argc) {
       dump = argv[++i];
     } else {
@@ -301,10 +310,10 @@ int main(int argc, char** argv) {
   }
   if (paths.empty()) {
     std::fprintf(stderr, "usage: texture_bake_bench ASSET... [--threads 2] [--points 100000] "
-                 "[--fidelity DB] [--dump DIR]\n");
+                 "[--fidelity DB] [--max-side 4096] [--dump DIR]\n");
     return 2;
   }
   int status = 0;
-  for (const std::string& path : paths) status |= Run(path, threads, points, fidelity_db, dump);
+  for (const std::string& path : paths) status |= Run(path, threads, points, fidelity_db, max_side, dump);
   return status;
 }

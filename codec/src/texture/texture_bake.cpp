@@ -20,6 +20,7 @@
 #include "texture/atlas_layout.h"
 #include "texture/material_sampler.h"
 #include "texture/texel_correspondence.h"
+#include "texture/texture_density.h"
 #include "texture/texture_pyramid.h"
 
 namespace meshwave {
@@ -121,38 +122,6 @@ BakePlan PlanBake(const MeshAsset& asset, const MaterialSampler& sampler) {
     plan.emissive_scale = std::max(plan.emissive_scale, m->emissive_factor.maxCoeff());
   }
   return plan;
-}
-
-// The texels the original's textures spend on its surface: each face's
-// UV area (after its slot's transform) times its image's texels, the
-// base-colour image first, else any other of its material's.
-double TexelsOfOriginal(const MeshAsset& asset, const MaterialSampler& sampler) {
-  if (asset.uv.empty()) return 0;
-  double sum = 0;
-  for (uint32_t f = 0; f < asset.mesh.faces.size(); ++f) {
-    const Material& m = sampler.MaterialOf(f);
-    const TextureRef* ref = nullptr;
-    for (const TextureRef* slot : {&m.base_color_texture, &m.emissive_texture,
-                                   &m.metallic_roughness_texture, &m.normal_texture,
-                                   &m.occlusion_texture}) {
-      if (HasImage(asset, *slot)) {
-        ref = slot;
-        break;
-      }
-    }
-    if (ref == nullptr) continue;
-    Eigen::Vector2f uv[3];
-    for (int k = 0; k < 3; ++k) {
-      const Eigen::Vector2f raw = asset.uv.values[asset.uv.faces[f][k]];
-      uv[k] = ref->transform * Eigen::Vector3f(raw[0], raw[1], 1.0f);
-    }
-    const Eigen::Vector2f d1 = uv[1] - uv[0], d2 = uv[2] - uv[0];
-    const double area = 0.5 * std::abs(static_cast<double>(d1[0]) * d2[1] -
-                                       static_cast<double>(d2[0]) * d1[1]);
-    const AssetImage& image = asset.images[static_cast<size_t>(ref->image)];
-    if (std::isfinite(area)) sum += area * image.width * image.height;
-  }
-  return sum;
 }
 
 struct AtlasPlan {
@@ -375,7 +344,7 @@ Result<std::optional<BakedTexture>> BakeTexture(const MeshAsset& asset,
 
   const auto base_faces = static_cast<uint32_t>(remesh.hierarchy->faces(0).size());
   MW_ASSIGN_OR_RETURN(const AtlasPlan atlas_plan,
-                      PlanAtlas(base_faces, TexelsOfOriginal(asset, sampler), options));
+                      PlanAtlas(base_faces, TexelsOfOriginal(asset), options));
   MW_ASSIGN_OR_RETURN(const AtlasLayout layout,
                       AtlasLayout::Create(base_faces, atlas_plan.cell, atlas_plan.gutter));
   const int threads = ResolveThreads(options.threads);
