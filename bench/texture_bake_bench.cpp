@@ -38,7 +38,7 @@
 #include "remesh/union_find.h"
 #include "texture/atlas_layout.h"
 #include "texture/material_sampler.h"
-#include "texture/texel_correspondence.h"
+#include "pipeline/texel_correspondence.h"
 #include "texture/texture_density.h"
 
 namespace {

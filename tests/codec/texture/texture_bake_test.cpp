@@ -19,7 +19,7 @@
 #include "test_data.h"
 #include "texture/atlas_layout.h"
 #include "texture/material_sampler.h"
-#include "texture/texel_correspondence.h"
+#include "pipeline/texel_correspondence.h"
 
 namespace meshwave {
 namespace {

@@ -1,4 +1,4 @@
-#include "texture/texel_correspondence.h"
+#include "pipeline/texel_correspondence.h"
 
 #include <algorithm>
 #include <cmath>

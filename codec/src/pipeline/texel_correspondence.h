@@ -6,8 +6,8 @@
 // surface (onto its nearest face turned the same way as the remesh's face,
 // when one is nearly as near: thin parts have two sides close together). Every baked map samples the original there, so the geometric
 // work is done once for all of them.
-#ifndef MESHWAVE_TEXTURE_TEXEL_CORRESPONDENCE_H_
-#define MESHWAVE_TEXTURE_TEXEL_CORRESPONDENCE_H_
+#ifndef MESHWAVE_PIPELINE_TEXEL_CORRESPONDENCE_H_
+#define MESHWAVE_PIPELINE_TEXEL_CORRESPONDENCE_H_
 
 #include <array>
 #include <cstdint>
@@ -97,4 +97,4 @@ class TexelCorrespondence {
 
 }  // namespace meshwave
 
-#endif  // MESHWAVE_TEXTURE_TEXEL_CORRESPONDENCE_H_
+#endif  // MESHWAVE_PIPELINE_TEXEL_CORRESPONDENCE_H_

@@ -19,7 +19,7 @@
 #include "image/image_encoder.h"
 #include "texture/atlas_layout.h"
 #include "texture/material_sampler.h"
-#include "texture/texel_correspondence.h"
+#include "pipeline/texel_correspondence.h"
 #include "texture/texture_density.h"
 #include "texture/texture_pyramid.h"
 
