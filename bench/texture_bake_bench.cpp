@@ -14,7 +14,8 @@
 //                      [--max-side 4096] [--dump DIR]
 //
 // --fidelity is ToSemiRegular's (default: the encoder's, kDefaultFidelityDb;
-// 0 remeshes once at the first density). --dump writes each map's full level to DIR/<asset>_<role>.<jpg|png>.
+// 0 remeshes once at the first density). --dump writes each map's full level to
+// DIR/<asset>_<role>.<jpg|png>.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -35,10 +36,10 @@
 #include "meshwave/texture_bake.h"
 #include "metrics/triangle_bvh.h"
 #include "pipeline/color_transfer.h"
+#include "pipeline/texel_correspondence.h"
 #include "remesh/union_find.h"
 #include "texture/atlas_layout.h"
 #include "texture/material_sampler.h"
-#include "pipeline/texel_correspondence.h"
 #include "texture/texture_density.h"
 
 namespace {
@@ -145,8 +146,8 @@ const char* RoleName(meshwave::TextureRole role) {
   return "?";
 }
 
-int Run(const std::string& path, int threads, int points, double fidelity_db,
-        uint32_t max_side, const std::string& dump) {
+int Run(const std::string& path, int threads, int points, double fidelity_db, uint32_t max_side,
+        const std::string& dump) {
   using namespace meshwave;
   auto asset = ReadMeshAsset(path);
   auto mesh = ReadMesh(path);
@@ -185,11 +186,11 @@ int Run(const std::string& path, int threads, int points, double fidelity_db,
   auto layout = AtlasLayout::Create(base_faces, texture.atlas.cell, texture.atlas.gutter,
                                     texture.atlas.columns);
   if (!layout.ok()) return 1;
-  std::printf("%s: %zu faces; remesh %.1f s (%d attempts, %.1f dB): %u base faces, %d levels, "
-              "%zu finest faces\n",
-              path.c_str(), asset->mesh.faces.size(), remesh_seconds, input->remesh_attempts,
-              input->remesh_psnr_db, base_faces, levels,
-              remesh.hierarchy->faces(levels).size());
+  std::printf(
+      "%s: %zu faces; remesh %.1f s (%d attempts, %.1f dB): %u base faces, %d levels, "
+      "%zu finest faces\n",
+      path.c_str(), asset->mesh.faces.size(), remesh_seconds, input->remesh_attempts,
+      input->remesh_psnr_db, base_faces, levels, remesh.hierarchy->faces(levels).size());
   std::printf("  bake %.2f s (%d threads): atlas %u x %u, cell %u, gutter %u, %zu levels\n",
               bake_seconds, threads, layout->width(), layout->height(), texture.atlas.cell,
               texture.atlas.gutter, texture.maps[0].levels.size());
@@ -200,9 +201,8 @@ int Run(const std::string& path, int threads, int points, double fidelity_db,
   for (const TextureMap& map : texture.maps) {
     size_t all = 0;
     for (const std::string& level : map.levels) all += level.size();
-    std::printf("  %-20s %s: full %zu bytes, all levels %zu bytes\n",
-                RoleName(map.role), map.mime_type.c_str(),
-                map.levels.back().size(), all);
+    std::printf("  %-20s %s: full %zu bytes, all levels %zu bytes\n", RoleName(map.role),
+                map.mime_type.c_str(), map.levels.back().size(), all);
   }
   if (!dump.empty()) {
     for (const TextureMap& map : texture.maps) {
@@ -274,7 +274,8 @@ int Run(const std::string& path, int threads, int points, double fidelity_db,
     }
     size_t smeared = 0;
     for (const Face& f : finest.faces) {
-      smeared += vertex_chart[f[0]] != vertex_chart[f[1]] || vertex_chart[f[1]] != vertex_chart[f[2]];
+      smeared +=
+          vertex_chart[f[0]] != vertex_chart[f[1]] || vertex_chart[f[1]] != vertex_chart[f[2]];
     }
     std::printf("  UVs as a channel: %zu charts; %zu of %zu finest faces (%.2f%%) span charts\n",
                 chart_count, smeared, finest.faces.size(),
@@ -309,11 +310,13 @@ int main(int argc, char** argv) {
     }
   }
   if (paths.empty()) {
-    std::fprintf(stderr, "usage: texture_bake_bench ASSET... [--threads 2] [--points 100000] "
+    std::fprintf(stderr,
+                 "usage: texture_bake_bench ASSET... [--threads 2] [--points 100000] "
                  "[--fidelity DB] [--max-side 4096] [--dump DIR]\n");
     return 2;
   }
   int status = 0;
-  for (const std::string& path : paths) status |= Run(path, threads, points, fidelity_db, max_side, dump);
+  for (const std::string& path : paths)
+    status |= Run(path, threads, points, fidelity_db, max_side, dump);
   return status;
 }

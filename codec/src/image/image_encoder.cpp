@@ -108,11 +108,10 @@ Result<std::string> EncodeJpeg(const ImageView& image, const JpegEncodeOptions& 
   unsigned char* out = nullptr;
   unsigned long size = 0;
   const int pitch = static_cast<int>(image.width) * image.channels;
-  const int result =
-      tjCompress2(compressor.get(), image.pixels, static_cast<int>(image.width), pitch,
-                  static_cast<int>(image.height), image.channels == 4 ? TJPF_RGBA : TJPF_RGB,
-                  &out, &size, options.subsample_chroma ? TJSAMP_420 : TJSAMP_444,
-                  options.quality, TJFLAG_ACCURATEDCT);
+  const int result = tjCompress2(
+      compressor.get(), image.pixels, static_cast<int>(image.width), pitch,
+      static_cast<int>(image.height), image.channels == 4 ? TJPF_RGBA : TJPF_RGB, &out, &size,
+      options.subsample_chroma ? TJSAMP_420 : TJSAMP_444, options.quality, TJFLAG_ACCURATEDCT);
   if (result != 0) {
     if (out != nullptr) tjFree(out);
     return Status(StatusCode::kInternal,

@@ -121,9 +121,9 @@ TexelSource TexelCorrespondence::AtPoint(double x, double y, uint32_t& hint) con
     // rim, a sheet's two sides) the other side may be nearer than the side
     // the remesh face stands for. Take the nearest face turned the same way
     // if it is within a finest edge's length more.
-    const double reach = std::sqrt(hit.distance_squared) +
-                         std::sqrt(std::max({(b - a).squaredNorm(), (c - b).squaredNorm(),
-                                             (a - c).squaredNorm()}));
+    const double reach =
+        std::sqrt(hit.distance_squared) +
+        std::sqrt(std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()}));
     const metrics::TriangleBvh::Hit alike = bvh_.ClosestPointIf(
         point, metrics::TriangleBvh::kNoFace,
         [&](uint32_t face) { return FacesAlike(face, normal); }, reach * reach);
@@ -133,8 +133,8 @@ TexelSource TexelCorrespondence::AtPoint(double x, double y, uint32_t& hint) con
   source.finest_face = fine.face;
   if (hit.face == metrics::TriangleBvh::kNoFace) return source;
   const Face& f = original_faces_[hit.face];
-  const Vec3 w = ClosestBarycentric(hit.point, original_positions_[f[0]],
-                                    original_positions_[f[1]], original_positions_[f[2]]);
+  const Vec3 w = ClosestBarycentric(hit.point, original_positions_[f[0]], original_positions_[f[1]],
+                                    original_positions_[f[2]]);
   source.original_face = hit.face;
   source.w1 = static_cast<float>(w[1]);
   source.w2 = static_cast<float>(w[2]);

@@ -4,8 +4,9 @@
 // its barycentric coordinates descend the 1-to-4 splits to a face of the
 // remesh's finest level, whose point is projected onto the original
 // surface (onto its nearest face turned the same way as the remesh's face,
-// when one is nearly as near: thin parts have two sides close together). Every baked map samples the original there, so the geometric
-// work is done once for all of them.
+// when one is nearly as near: thin parts have two sides close together).
+// Every baked map samples the original there, so the geometric work is
+// done once for all of them.
 #ifndef MESHWAVE_PIPELINE_TEXEL_CORRESPONDENCE_H_
 #define MESHWAVE_PIPELINE_TEXEL_CORRESPONDENCE_H_
 

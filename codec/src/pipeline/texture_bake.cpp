@@ -17,9 +17,9 @@
 
 #include "core/parallel_for.h"
 #include "image/image_encoder.h"
+#include "pipeline/texel_correspondence.h"
 #include "texture/atlas_layout.h"
 #include "texture/material_sampler.h"
-#include "pipeline/texel_correspondence.h"
 #include "texture/texture_density.h"
 #include "texture/texture_pyramid.h"
 
@@ -46,9 +46,9 @@ Status CheckAsset(const MeshAsset& asset) {
   auto check_corners = [&](const auto& attribute, const char* what) -> Status {
     if (attribute.empty()) return Status::Ok();
     if (attribute.faces.size() != faces) {
-      return InvalidArgument(std::string("texture bake: ") + std::to_string(attribute.faces.size()) +
-                             " " + what + " corner triples for " + std::to_string(faces) +
-                             " faces");
+      return InvalidArgument(std::string("texture bake: ") +
+                             std::to_string(attribute.faces.size()) + " " + what +
+                             " corner triples for " + std::to_string(faces) + " faces");
     }
     for (const Face& f : attribute.faces) {
       for (uint32_t v : f) {
@@ -150,9 +150,10 @@ Result<AtlasPlan> PlanAtlas(uint32_t base_faces, double texels_wanted,
   auto complete = [&](uint32_t cell) -> std::optional<AtlasPlan> {
     AtlasPlan plan;
     plan.cell = cell;
-    plan.levels = options.levels > 0 ? options.levels : AutoLevels(cell, AtlasSide(base_faces, cell));
-    plan.gutter = options.gutter >= 0 ? static_cast<uint32_t>(options.gutter)
-                                      : (1u << (plan.levels - 1));
+    plan.levels =
+        options.levels > 0 ? options.levels : AutoLevels(cell, AtlasSide(base_faces, cell));
+    plan.gutter =
+        options.gutter >= 0 ? static_cast<uint32_t>(options.gutter) : (1u << (plan.levels - 1));
     if (cell < 4 * uint64_t{plan.gutter} + 8) return std::nullopt;
     return plan;
   };
@@ -180,8 +181,7 @@ Result<AtlasPlan> PlanAtlas(uint32_t base_faces, double texels_wanted,
     const std::optional<AtlasPlan> plan = complete(cell);
     if (!plan) continue;
     chosen = plan;
-    const double leg =
-        cell - 2.0 * plan->gutter - std::ceil(std::sqrt(2.0) * plan->gutter);
+    const double leg = cell - 2.0 * plan->gutter - std::ceil(std::sqrt(2.0) * plan->gutter);
     const double texels = base_faces * 0.5 * leg * leg;
     // The nearest power of two: stop once within a factor sqrt(2) below.
     if (texels * std::sqrt(2.0) >= texels_wanted) break;
@@ -206,7 +206,8 @@ struct Maps {
   BakedImage normal;      // RGB
 };
 
-BakedImage Blank(uint32_t width, uint32_t height, int channels, std::initializer_list<uint8_t> fill) {
+BakedImage Blank(uint32_t width, uint32_t height, int channels,
+                 std::initializer_list<uint8_t> fill) {
   BakedImage image;
   image.width = width;
   image.height = height;
@@ -244,8 +245,8 @@ Maps BakeMaps(const MeshAsset& asset, const SemiRegularMesh& remesh, const Atlas
   if (plan.metallic_roughness) maps.orm = Blank(width, height, 3, {255, 255, 255});
   if (plan.emissive) maps.emissive = Blank(width, height, 3, {0, 0, 0});
   if (plan.normal) maps.normal = Blank(width, height, 3, {128, 128, 255});
-  const TexelCorrespondence correspondence(layout, remesh, asset.mesh.positions,
-                                           asset.mesh.faces, threads);
+  const TexelCorrespondence correspondence(layout, remesh, asset.mesh.positions, asset.mesh.faces,
+                                           threads);
   const uint32_t used_cells = (layout.base_faces() + 1) / 2;
   ParallelFor(
       used_cells, threads,
@@ -274,8 +275,10 @@ Maps BakeMaps(const MeshAsset& asset, const SemiRegularMesh& remesh, const Atlas
                 if (!plan.occlusion) maps.orm.pixels[3 * texel] = 255;
               }
               if (plan.emissive) {
-                const Eigen::Vector3f e = sampler.Emissive(s.original_face, w) / plan.emissive_scale;
-                for (int c = 0; c < 3; ++c) maps.emissive.pixels[3 * texel + c] = LinearToSrgbByte(e[c]);
+                const Eigen::Vector3f e =
+                    sampler.Emissive(s.original_face, w) / plan.emissive_scale;
+                for (int c = 0; c < 3; ++c)
+                  maps.emissive.pixels[3 * texel + c] = LinearToSrgbByte(e[c]);
               }
               if (plan.normal) {
                 if (s.finest_face != frame_face) {
@@ -333,8 +336,8 @@ Result<std::optional<BakedTexture>> BakeTexture(const MeshAsset& asset,
     return InvalidArgument("texture bake: JPEG quality " + std::to_string(options.jpeg_quality) +
                            " (1..100)");
   }
-  if (options.cell != 0 && (options.cell < 16 || options.cell > 4096 ||
-                            (options.cell & (options.cell - 1)) != 0)) {
+  if (options.cell != 0 &&
+      (options.cell < 16 || options.cell > 4096 || (options.cell & (options.cell - 1)) != 0)) {
     return InvalidArgument("texture bake: cell of " + std::to_string(options.cell) +
                            " texels (a power of two from 16 to 4096)");
   }
@@ -371,12 +374,12 @@ Result<std::optional<BakedTexture>> BakeTexture(const MeshAsset& asset,
   jobs.push_back({TextureRole::kBaseColor, TexelKind::kSrgbColor, std::move(maps.base_color),
                   translucent, true});
   if (plan.metallic_roughness) {
-    jobs.push_back({TextureRole::kMetallicRoughness, TexelKind::kLinear, std::move(maps.orm),
-                    false, false});
+    jobs.push_back(
+        {TextureRole::kMetallicRoughness, TexelKind::kLinear, std::move(maps.orm), false, false});
   }
   if (plan.emissive) {
-    jobs.push_back({TextureRole::kEmissive, TexelKind::kSrgbColor, std::move(maps.emissive),
-                    false, true});
+    jobs.push_back(
+        {TextureRole::kEmissive, TexelKind::kSrgbColor, std::move(maps.emissive), false, true});
   }
   if (plan.normal) {
     jobs.push_back({TextureRole::kNormal, TexelKind::kNormal, std::move(maps.normal), true, false});

@@ -52,8 +52,7 @@ uint8_t LinearToSrgbByte(float linear) {
 Eigen::Vector4f SampleImage(const AssetImage& image, WrapMode wrap_u, WrapMode wrap_v,
                             Eigen::Vector2f uv, bool srgb) {
   const int64_t width = image.width, height = image.height;
-  if (image.rgba.size() != static_cast<size_t>(width * height * 4) || width == 0 ||
-      height == 0) {
+  if (image.rgba.size() != static_cast<size_t>(width * height * 4) || width == 0 || height == 0) {
     return Eigen::Vector4f::Ones();
   }
   const double u = std::isfinite(uv[0]) ? std::clamp<double>(uv[0], -kUvBound, kUvBound) : 0;
@@ -108,8 +107,7 @@ bool TriangleTangentFrame(const std::array<Vec3, 3>& p, const std::array<Eigen::
 MaterialSampler::MaterialSampler(const MeshAsset& asset) : asset_(asset) {}
 
 const Material& MaterialSampler::MaterialOf(uint32_t face) const {
-  if (face < asset_.face_material.size() &&
-      asset_.face_material[face] < asset_.materials.size()) {
+  if (face < asset_.face_material.size() && asset_.face_material[face] < asset_.materials.size()) {
     return asset_.materials[asset_.face_material[face]];
   }
   return default_material_;

@@ -45,7 +45,8 @@ BakedImage HalveImage(const BakedImage& image, TexelKind kind) {
       for (size_t c = 0; c < channels; ++c) {
         const bool srgb = kind == TexelKind::kSrgbColor && c < 3;
         target[c] = srgb ? LinearToSrgbByte(mean[c])
-                         : static_cast<uint8_t>(std::lround(std::fmin(std::fmax(mean[c], 0.0f), 1.0f) * 255));
+                         : static_cast<uint8_t>(
+                               std::lround(std::fmin(std::fmax(mean[c], 0.0f), 1.0f) * 255));
       }
     }
   }

@@ -16,10 +16,10 @@
 #include "image/image_decoder.h"
 #include "meshwave/subdivision.h"
 #include "pipeline/color_transfer.h"
+#include "pipeline/texel_correspondence.h"
 #include "test_data.h"
 #include "texture/atlas_layout.h"
 #include "texture/material_sampler.h"
-#include "pipeline/texel_correspondence.h"
 
 namespace meshwave {
 namespace {
@@ -78,8 +78,7 @@ TEST(TextureBakeTest, DescendsToTheFinestFaceThePointLiesOn) {
     const BaseTriangle base = FinestFaceInBase(4, fine.face);
     EXPECT_EQ(base.base_face, f);
     const Vec3 back = fine.barycentric[0] * base.corners[0] +
-                      fine.barycentric[1] * base.corners[1] +
-                      fine.barycentric[2] * base.corners[2];
+                      fine.barycentric[1] * base.corners[1] + fine.barycentric[2] * base.corners[2];
     EXPECT_LT((back - b).norm(), 1e-12);
   }
 }
@@ -92,9 +91,8 @@ TEST(TextureBakeTest, GutterTexelsTakeTheNearestPointOfTheirTriangle) {
       const AtlasOwner owner = OwnerOfAtlasPoint(*layout, x + 0.5, y + 0.5);
       if (owner.base_face >= 5) continue;  // the unused half of the last cell
       // The owner's triangle is the nearest one and the point its nearest.
-      const AtlasPoint q =
-          layout->Map(owner.base_face, owner.barycentric[0], owner.barycentric[1],
-                      owner.barycentric[2]);
+      const AtlasPoint q = layout->Map(owner.base_face, owner.barycentric[0], owner.barycentric[1],
+                                       owner.barycentric[2]);
       const double d = std::hypot(q.x - x - 0.5, q.y - y - 0.5);
       ASSERT_EQ(owner.base_face / 2, (y / 32) * layout->columns() + x / 32);
       if (d > 1e-9) {
@@ -128,9 +126,9 @@ TEST(TextureBakeTest, BakedTexelsMatchTheOriginalTextureAndGuttersRepeatEdges) {
   EXPECT_EQ(map.role, TextureRole::kBaseColor);
   EXPECT_EQ(map.mime_type, "image/jpeg");
   const DecodedImage image = Decode(map.levels.back());
-  auto layout = AtlasLayout::Create(static_cast<uint32_t>(mesh.hierarchy->faces(0).size()),
-                                    texture.atlas.cell, texture.atlas.gutter,
-                                    texture.atlas.columns);
+  auto layout =
+      AtlasLayout::Create(static_cast<uint32_t>(mesh.hierarchy->faces(0).size()),
+                          texture.atlas.cell, texture.atlas.gutter, texture.atlas.columns);
   ASSERT_TRUE(layout.ok());
   ASSERT_EQ(image.width, layout->width());
   ASSERT_EQ(image.height, layout->height());
@@ -188,8 +186,8 @@ TEST(TextureBakeTest, BakedTexelsMatchTheOriginalTextureAndGuttersRepeatEdges) {
     for (uint32_t x = 0; x < image.width; ++x) {
       const AtlasOwner owner = OwnerOfAtlasPoint(*layout, x + 0.5, y + 0.5);
       if (owner.base_face >= layout->base_faces()) continue;
-      const AtlasPoint q = layout->Map(owner.base_face, owner.barycentric[0],
-                                       owner.barycentric[1], owner.barycentric[2]);
+      const AtlasPoint q = layout->Map(owner.base_face, owner.barycentric[0], owner.barycentric[1],
+                                       owner.barycentric[2]);
       if (std::hypot(q.x - x - 0.5, q.y - y - 0.5) < 0.5) continue;  // not a gutter texel
       // The inside texel nearest to q, a little towards the triangle's centre.
       const auto t = layout->Triangle(owner.base_face);
@@ -197,9 +195,10 @@ TEST(TextureBakeTest, BakedTexelsMatchTheOriginalTextureAndGuttersRepeatEdges) {
       const double ix = q.x + 0.75 * (cx - q.x) / std::hypot(cx - q.x, cy - q.y);
       const double iy = q.y + 0.75 * (cy - q.y) / std::hypot(cx - q.x, cy - q.y);
       const uint8_t* g = &image.rgba[(size_t{y} * image.width + x) * 4];
-      const uint8_t* in = &image.rgba[(static_cast<size_t>(iy) * image.width +
-                                       static_cast<size_t>(ix)) * 4];
-      for (int c = 0; c < 3; ++c) gutter_error += std::abs(static_cast<double>(g[c]) - static_cast<double>(in[c]));
+      const uint8_t* in =
+          &image.rgba[(static_cast<size_t>(iy) * image.width + static_cast<size_t>(ix)) * 4];
+      for (int c = 0; c < 3; ++c)
+        gutter_error += std::abs(static_cast<double>(g[c]) - static_cast<double>(in[c]));
       gutter_texels += 3;
     }
   }
@@ -272,8 +271,8 @@ TEST(TextureBakeTest, BakesDifferingScalarsAndKeepsCommonOnes) {
   EXPECT_EQ(FindMap(texture, TextureRole::kNormal), nullptr);
   EXPECT_EQ(FindMap(texture, TextureRole::kEmissive), nullptr);
   const DecodedImage image = Decode(orm->levels.back());
-  auto layout = AtlasLayout::Create(static_cast<uint32_t>(remesh->hierarchy->faces(0).size()),
-                                    16, texture.atlas.gutter, texture.atlas.columns);
+  auto layout = AtlasLayout::Create(static_cast<uint32_t>(remesh->hierarchy->faces(0).size()), 16,
+                                    texture.atlas.gutter, texture.atlas.columns);
   ASSERT_TRUE(layout.ok());
   int rough = 0, smooth = 0, metallic = 0, owned = 0;
   for (size_t i = 0; i < image.rgba.size(); i += 4) {
@@ -340,8 +339,8 @@ TEST(TextureBakeTest, CarriesNormalsIntoTheAtlasTangentFrame) {
       std::array<Eigen::Vector2d, 3> uv;
       for (int k = 0; k < 3; ++k) {
         p[k] = mesh.positions[f[k]];
-        const AtlasPoint a = layout->Map(base.base_face, base.corners[k][0], base.corners[k][1],
-                                         base.corners[k][2]);
+        const AtlasPoint a =
+            layout->Map(base.base_face, base.corners[k][0], base.corners[k][1], base.corners[k][2]);
         uv[k] = {a.x / layout->width(), a.y / layout->height()};
       }
       TangentFrame frame;
