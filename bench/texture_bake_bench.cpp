@@ -11,7 +11,7 @@
 // across a seam).
 //
 //   texture_bake_bench ASSET... [--threads 2] [--points 100000] [--fidelity DB]
-//                      [--max-side 4096] [--dump DIR]
+//                      [--max-side 4096] [--cell N] [--dump DIR]
 //
 // --fidelity is ToSemiRegular's (default: the encoder's, kDefaultFidelityDb;
 // 0 remeshes once at the first density). --dump writes each map's full level to
@@ -147,7 +147,7 @@ const char* RoleName(meshwave::TextureRole role) {
 }
 
 int Run(const std::string& path, int threads, int points, double fidelity_db, uint32_t max_side,
-        const std::string& dump) {
+        uint32_t cell, const std::string& dump) {
   using namespace meshwave;
   auto asset = ReadMeshAsset(path);
   auto mesh = ReadMesh(path);
@@ -172,6 +172,7 @@ int Run(const std::string& path, int threads, int points, double fidelity_db, ui
   TextureBakeOptions options;
   options.threads = threads;
   options.max_side = max_side;
+  options.cell = cell;
   TextureBakeNotes notes;
   start = std::chrono::steady_clock::now();
   auto baked = BakeTexture(*asset, remesh, options, &notes);
@@ -291,6 +292,7 @@ int main(int argc, char** argv) {
   int threads = 2, points = 100000;
   double fidelity_db = meshwave::kDefaultFidelityDb;
   uint32_t max_side = 4096;
+  uint32_t cell = 0;
   std::string dump;
   std::vector<std::string> paths;
   for (int i = 1; i < argc; ++i) {
@@ -303,6 +305,8 @@ int main(int argc, char** argv) {
       fidelity_db = std::atof(argv[++i]);
     } else if (arg == "--max-side" && i + 1 < argc) {
       max_side = static_cast<uint32_t>(std::atoi(argv[++i]));
+    } else if (arg == "--cell" && i + 1 < argc) {
+      cell = static_cast<uint32_t>(std::atoi(argv[++i]));
     } else if (arg == "--dump" && i + 1 < argc) {
       dump = argv[++i];
     } else {
@@ -312,11 +316,11 @@ int main(int argc, char** argv) {
   if (paths.empty()) {
     std::fprintf(stderr,
                  "usage: texture_bake_bench ASSET... [--threads 2] [--points 100000] "
-                 "[--fidelity DB] [--max-side 4096] [--dump DIR]\n");
+                 "[--fidelity DB] [--max-side 4096] [--cell N] [--dump DIR]\n");
     return 2;
   }
   int status = 0;
   for (const std::string& path : paths)
-    status |= Run(path, threads, points, fidelity_db, max_side, dump);
+    status |= Run(path, threads, points, fidelity_db, max_side, cell, dump);
   return status;
 }

@@ -79,7 +79,7 @@ bool HasImage(const MeshAsset& asset, const TextureRef& ref) {
 
 // What is baked, from the materials the faces use.
 struct BakePlan {
-  std::vector<const Material*> materials;  // used, in index order
+  std::vector<const Material*> materials;  // used, in order of first use
   bool any_texture = false;
   bool alike = true;
   bool metallic_roughness = false;
