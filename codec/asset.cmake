@@ -39,6 +39,7 @@ add_library(meshwave_asset STATIC
   src/image/png_decoder.cpp
   src/image/jpeg_decoder.cpp
   src/image/webp_decoder.cpp
+  src/image/image_encoder.cpp
 )
 # tinygltf's implementation must see TINYGLTF_IMPLEMENTATION before any
 # other inclusion of its header: never in a unity batch.
