@@ -140,6 +140,12 @@ Result<EncodedMesh> EncodeOriginal(const std::vector<OriginalPart>& parts, const
   };
   MW_ASSIGN_OR_RETURN(AssetEncoding encoded, EncodeAsset(files, main, pipeline));
   const EncodedStream& stream = encoded.stream;
+  for (const std::string& note : encoded.bake_notes) spdlog::warn("{}: {}", main, note);
+  if (stream.header.texture) {
+    const auto& finest = stream.header.texture->maps.front().levels.back();
+    spdlog::info("{}: textures baked into a {} x {} atlas, {} map(s)", main, finest.width,
+                 finest.height, stream.header.texture->maps.size());
+  }
   spdlog::info("{}: encoded {} packets in {:.1f} s", main, stream.packets.size(), Since(step));
   EncodedMesh out;
   if (fidelity) {

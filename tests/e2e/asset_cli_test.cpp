@@ -95,17 +95,31 @@ TEST(AssetCliTest, EncodeNamesWhatTheStreamLeavesOut) {
   const auto ring = testing::SampleDataDir() / "textured/ring.glb";
   auto r = RunCli({"encode", ring.string(), (dir / "ring.mwv").string()});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.err.find("warning: " + ring.string() +
-                       ": the stream holds the geometry and vertex colours; not coded yet: "
-                       "UVs, 2 materials, 1 texture image\n"),
-            std::string::npos)
-      << r.err;
+  // Its UVs, two materials, texture and colours are baked: nothing left
+  // to name, and the maps are listed.
+  EXPECT_EQ(r.err.find("not coded"), std::string::npos) << r.err;
+  EXPECT_NE(r.out.find("texture: atlas "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("base colour"), std::string::npos) << r.out;
 
   // Vertex colours are coded: nothing left to name.
   const auto ball = testing::SampleDataDir() / "textured/hue_ball.ply";
   r = RunCli({"encode", ball.string(), (dir / "ball.mwv").string()});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(r.err.find("not coded yet"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("not coded"), std::string::npos) << r.err;
+  EXPECT_EQ(r.out.find("texture: "), std::string::npos) << r.out;
+
+  // UVs without a texture: named.
+  {
+    std::ofstream obj(dir / "uv.obj");
+    obj << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nvt 0 0\nvt 1 0\nvt 0 1\n"
+           "f 1/1 3/3 2/2\nf 1/1 2/2 4/3\nf 1/1 4/3 3/3\nf 2/2 3/3 4/3\n";
+  }
+  r = RunCli({"encode", (dir / "uv.obj").string(), (dir / "uv.mwv").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("uv.obj: the stream holds the geometry; not coded: UVs (no texture "
+                       "uses them)"),
+            std::string::npos)
+      << r.err;
 
   // A texture that cannot be read: the geometry is encoded, and said so.
   for (const char* name : {"die.obj", "die.mtl"}) {
@@ -124,7 +138,7 @@ TEST(AssetCliTest, EncodeNamesWhatTheStreamLeavesOut) {
   r = RunCli({"encode", testing::SampleMesh("holes.off").string(),
               (dir / "holes.mwv").string()});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(r.err.find("not coded yet"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("not coded"), std::string::npos) << r.err;
 }
 
 // Per vertex of the asset's mesh, the colour of a corner at it (the

@@ -20,6 +20,7 @@
 #include "meshwave/mesh.h"
 #include "meshwave/semiregular.h"
 #include "meshwave/semiregular_input.h"
+#include "meshwave/texture.h"
 #include "stream.pb.h"
 
 namespace meshwave::cli {
@@ -38,7 +39,39 @@ struct EncodeArgs {
   uint32_t sawt_alpha = EncodeOptions{}.sawt_alpha;
   double sawt_lambda = EncodeOptions{}.sawt_lambda_scale;
   int threads = 0;
+  TextureBakeOptions bake;
 };
+
+// The first texture packet's id: texture packets close the index.
+size_t TexturePacketsStart(const StreamHeader& header) {
+  size_t first = header.packets.length.size();
+  if (!header.texture) return first;
+  for (const StreamHeader::Texture::Map& map : header.texture->maps) {
+    for (const StreamHeader::Texture::Level& level : map.levels) {
+      first = std::min<size_t>(first, level.packet);
+    }
+  }
+  return first;
+}
+
+// "texture: atlas 1024 x 1024 (cells of 64 texels); base colour image/jpeg
+// 3 levels 98,304 bytes, ...": what the bake made.
+void PrintTexture(const EncodedStream& stream) {
+  const StreamHeader::Texture& texture = *stream.header.texture;
+  const auto& finest = texture.maps.front().levels.back();
+  std::printf("texture: atlas %u x %u (cells of %u texels, gutter %u)", finest.width,
+              finest.height, texture.cell, texture.gutter);
+  for (const StreamHeader::Texture::Map& map : texture.maps) {
+    uint64_t bytes = 0;
+    for (const StreamHeader::Texture::Level& level : map.levels) {
+      bytes += stream.packets[level.packet].size();
+    }
+    std::printf("; %s %s, %zu levels, %llu bytes",
+                std::string(TextureRoleName(static_cast<TextureRole>(map.role))).c_str(),
+                map.mime_type.c_str(), map.levels.size(), static_cast<unsigned long long>(bytes));
+  }
+  std::printf("\n");
+}
 
 SemiRegularInputOptions SemiRegularOptions(const EncodeArgs& args) {
   SemiRegularInputOptions options;
@@ -114,6 +147,7 @@ Status Run(const EncodeArgs& args) {
   options.threads = args.threads;
   AssetEncodeOptions pipeline;
   pipeline.encode = options;
+  pipeline.bake = args.bake;
   pipeline.semiregular = SemiRegularOptions(args);
   pipeline.source_name = args.in;
   pipeline.keep_input_mesh = args.fidelity_db > 0;  // ReportFidelity measures against it
@@ -157,15 +191,18 @@ Status Run(const EncodeArgs& args) {
         channel_packets += static_cast<size_t>(top + 1);
       }
     }
+    // ... and before the texture's (docs/FORMAT.md 2.4).
+    const size_t texture_packets = stream.packets.size() - TexturePacketsStart(stream.header);
+    const size_t geometry_packets = stream.packets.size() - texture_packets - channel_packets;
     uint64_t channel_bytes = 0;
-    const size_t geometry_packets = stream.packets.size() - channel_packets;
-    for (size_t id = geometry_packets; id < stream.packets.size(); ++id) {
+    for (size_t id = geometry_packets; id < geometry_packets + channel_packets; ++id) {
       channel_bytes += stream.packets[id].size();
     }
-    std::printf("colour channel: %zu packets, %llu bytes (precision %d)\n",
-                stream.packets.size() - geometry_packets,
+    std::printf("colour channel: %zu packets, %llu bytes (precision %d)\n", channel_packets,
                 static_cast<unsigned long long>(channel_bytes), options.color_precision);
   }
+  if (stream.header.texture) PrintTexture(stream);
+  for (const std::string& note : encoded.bake_notes) std::cerr << "warning: " << note << "\n";
   if (!stream.sawt_filter_usage.empty()) {
     // The field as the header carries it: tag, length and message.
     const StreamHeader::SawtChoices& sawt = *stream.header.transform.sawt;
@@ -210,6 +247,15 @@ void AddEncodeCommand(CLI::App& app, int& exit_code) {
   AddFidelityOptions(cmd, args->fidelity_db, args->max_vertex_ratio,
                      "the complete stream (the precision follows it too)");
   AddThreadsOption(cmd, args->threads);
+  cmd->add_option("--texture-max-side", args->bake.max_side,
+                  "Textured inputs: the baked atlas's texels a side at most (its size follows "
+                  "the input's texel density)")
+      ->check(CLI::Range(64, 16384))
+      ->capture_default_str();
+  cmd->add_option("--texture-quality", args->bake.jpeg_quality,
+                  "Textured inputs: JPEG quality of the baked colour maps (normal maps are PNG)")
+      ->check(CLI::Range(1, 100))
+      ->capture_default_str();
   cmd->callback([args, cmd, &exit_code] {
     args->precision_given = cmd->count("--precision") > 0;
     const Status s = Run(*args);

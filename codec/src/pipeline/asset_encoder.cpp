@@ -1,6 +1,7 @@
 #include "meshwave/asset_encoder.h"
 
 #include <cctype>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -8,6 +9,7 @@
 #include "asset/asset_readers.h"
 #include "meshwave/attribute_transfer.h"
 #include "meshwave/mesh_io.h"
+#include "meshwave/texture_bake.h"
 
 namespace meshwave {
 namespace {
@@ -36,9 +38,14 @@ Result<TriMesh> GeometryOnly(FileSet& files, std::string_view main_file,
   return ParseMesh(bytes, format, source_name);
 }
 
+// Whether the textures are baked: some image is used (BakeTexture decides
+// which slots) or the materials differ. Their scalars alone (one material,
+// no image) are not carried: AttributesLeftOut names them.
+bool MayBake(const MeshAsset& asset) { return !asset.images.empty() || asset.materials.size() > 1; }
+
 // Whether a step after remeshing samples the input's surface (so its
-// geometry must outlive ToSemiRegular): vertex colours today.
-bool NeedsInputSurface(const MeshAsset& asset) { return !asset.color.empty(); }
+// geometry must outlive ToSemiRegular): vertex colours and the bake.
+bool NeedsInputSurface(const MeshAsset& asset) { return !asset.color.empty() || MayBake(asset); }
 
 }  // namespace
 
@@ -51,21 +58,26 @@ std::string AttributesLeftOut(std::string_view file, const Result<MeshAsset>& as
   auto count = [](size_t n, const char* one, const char* many) {
     return std::to_string(n) + " " + (n == 1 ? one : many);
   };
+  const bool baked = MayBake(*asset);
   std::vector<std::string> parts;
-  if (!asset->uv.empty()) parts.push_back("UVs");
-  if (!asset->materials.empty()) {
-    parts.push_back(count(asset->materials.size(), "material", "materials"));
-  }
-  if (!asset->images.empty()) {
-    parts.push_back(count(asset->images.size(), "texture image", "texture images"));
+  if (!baked) {
+    // No texture to bake: UVs and a lone material's scalars have nothing
+    // to travel with.
+    if (!asset->uv.empty()) parts.push_back("UVs (no texture uses them)");
+    if (!asset->materials.empty()) {
+      parts.push_back(count(asset->materials.size(), "material", "materials") +
+                      " without a texture");
+    }
   }
   if (!asset->notes.empty()) {
     parts.push_back(count(asset->notes.size(), "feature", "features") +
                     " the reader leaves out (meshwave info lists them)");
   }
   if (parts.empty()) return "";
-  std::string line = name + ": the stream holds the geometry" +
-                     (asset->color.empty() ? "" : " and vertex colours") + "; not coded yet: ";
+  std::string held = "the geometry";
+  if (!asset->color.empty()) held += baked ? ", vertex colours" : " and vertex colours";
+  if (baked) held += " and the textures baked onto the remesh";
+  std::string line = name + ": the stream holds " + held + "; not coded: ";
   for (size_t i = 0; i < parts.size(); ++i) line += (i == 0 ? "" : ", ") + parts[i];
   return line;
 }
@@ -102,11 +114,20 @@ Result<AssetEncoding> EncodeAsset(FileSet& files, std::string_view main_file,
   MW_ASSIGN_OR_RETURN(VertexAttributes attributes,
                       TransferAttributes(asset, out.semiregular.mesh, options.encode.threads));
 
-  // 4. Texture bake: the place where the asset's textures and materials
-  // (asset.uv, asset.materials, asset.images) are baked onto the
-  // semi-regular mesh, BakeTexture(asset, out.semiregular, options), and
-  // handed to EncodeMesh beside the colours. Until it is wired in, they
-  // are what AssetRead::left_out names.
+  // 4. Textures and materials baked onto the remesh's atlas; vertex
+  // colours are baked into the base colour map then, not sent twice.
+  if (MayBake(asset)) {
+    TextureBakeNotes notes;
+    TextureBakeOptions bake = options.bake;
+    bake.threads = options.encode.threads;
+    MW_ASSIGN_OR_RETURN(std::optional<BakedTexture> texture,
+                        BakeTexture(asset, out.semiregular.mesh, bake, &notes));
+    out.bake_notes = std::move(notes.lines);
+    if (texture) {
+      attributes.texture = std::move(*texture);
+      attributes.colors.clear();
+    }
+  }
 
   // 5. Encode.
   MW_ASSIGN_OR_RETURN(out.stream,

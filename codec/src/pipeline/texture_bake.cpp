@@ -31,7 +31,7 @@ namespace {
 // of 16 leaves 62%: the gutter is 2^(levels - 1) texels at full size, so
 // the coarsest cell fixes the share at every level.
 constexpr uint32_t kMinCoarsestCell = 16;
-constexpr uint32_t kMaxCoarsestSide = 256;
+constexpr uint32_t kMaxCoarsestSide = 64;  // small atlases still arrive in two steps
 
 Status CheckAsset(const MeshAsset& asset) {
   const size_t faces = asset.mesh.faces.size();

@@ -101,13 +101,21 @@ TEST(AssetEncoderTest, MissingSidecarFilesLeaveTheGeometryAndSaySo) {
 TEST(AssetEncoderTest, TheLeftOutLineNamesWhatTheStreamDoesNotCarry) {
   MeshAsset asset;
   EXPECT_EQ(AttributesLeftOut("a.ply", asset), "");
+  // UVs and a material but no texture: nothing to bake them into.
   asset.uv.faces = {{0, 0, 0}};
+  asset.materials.resize(1);
+  EXPECT_EQ(AttributesLeftOut("a.obj", asset),
+            "a.obj: the stream holds the geometry; not coded: UVs (no texture uses them), "
+            "1 material without a texture");
+  // A texture: baked, with the colours; only the reader's notes are left.
   asset.materials.resize(2);
   asset.images.resize(1);
+  EXPECT_EQ(AttributesLeftOut("a.glb", asset), "");
   asset.color.faces = {{0, 0, 0}};
+  asset.notes = {"a.glb: 1 camera not carried"};
   EXPECT_EQ(AttributesLeftOut("a.glb", asset),
-            "a.glb: the stream holds the geometry and vertex colours; not coded yet: UVs, "
-            "2 materials, 1 texture image");
+            "a.glb: the stream holds the geometry, vertex colours and the textures baked onto "
+            "the remesh; not coded: 1 feature the reader leaves out (meshwave info lists them)");
 }
 
 }  // namespace

@@ -1,8 +1,9 @@
 // From an asset's files to a stream: the one pipeline `meshwave encode`
 // and the server's ingest share. The asset is read (ParseMeshAsset), its
 // geometry made semi-regular (ToSemiRegular: remeshed when it is not),
-// its attributes sampled onto that mesh (TransferAttributes) and all of it
-// encoded (EncodeMesh). What the stream cannot carry yet is said in one
+// its attributes sampled onto that mesh (TransferAttributes), its textures
+// baked onto the remesh's atlas (BakeTexture) and all of it encoded
+// (EncodeMesh). What the stream cannot carry yet is said in one
 // line, never dropped silently.
 #ifndef MESHWAVE_ASSET_ENCODER_H_
 #define MESHWAVE_ASSET_ENCODER_H_
@@ -10,6 +11,7 @@
 #include <functional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "meshwave/encoder.h"
 #include "meshwave/file_set.h"
@@ -17,6 +19,7 @@
 #include "meshwave/mesh_asset.h"
 #include "meshwave/semiregular_input.h"
 #include "meshwave/status.h"
+#include "meshwave/texture_bake.h"
 
 namespace meshwave {
 
@@ -29,9 +32,9 @@ struct AssetRead {
   size_t vertices = 0;
   size_t faces = 0;
   bool colors = false;  // the asset has vertex colours (the stream carries them)
-  // "FILE: the stream holds the geometry and vertex colours; not coded
-  // yet: UVs, 1 material, 1 texture image": what the input holds that the
-  // stream does not. Empty when it holds nothing more.
+  // "FILE: the stream holds the geometry and vertex colours; not coded:
+  // UVs (no texture uses them), 1 material without a texture": what the
+  // input holds that the stream does not. Empty when it holds nothing more.
   std::string left_out;
 };
 
@@ -40,6 +43,8 @@ struct AssetEncodeOptions {
   SemiRegularInputOptions semiregular;
   // name, transform, precision, threads, ...: as EncodeMesh takes them.
   EncodeOptions encode;
+  // The texture bake's atlas and pyramid (its threads are encode.threads).
+  TextureBakeOptions bake;
   // The file as the user named it ("data/cow.obj"), for messages; empty:
   // the main file's name in the set.
   std::string source_name;
@@ -59,6 +64,9 @@ struct AssetEncoding {
   // mesh is released once encoded (the stream's is the encoder's copy).
   SemiRegularInput semiregular;
   TriMesh input_mesh;  // with keep_input_mesh; empty otherwise
+  // What the texture bake could not carry, one line each (material
+  // extensions, several materials merged, ...): for the log.
+  std::vector<std::string> bake_notes;
 };
 
 // Encodes the asset whose main file is `main_file` in `files` (.glb,

@@ -27,7 +27,7 @@ struct TextureBakeOptions {
   uint32_t cell = 0;
   uint32_t max_side = 4096;  // atlas texels a side at most (auto cell only)
   // Pyramid levels (full size included). 0: halve until the coarsest level
-  // is at most 256 texels a side or its cell would drop below 16 texels.
+  // is at most 64 texels a side or its cell would drop below 16 texels.
   int levels = 0;
   // Gutter texels around each triangle at full size. -1: 2^(levels - 1),
   // so the coarsest level keeps one.
