@@ -36,6 +36,9 @@ class Decoder {
     return Float32Array.from([0, 0, 0, 1, 0, 0, 0, 1, 0, t, t, 1]);
   }
   faces() { return Uint32Array.from([0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3]); }
+  hasColors() { return false; }
+  colors() { return new Float32Array(0); }
+  hasTexture() { return false; }
   level() { return 0; }
   detailLevels() { return 0; }
   levels() { return 0; }

@@ -12,7 +12,7 @@
 // and for parts an unsplit packet, a part out of range, a part twice, a
 // part before its dependency, each throw an Error carrying the decoder's
 // message.
-import { readFileSync } from 'node:fs';
+import { existsSync, readFileSync } from 'node:fs';
 import { join, resolve } from 'node:path';
 import { pathToFileURL } from 'node:url';
 
@@ -100,6 +100,29 @@ function compareCase(dec, dir, c, what) {
   expect(sameBits(dec.faces(), view(join(dir, c.name + '.faces'), Uint32Array)),
          what + ': faces');
   expect(dec.faces(0).length < dec.faces().length, what + ': fewer faces at level 0');
+  const colours = join(dir, c.name + '.col64');
+  expect(dec.hasColors() === existsSync(colours), what + ': hasColors');
+  if (existsSync(colours)) {
+    const native64 = view(colours, Float64Array);
+    expect(sameBits(dec.colors64(), native64), what + ': float64 colours bit for bit');
+    expect(sameBits(dec.colors(), Float32Array.from(native64)), what + ': float32 colours');
+  } else {
+    expect(dec.colors().length === 0, what + ': no colours without a colour channel');
+  }
+  const uvs = join(dir, c.name + '.uv32');
+  expect(dec.hasTexture() === existsSync(uvs), what + ': hasTexture');
+  if (existsSync(uvs)) {
+    expect(sameBits(dec.textureCoordinates(), view(uvs, Float32Array)),
+           what + ': texture coordinates bit for bit');
+  } else {
+    expect(dec.textureCoordinates().length === 0, what + ': no UVs without a texture');
+  }
+  const map = join(dir, c.name + '.map0');
+  const image = dec.textureImage(0);
+  expect((image !== null) === existsSync(map), what + ': a base colour level held');
+  if (image !== null && existsSync(map)) {
+    expect(sameBits(image.bytes, view(map, Uint8Array)), what + ': the base colour level\'s bytes');
+  }
   expect(dec.level() === c.level, what + ': level ' + dec.level() + ' vs ' + c.level);
   expect(dec.detailLevels() === c.detailLevels,
          what + ': detailLevels ' + dec.detailLevels() + ' vs ' + c.detailLevels);

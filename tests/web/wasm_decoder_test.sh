@@ -1,9 +1,9 @@
 #!/bin/sh
 # The WebAssembly decoder gives the native decoder's meshes bit for bit:
 #   wasm_decoder_test.sh MESHWAVE_CLI WASM_REFERENCE MODULE.js SAMPLE_DIR SHARED_DIR
-# encodes every sample mesh (SAMPLE_DIR/*.off, *.ply: the repository's
-# data/) and every shared development mesh (SHARED_DIR; skipped with one
-# line when absent) with the native `meshwave encode`, and the samples
+# encodes every sample mesh (SAMPLE_DIR/*.off, *.ply and the coloured and
+# textured textured/*.ply, *.obj: the repository's data/) and every shared development
+# mesh (SHARED_DIR; skipped with one line when absent) with the native `meshwave encode`, and the samples
 # again with small precincts (many split packets: docs/FORMAT.md 2.2), takes
 # the fuzz fixtures' containers (tests/fuzz/data/*.mwv, split too), has
 # wasm_reference write the native decoder's output at five budgets in the
@@ -43,6 +43,11 @@ for mesh in "$samples"/*.off "$samples"/*.ply; do
     add "$mesh"
     add "$mesh" _precincts --precinct-size 256 --split-bytes 8
   fi
+done
+# The coloured and textured samples: colours, UVs and texture levels are
+# compared too.
+for mesh in "$samples"/textured/*.ply "$samples"/textured/*.obj; do
+  if [ -e "$mesh" ]; then add "$mesh"; fi
 done
 for container in "$here"/../fuzz/data/*.mwv; do
   name=$(basename "$container" .mwv)

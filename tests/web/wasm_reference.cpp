@@ -6,6 +6,12 @@
 //   CASE.pos64        positions at the finest level, float64 x,y,z (LE)
 //   CASE.l1.pos64     positions at level 1
 //   CASE.faces        faces at the finest level, u32 (LE)
+//   CASE.col64        a stream with a colour channel only: colours at the
+//                     finest level, float64 r,g,b (LE)
+//   CASE.uv32         a stream with a texture only: texture coordinates per
+//                     face corner at the finest level, float32 u,v (LE)
+//   CASE.map0         ... and the base colour map's finest level held (its
+//                     image bytes; absent when none is held)
 //   PARTS.units       a stream with split packets (docs/FORMAT.md 2.2) only:
 //                     units fed one by one, u32 id, u32 part + 1 (0: the
 //                     whole packet), u32 length, payload (LE); the parts
@@ -24,6 +30,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -65,6 +72,17 @@ std::string Flatten(const std::vector<Vec3>& p) {
   return Raw(out);
 }
 
+// The base colour map's finest level held, when there is one.
+bool WriteBaseColorLevel(const std::string& path, const ProgressiveDecoder& decoder) {
+  const TextureInfo& info = decoder.texture();
+  for (size_t m = 0; m < info.maps.size(); ++m) {
+    if (info.maps[m].role != TextureRole::kBaseColor) continue;
+    const std::optional<TextureImage> image = decoder.BestTextureLevel(m);
+    return !image || Write(path, std::string(image->bytes));
+  }
+  return true;
+}
+
 // The decoder's mesh and counts for case `name`: its .pos64, .l1.pos64 and
 // .faces files, and the fields of its manifest entry after "name".
 bool WriteCase(const std::string& dir, const std::string& name, const ProgressiveDecoder& decoder,
@@ -74,7 +92,11 @@ bool WriteCase(const std::string& dir, const std::string& name, const Progressiv
   for (const Face& f : mesh.faces) faces.insert(faces.end(), f.begin(), f.end());
   if (!Write(dir + "/" + name + ".pos64", Flatten(mesh.positions)) ||
       !Write(dir + "/" + name + ".l1.pos64", Flatten(decoder.Positions(1))) ||
-      !Write(dir + "/" + name + ".faces", Raw(faces))) {
+      !Write(dir + "/" + name + ".faces", Raw(faces)) ||
+      (decoder.HasColors() && !Write(dir + "/" + name + ".col64", Flatten(decoder.Colors()))) ||
+      (decoder.HasTexture() &&
+       !Write(dir + "/" + name + ".uv32", Raw(decoder.TextureCoordinates()))) ||
+      !WriteBaseColorLevel(dir + "/" + name + ".map0", decoder)) {
     std::fprintf(stderr, "cannot write into %s\n", dir.c_str());
     return false;
   }

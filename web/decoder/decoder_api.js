@@ -8,7 +8,7 @@
 //   const dec = new mw.Decoder(headerBytes);  // Uint8Array | ArrayBuffer
 //   dec.addPacket(id, payload);               // throws Error(message)
 //   dec.addPacketPart(id, part, payload);     // one precinct's part of a split packet
-//   dec.positions(); dec.faces(); ... dec.delete();
+//   dec.positions(); dec.faces(); dec.colors(); ... dec.delete();
 //   const { header, packets } = mw.parseContainer(mwvBytes);  // .mwv files
 (function () {
   function bytes(data, what) {
@@ -63,6 +63,19 @@
     // The decoder's float64 values (tests compare them with the native decoder).
     positions64(maxLevel) { return this.live_()['positions64'](level(maxLevel)); }
     faces(maxLevel) { return this.live_()['faces'](level(maxLevel)); }
+    // Vertex colours (format 8's colour channel): linear RGB in [0, 1] per
+    // vertex of positions(maxLevel), interleaved; empty without a channel.
+    hasColors() { return this.live_()['hasColors'](); }
+    colors(maxLevel) { return this.live_()['colors'](level(maxLevel)); }
+    colors64(maxLevel) { return this.live_()['colors64'](level(maxLevel)); }
+    // The texture (format 9): u, v per face corner of faces(maxLevel)
+    // (Float32Array, empty without a texture), and a map's finest level
+    // held: {bytes: Uint8Array (JPEG or PNG), mimeType, width, height,
+    // level, levels} or null. role: 0 base colour, 1 metallic-roughness,
+    // 2 normal, 3 occlusion, 4 emissive.
+    hasTexture() { return this.live_()['hasTexture'](); }
+    textureCoordinates(maxLevel) { return this.live_()['textureCoordinates'](level(maxLevel)); }
+    textureImage(role = 0) { return this.live_()['textureImage'](uint32(role, 'role')); }
     level() { return this.live_()['level'](); }
     // The finest level that received detail: positions(detailLevels() + 1)
     // is the smallest mesh that shows it smoothed (docs/API.md).

@@ -7,6 +7,7 @@
 #include <emscripten/val.h>
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -70,6 +71,45 @@ class RawDecoder {
   val Positions(int max_level) const { return Interleaved<float>("Float32Array", max_level); }
   val Positions64(int max_level) const { return Interleaved<double>("Float64Array", max_level); }
 
+  // Linear RGB per vertex of positions(max_level), interleaved; an empty
+  // array when the stream has no colour channel.
+  bool HasColors() const { return decoder_->HasColors(); }
+  val Colors(int max_level) const {
+    return InterleavedColors<float>("Float32Array", max_level);
+  }
+  val Colors64(int max_level) const {
+    return InterleavedColors<double>("Float64Array", max_level);
+  }
+
+  // The texture (format 9): per face corner of faces(max_level), u and v
+  // (the atlas gives them; they never travel); an empty array without one.
+  bool HasTexture() const { return decoder_->HasTexture(); }
+  val TextureCoordinates(int max_level) const {
+    return TypedArrayCopy("Float32Array", decoder_->TextureCoordinates(ClampLevel(max_level)));
+  }
+
+  // The finest level held of the map with role `role` (TextureRole's
+  // number): {bytes, mimeType, width, height, level, levels}, or null when
+  // the stream has no such map or none of its levels arrived yet.
+  val TextureImage(int role) const {
+    const TextureInfo& info = decoder_->texture();
+    for (size_t m = 0; m < info.maps.size(); ++m) {
+      if (static_cast<int>(info.maps[m].role) != role) continue;
+      const std::optional<meshwave::TextureImage> image = decoder_->BestTextureLevel(m);
+      if (!image) return val::null();
+      val out = val::object();
+      out.set("bytes", TypedArrayCopy("Uint8Array", std::vector<uint8_t>(image->bytes.begin(),
+                                                                          image->bytes.end())));
+      out.set("mimeType", image->mime_type);
+      out.set("width", image->width);
+      out.set("height", image->height);
+      out.set("level", image->level);
+      out.set("levels", static_cast<uint32_t>(info.maps[m].levels.size()));
+      return out;
+    }
+    return val::null();
+  }
+
   val Faces(int max_level) const {
     const std::vector<Face> faces = decoder_->Faces(max_level);
     std::vector<uint32_t> out;
@@ -79,13 +119,24 @@ class RawDecoder {
   }
 
  private:
+  // Positions(level) as Mesh(level) takes it: -1 and levels beyond J mean J.
+  int ClampLevel(int max_level) const {
+    const int levels = Levels();
+    return (max_level < 0 || max_level > levels) ? levels : max_level;
+  }
+
   template <class T>
   val Interleaved(const char* type, int max_level) const {
-    // Positions(level) as Mesh(level) takes it: -1 and levels beyond J
-    // mean J.
-    const int levels = Levels();
-    const std::vector<Vec3> p =
-        decoder_->Positions((max_level < 0 || max_level > levels) ? levels : max_level);
+    return Flatten<T>(type, decoder_->Positions(ClampLevel(max_level)));
+  }
+
+  template <class T>
+  val InterleavedColors(const char* type, int max_level) const {
+    return Flatten<T>(type, decoder_->Colors(ClampLevel(max_level)));
+  }
+
+  template <class T>
+  static val Flatten(const char* type, const std::vector<Vec3>& p) {
     std::vector<T> out(3 * p.size());
     for (size_t v = 0; v < p.size(); ++v) {
       for (int a = 0; a < 3; ++a) out[3 * v + static_cast<size_t>(a)] = static_cast<T>(p[v][a]);
@@ -143,7 +194,13 @@ EMSCRIPTEN_BINDINGS(meshwave_decoder) {
       .function("payloadBytesDecoded", &RawDecoder::PayloadBytesDecoded)
       .function("positions", &RawDecoder::Positions)
       .function("positions64", &RawDecoder::Positions64)
-      .function("faces", &RawDecoder::Faces);
+      .function("faces", &RawDecoder::Faces)
+      .function("hasColors", &RawDecoder::HasColors)
+      .function("colors", &RawDecoder::Colors)
+      .function("colors64", &RawDecoder::Colors64)
+      .function("hasTexture", &RawDecoder::HasTexture)
+      .function("textureCoordinates", &RawDecoder::TextureCoordinates)
+      .function("textureImage", &RawDecoder::TextureImage);
 }
 
 }  // namespace meshwave::wasm

@@ -44,16 +44,17 @@ export class MeshView {
   }
 
   // positions: Float32Array xyz; faces: Uint32Array; colors: Float32Array
-  // rgb per vertex or null (flat grey).
-  setMesh(positions, faces, colors, fitCamera) {
-    const geometry = new THREE.BufferGeometry();
-    geometry.setAttribute('position', new THREE.BufferAttribute(positions, 3));
-    geometry.setIndex(new THREE.BufferAttribute(faces, 1));
+  // rgb per vertex or null (flat grey); texture: null or {uvs: Float32Array
+  // u, v per face corner, image: an ImageBitmap of the base colour map or
+  // null while none has arrived} (the decoder's atlas: UVs never travel).
+  setMesh(positions, faces, colors, fitCamera, texture = null) {
+    const geometry = texture ? cornerGeometry(positions, faces, colors, texture.uvs)
+      : indexedGeometry(positions, faces, colors);
     geometry.computeVertexNormals();
-    if (colors) geometry.setAttribute('color', new THREE.BufferAttribute(colors, 3));
     const material = new THREE.MeshStandardMaterial({
-      color: colors ? 0xffffff : 0xb8b8c8, vertexColors: !!colors, flatShading: true,
-      roughness: 0.8, side: THREE.DoubleSide,
+      color: colors || texture?.image ? 0xffffff : 0xb8b8c8, vertexColors: !!colors,
+      flatShading: true, roughness: 0.8, side: THREE.DoubleSide,
+      map: texture?.image ? this.textureOf(texture.image) : null,
     });
     if (this.mesh) {
       this.scene.remove(this.mesh);
@@ -64,6 +65,19 @@ export class MeshView {
     this.scene.add(this.mesh);
     if (fitCamera) this.fit(geometry);
     this.draw();
+  }
+
+  // One GPU texture per image, kept while the image is the one shown.
+  textureOf(image) {
+    if (this.texture?.image !== image) {
+      this.texture?.dispose();
+      this.texture = new THREE.Texture(image);
+      this.texture.flipY = false;  // glTF's convention: v grows downwards
+      this.texture.colorSpace = THREE.SRGBColorSpace;
+      this.texture.anisotropy = 4;
+      this.texture.needsUpdate = true;
+    }
+    return this.texture;
   }
 
   fit(geometry) {
@@ -104,4 +118,30 @@ export class MeshView {
       this.renderer.render(this.scene, this.camera);
     });
   }
+}
+
+function indexedGeometry(positions, faces, colors) {
+  const geometry = new THREE.BufferGeometry();
+  geometry.setAttribute('position', new THREE.BufferAttribute(positions, 3));
+  geometry.setIndex(new THREE.BufferAttribute(faces, 1));
+  if (colors) geometry.setAttribute('color', new THREE.BufferAttribute(colors, 3));
+  return geometry;
+}
+
+// A vertex per face corner: a vertex on a base-mesh edge has a UV per base
+// face (the atlas's seams), so the indexed mesh cannot carry them.
+function cornerGeometry(positions, faces, colors, uvs) {
+  const corners = faces.length;
+  const p = new Float32Array(3 * corners);
+  const c = colors ? new Float32Array(3 * corners) : null;
+  for (let k = 0; k < corners; ++k) {
+    const v = 3 * faces[k];
+    p[3 * k] = positions[v]; p[3 * k + 1] = positions[v + 1]; p[3 * k + 2] = positions[v + 2];
+    if (c) { c[3 * k] = colors[v]; c[3 * k + 1] = colors[v + 1]; c[3 * k + 2] = colors[v + 2]; }
+  }
+  const geometry = new THREE.BufferGeometry();
+  geometry.setAttribute('position', new THREE.BufferAttribute(p, 3));
+  geometry.setAttribute('uv', new THREE.BufferAttribute(uvs, 2));
+  if (c) geometry.setAttribute('color', new THREE.BufferAttribute(c, 3));
+  return geometry;
 }

@@ -11,7 +11,10 @@ import { decodeServerMessage, encodeRefine, encodeStart } from './ws_protocol.js
 
 export class StreamSession {
   // mw: the decoder module (createMeshwave()). Callbacks:
-  //   onMesh({positions, faces, level, levels, psnr}) after new packets,
+  //   onMesh({positions, faces, colors, texture, level, levels, psnr})
+  //   after new packets (colors: linear RGB per vertex, or null without a
+  //   colour channel; texture: {uvs, image} or null, as MeshView.setMesh
+  //   takes them),
   //   onProgress(stats) after every message, onDone(stats) when a
   //   selection is complete, onError(message) once, then nothing more.
   constructor(mw, wsUrl, { onMesh, onProgress, onDone, onError }) {
@@ -21,7 +24,9 @@ export class StreamSession {
     // packets: Packet messages (units: a whole packet or a part); parts:
     // those that were one precinct's part of a split packet.
     this.stats = { bytes: 0, packets: 0, parts: 0, level: null, levels: null, psnr: null,
-                   complete: false, streaming: false };
+                   texture: null, complete: false, streaming: false };
+    this.textureLevel = null;  // the level being decoded or shown
+    this.textureBitmap = null;
     this.failed = false;
     this.dirty = false;
     this.socket = new WebSocket(wsUrl);
@@ -100,6 +105,7 @@ export class StreamSession {
         this.stats.packets += 1;
         if (m.part !== null) this.stats.parts += 1;
         this.updateLevel();
+        this.loadTexture();
         this.scheduleMesh();
         break;
       case 'done':
@@ -124,6 +130,28 @@ export class StreamSession {
     this.stats.psnr = this.decoder.estimatedPsnr();
   }
 
+  // The base colour map's best level held, decoded by the browser
+  // (createImageBitmap, off the main thread); it replaces the one shown
+  // when decoded, unless a finer level arrived meanwhile.
+  loadTexture() {
+    if (!this.decoder.hasTexture()) return;
+    const image = this.decoder.textureImage(0);
+    if (!image || image.level === this.textureLevel) return;
+    this.textureLevel = image.level;
+    createImageBitmap(new Blob([image.bytes], { type: image.mimeType }),
+      { imageOrientation: 'none', premultiplyAlpha: 'none' })
+      .then((bitmap) => {
+        if (this.failed || this.textureLevel !== image.level) return;
+        this.textureBitmap = bitmap;
+        this.stats.texture = { width: image.width, height: image.height, level: image.level,
+                               levels: image.levels };
+        this.callbacks.onProgress(this.stats);
+        this.scheduleMesh();
+      })
+      .catch((e) => this.fail(`texture level ${image.level} (${image.mimeType}) could not be ` +
+                              `decoded: ${e.message}`));
+  }
+
   scheduleMesh() {
     if (this.dirty) return;
     this.dirty = true;
@@ -133,9 +161,13 @@ export class StreamSession {
   emitMesh() {
     if (!this.dirty || !this.decoder) return;
     this.dirty = false;
+    const level = this.stats.level;
     this.callbacks.onMesh({
-      positions: this.decoder.positions(this.stats.level), faces: this.decoder.faces(this.stats.level),
-      level: this.stats.level,
+      positions: this.decoder.positions(level), faces: this.decoder.faces(level),
+      colors: this.decoder.hasColors() ? this.decoder.colors(level) : null,
+      texture: this.decoder.hasTexture()
+        ? { uvs: this.decoder.textureCoordinates(level), image: this.textureBitmap ?? null } : null,
+      level,
       levels: this.stats.levels, psnr: this.stats.psnr,
     });
   }

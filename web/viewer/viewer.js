@@ -47,6 +47,9 @@ function showStats(s) {
   $('r-level').dataset.value = s.level ?? '';
   $('r-psnr').textContent = s.psnr === null ? '–' : s.psnr >= 999 ? 'lossless' : `${s.psnr.toFixed(2)} dB`;
   $('r-psnr').dataset.value = s.psnr ?? '';
+  const t = s.texture;
+  $('r-texture').textContent = t ? `${t.width} × ${t.height} (level ${t.level + 1} of ${t.levels})` : '–';
+  $('r-texture').dataset.value = t ? t.width : '';
 }
 
 function draw(fitCamera) {
@@ -54,11 +57,16 @@ function draw(fitCamera) {
   const { positions, faces } = lastMesh;
   $('r-size').textContent = `${positions.length / 3} / ${faces.length / 3}`;
   if (!view) return;
-  let colours = null;
+  // The mesh's own colours and texture (unless turned off), or the error
+  // colours when asked for.
+  const attributes = $('attributes').checked;
+  let colours = attributes ? lastMesh.colors : null;
+  let texture = attributes ? lastMesh.texture : null;
   if ($('errors').checked && reference?.decoder) {
     colours = errorColours(positions, reference.decoder.positions(lastMesh.level));
+    texture = null;
   }
-  view.setMesh(positions, faces, colours, fitCamera);
+  view.setMesh(positions, faces, colours, fitCamera, texture);
 }
 
 function onMesh(mesh) {
@@ -215,6 +223,7 @@ async function main() {
   $('refine').onclick = refine;
   $('refine-kib').oninput = () => { $('refine-label').textContent = $('refine-kib').value; };
   $('errors').onchange = () => ($('errors').checked && lastMesh ? ensureReference() : draw(false));
+  $('attributes').onchange = () => draw(false);
   $('follow-view').onchange = () => {
     if (!$('follow-view').checked) onCameraStart();
   };

@@ -1,0 +1,168 @@
+// The viewer in colour and texture, in headless Chromium against the real
+// server and WebAssembly decoder (run_viewer_test.sh starts it):
+//  1. The coloured sample (--mesh, a PLY with vertex colours) streamed at a
+//     budget: the mesh is drawn in colour — chromatic pixels where the grey
+//     render (the "colours and texture" box off) has none.
+//  2. The textured sample (--textured, an OBJ + MTL + PNG) streamed at a
+//     budget: the texture readout names the level held, the screenshot
+//     differs from the grey render; refined to the whole stream, the finest
+//     level arrives and the picture changes.
+// No console error in either.
+//
+// Usage: node viewer_attributes_test.mjs --server BIN --cli BIN --decoder meshwave_decoder.js
+//   --viewer web/viewer --mesh data/textured/hue_ball.ply --textured data/textured/die.obj
+//   --node-modules DIR --artefacts DIR
+import assert from 'node:assert/strict';
+import { existsSync, mkdirSync, readFileSync, rmSync } from 'node:fs';
+import path from 'node:path';
+import { parseArgs } from 'node:util';
+import { Server, checks, ingest, launchChromium, skip, tempDir, viewerDir } from './harness.mjs';
+
+const { values: opt } = parseArgs({ options: {
+  server: { type: 'string' }, cli: { type: 'string' }, decoder: { type: 'string' },
+  viewer: { type: 'string' }, mesh: { type: 'string' }, textured: { type: 'string' },
+  'node-modules': { type: 'string' }, artefacts: { type: 'string' },
+} });
+for (const k of ['server', 'viewer', 'mesh', 'textured', 'node-modules', 'artefacts']) {
+  if (!opt[k]) { console.error(`viewer_attributes_test: --${k} is required`); process.exit(2); }
+}
+if (!opt.decoder || !existsSync(opt.decoder)) {
+  skip(`the WebAssembly decoder module is not built (${opt.decoder || 'no path given'})`);
+}
+if (readFileSync(opt.decoder, 'utf8').includes('isFakeTestOnly')) {
+  skip('the test-only fake decoder has no colours or textures');
+}
+
+mkdirSync(opt.artefacts, { recursive: true });
+const work = tempDir('meshwave-viewer-attributes-');
+const catalog = path.join(work, 'catalog');
+const coloured = ingest(opt.server, catalog, opt.mesh);
+const textured = ingest(opt.server, catalog, opt.textured);
+const server = await Server.start(opt.server, catalog,
+  viewerDir(opt.viewer, opt.decoder, path.join(work, 'viewer')), work);
+const browser = await launchChromium(opt['node-modules']);
+
+async function openViewer(meshId, budgetKiB, errors) {
+  const page = await browser.context.newPage();
+  page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
+  page.on('pageerror', (e) => errors.push(`uncaught: ${e.message}`));
+  await page.goto(`${server.url}/viewer/`);
+  await page.waitForSelector('body[data-state="ready"], body[data-state="error"]');
+  await page.selectOption('#mesh', meshId);
+  await page.selectOption('#order', 'quality');
+  await page.fill('#budget', String(budgetKiB));
+  await page.fill('#rate', '0');
+  return page;
+}
+
+async function waitDone(page) {
+  await page.waitForSelector('body[data-state="done"], body[data-state="error"]');
+  const error = await page.evaluate(() => {
+    const e = document.getElementById('error');
+    return e.hidden ? '' : e.textContent;
+  });
+  assert.equal(error, '', 'the viewer reported an error');
+}
+
+async function shot(page, name) {
+  await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+  const file = path.join(opt.artefacts, name);
+  await page.locator('#view').screenshot({ path: file });
+  return readFileSync(file);
+}
+
+// Of two screenshots: pixels drawn (not the white background), chromatic
+// ones (max - min channel over 40: the grey render has none) and pixels
+// that differ between them.
+async function measure(a, b) {
+  const page = await browser.context.newPage();
+  const result = await page.evaluate(async ([a64, b64]) => {
+    const pixels = async (data) => {
+      const img = new Image();
+      img.src = `data:image/png;base64,${data}`;
+      await img.decode();
+      const c = new OffscreenCanvas(img.width, img.height);
+      const g = c.getContext('2d');
+      g.drawImage(img, 0, 0);
+      return g.getImageData(0, 0, img.width, img.height).data;
+    };
+    const [pa, pb] = [await pixels(a64), await pixels(b64)];
+    const r = { drawn: 0, chromaticA: 0, chromaticB: 0, differ: 0 };
+    for (let i = 0; i < pa.length; i += 4) {
+      if (pa[i] + pa[i + 1] + pa[i + 2] < 3 * 240) ++r.drawn;
+      const spread = (p) => Math.max(p[i], p[i + 1], p[i + 2]) - Math.min(p[i], p[i + 1], p[i + 2]);
+      if (spread(pa) > 40) ++r.chromaticA;
+      if (spread(pb) > 40) ++r.chromaticB;
+      const d = Math.abs(pa[i] - pb[i]) + Math.abs(pa[i + 1] - pb[i + 1]) + Math.abs(pa[i + 2] - pb[i + 2]);
+      if (d > 24) ++r.differ;
+    }
+    return r;
+  }, [a.toString('base64'), b.toString('base64')]);
+  await page.close();
+  return result;
+}
+
+// The attributes shown, then the grey render of the same mesh.
+async function withAndWithout(page, name) {
+  const shown = await shot(page, `${name}.png`);
+  await page.uncheck('#attributes');
+  const grey = await shot(page, `${name}_grey.png`);
+  await page.check('#attributes');
+  return { shown, grey };
+}
+
+const { test, failed } = checks();
+try {
+  await test('vertex colours on screen', async () => {
+    const errors = [];
+    const page = await openViewer(coloured, 4, errors);
+    await page.click('#stream');
+    await waitDone(page);
+    const { shown, grey } = await withAndWithout(page, 'viewer_colours_4KiB');
+    const m = await measure(shown, grey);
+    console.log(`  ${m.drawn} pixels drawn, ${m.chromaticA} chromatic in colour, ` +
+                `${m.chromaticB} in grey`);
+    assert.ok(m.drawn > 0.02 * 960 * 640, 'the mesh is drawn');
+    assert.equal(m.chromaticB, 0, 'the grey render has no colour');
+    assert.ok(m.chromaticA > 0.3 * m.drawn, 'most of the mesh is in colour');
+    assert.deepEqual(errors, [], 'console errors');
+    await page.close();
+  });
+
+  await test('the texture on screen, then refined', async () => {
+    const errors = [];
+    const page = await openViewer(textured, 12, errors);
+    await page.click('#stream');
+    await waitDone(page);
+    await page.waitForFunction(() => document.getElementById('r-texture').dataset.value !== '');
+    const first = await page.evaluate(() => document.getElementById('r-texture').textContent);
+    const { shown, grey } = await withAndWithout(page, 'viewer_texture_12KiB');
+    const m = await measure(shown, grey);
+    console.log(`  texture ${first}; ${m.drawn} pixels drawn, ${m.chromaticA} chromatic, ` +
+                `${m.differ} differ from the grey render`);
+    assert.ok(m.drawn > 0.02 * 960 * 640, 'the mesh is drawn');
+    assert.ok(m.differ > 0.3 * m.drawn, 'the textured render differs from the grey one');
+    assert.ok(m.chromaticA > m.chromaticB + 0.1 * m.drawn, 'the texture brings colour');
+
+    // The rest of the stream: the finest texture level arrives.
+    await page.fill('#refine-kib', '100000');
+    await page.click('#refine');
+    await waitDone(page);
+    await page.waitForFunction(() => /level (\d+) of \1\)/.test(document.getElementById('r-texture').textContent));
+    const last = await page.evaluate(() => document.getElementById('r-texture').textContent);
+    const refined = await shot(page, 'viewer_texture_complete.png');
+    const r = await measure(shown, refined);
+    console.log(`  refined: texture ${last}; ${r.differ} pixels changed`);
+    assert.notEqual(last, first, 'a finer texture level arrived');
+    assert.ok(r.differ > 0.01 * m.drawn, 'the refined picture changed');
+    assert.deepEqual(errors, [], 'console errors');
+    await page.close();
+  });
+} finally {
+  await browser.close();
+  await server.stop();
+  rmSync(work, { recursive: true, force: true });
+}
+console.log(`screenshots in ${opt.artefacts}`);
+if (failed()) process.exit(1);
+console.log('viewer_attributes_test: all passed');
