@@ -3,9 +3,10 @@
 # no test tools, no browser, no emscripten), builds the CLI and the server
 # (the viewer's WebAssembly decoder comes built, web/dist), runs the meshwave CLI on the
 # shipped sample meshes (describe, subdivide, encode, decode at budgets,
-# compare; a textured glTF described and encoded), then starts
+# compare; a textured glTF described, encoded and decoded), then starts
 # meshwave-server on an embedded default catalog (SQLite, in a temporary
-# directory) holding the sample meshes, and streams
+# directory) holding the sample meshes (a textured and a coloured one among
+# them), and streams
 # one with the client: a fetch at a budget, then two refinements that pull
 # only the next packets. It prints the browser viewer's URL
 # (http://127.0.0.1:PORT/viewer/) and, run from a terminal, keeps the server
@@ -66,12 +67,17 @@ echo
 echo "== meshwave info data/textured/ring.glb (UVs, colours, materials and a texture)"
 $cli info data/textured/ring.glb
 echo
-echo "== meshwave encode data/textured/ring.glb (the geometry; it says what it leaves out)"
+echo "== meshwave encode data/textured/ring.glb (its materials and texture baked onto the remesh)"
 $cli encode data/textured/ring.glb "$out/ring.mwv"
+echo
+echo "== meshwave decode ring.mwv --budget 4000 ring.glb (a textured glTF of the prefix)"
+$cli decode "$out/ring.mwv" "$out/ring.glb" --budget 4000
 
 echo
-echo "== meshwave-server ingest: the sample meshes into a new catalog (elephant.off is remeshed)"
-$server ingest --catalog "$out/catalog" data/elephant.off data/holes.off | tee "$out/ingest.txt"
+echo "== meshwave-server ingest: the sample meshes into a new catalog (elephant.off is remeshed;"
+echo "   the die with its .mtl and texture, the vertex-coloured ball)"
+$server ingest --catalog "$out/catalog" data/elephant.off data/holes.off \
+  data/textured/die.obj data/textured/hue_ball.ply | tee "$out/ingest.txt"
 # The id opens the line that names the file (grep -E: Debian's awk, mawk,
 # has no {12}).
 id=$(grep -E '^[0-9a-f]{12} .*elephant\.off' "$out/ingest.txt" | head -n 1 | cut -d ' ' -f 1)
@@ -87,7 +93,8 @@ for _ in $(seq 100); do [[ -s $out/port ]] && break; sleep 0.1; done
 [[ -s $out/port ]] || { cat "$out/server.log"; echo "server did not start" >&2; exit 1; }
 url=http://127.0.0.1:$(cat "$out/port")
 echo "serving at $url"
-echo "the viewer: open $url/viewer/ in a browser (catalog, streaming, refine)"
+echo "the viewer: open $url/viewer/ in a browser (catalog, streaming, refine; pick 'die' for"
+echo "a textured mesh, 'hue_ball' for vertex colours)"
 echo
 echo "== meshwave catalog $url"
 $cli catalog "$url"

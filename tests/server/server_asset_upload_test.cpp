@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "meshwave/container.h"
+#include "meshwave/stream_header.h"
 #include "server_http_fixture_testonly.h"
 #include "sha256.h"
 
@@ -48,12 +49,17 @@ proto::MeshSummary Summary(const HttpReply& r) {
   return summary;
 }
 
-// The colour channels of the container the server serves for `id`.
-size_t ServedChannels(uint16_t port, const std::string& id) {
+// The header of the container the server serves for `id`.
+StreamHeader ServedHeader(uint16_t port, const std::string& id) {
   const std::string container = HttpGet(port, "/v1/meshes/" + id + "/container").body;
   auto parsed = ParseContainer(container);
   EXPECT_TRUE(parsed.ok()) << parsed.status().ToString();
-  return parsed.ok() ? parsed->header.channels.size() : 0;
+  return parsed.ok() ? parsed->header : StreamHeader{};
+}
+
+// Its colour channels.
+size_t ServedChannels(uint16_t port, const std::string& id) {
+  return ServedHeader(port, id).channels.size();
 }
 
 TEST_F(ServerHttpTest, AColouredPlyIsServedWithItsColourChannel) {
@@ -71,7 +77,12 @@ TEST_F(ServerHttpTest, AGlbBodyIsReadAsGltfSniffedOrNamed) {
   ASSERT_EQ(r.status, 201u) << r.body;
   const proto::MeshSummary sniffed = Summary(r);
   EXPECT_EQ(sniffed.source(), "ring.glb");
-  EXPECT_EQ(ServedChannels(port_, sniffed.id()), 1u);  // its COLOR_0
+  // Its texture, two materials and COLOR_0 are baked into maps: a texture
+  // and no colour channel.
+  const StreamHeader header = ServedHeader(port_, sniffed.id());
+  ASSERT_TRUE(header.texture.has_value());
+  EXPECT_GE(header.texture->maps.size(), 1u);
+  EXPECT_TRUE(header.channels.empty());
   r = HttpConnection(port_).Send(http::verb::post, "/v1/meshes?name=ring&format=glb", {Auth()},
                                  glb);
   EXPECT_EQ(r.status, 200u) << r.body;  // the same file, name and settings
