@@ -7,7 +7,8 @@
 //     budget: the texture readout names the level held, the screenshot
 //     differs from the grey render; refined to the whole stream, the finest
 //     level arrives and the picture changes.
-// No console error in either.
+//  3. A budget that holds the header only: the base mesh is drawn.
+// No console error in any.
 //
 // Usage: node viewer_attributes_test.mjs --server BIN --cli BIN --decoder meshwave_decoder.js
 //   --viewer web/viewer --mesh data/textured/hue_ball.ply --textured data/textured/die.obj
@@ -125,6 +126,21 @@ try {
     assert.ok(m.drawn > 0.02 * 960 * 640, 'the mesh is drawn');
     assert.equal(m.chromaticB, 0, 'the grey render has no colour');
     assert.ok(m.chromaticA > 0.3 * m.drawn, 'most of the mesh is in colour');
+    assert.deepEqual(errors, [], 'console errors');
+    await page.close();
+  });
+
+  await test('a budget below the first packet shows the base mesh', async () => {
+    const errors = [];
+    const page = await openViewer(textured, 1, errors);
+    await page.click('#stream');
+    await waitDone(page);
+    const packets = await page.evaluate(() => document.getElementById('r-packets').textContent);
+    const png = await shot(page, 'viewer_texture_header_only.png');
+    const m = await measure(png, png);
+    console.log(`  ${packets} packets, ${m.drawn} pixels drawn`);
+    assert.equal(packets, '0', 'the budget holds the header only');
+    assert.ok(m.drawn > 0.02 * 960 * 640, 'the base mesh is drawn');
     assert.deepEqual(errors, [], 'console errors');
     await page.close();
   });

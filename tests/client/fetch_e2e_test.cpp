@@ -121,7 +121,8 @@ class ClientE2eTest : public ::testing::Test {
     catalog_ = *dir_ / "catalog";
     ASSERT_NO_FATAL_FAILURE(testing::CopySampleCatalog(
         catalog_, {testing::SampleMesh("holes.off"), testing::SampleMesh("elephant.off"),
-                   testing::SampleMesh("textured/hue_ball.ply")}));
+                   testing::SampleMesh("textured/hue_ball.ply"),
+                   testing::SampleMesh("textured/die.obj")}));
     std::filesystem::create_directories(*dir_ / "server");
     server_ = new ServerProcess(catalog_, *dir_ / "server");
     ASSERT_TRUE(server_->running()) << ReadBytes(server_->log());
@@ -135,10 +136,12 @@ class ClientE2eTest : public ::testing::Test {
       if (m.source().find("holes") != std::string::npos) holes_ = m.id();
       if (m.source().find("elephant") != std::string::npos) elephant_ = m.id();
       if (m.source().find("hue_ball") != std::string::npos) hue_ball_ = m.id();
+      if (m.source().find("die.obj") != std::string::npos) die_ = m.id();
     }
     ASSERT_FALSE(holes_.empty()) << reply.body;
     ASSERT_FALSE(elephant_.empty()) << reply.body;
     ASSERT_FALSE(hue_ball_.empty()) << reply.body;
+    ASSERT_FALSE(die_.empty()) << reply.body;
   }
   static void TearDownTestSuite() {
     delete server_;
@@ -183,7 +186,7 @@ class ClientE2eTest : public ::testing::Test {
   static inline TempDir* dir_ = nullptr;
   static inline std::filesystem::path catalog_;
   static inline ServerProcess* server_ = nullptr;
-  static inline std::string holes_, elephant_, hue_ball_;
+  static inline std::string holes_, elephant_, hue_ball_, die_;
 };
 
 TEST_F(ClientE2eTest, CatalogListsTheIngestedMeshes) {
@@ -234,6 +237,26 @@ TEST_F(ClientE2eTest, FetchWritesTheColoursOfAColouredStream) {
   auto asset = ReadMeshAsset(dir / "fetched.glb");
   ASSERT_TRUE(asset.ok()) << asset.status().ToString();
   EXPECT_FALSE(asset->color.empty());
+}
+
+// A textured stream (die.obj, baked at ingest): fetch says which texture
+// level it holds — none at a budget of the header alone, the finest for
+// the whole stream — and writes the texture into the .glb.
+TEST_F(ClientE2eTest, FetchSaysWhichTextureLevelItHolds) {
+  TempDir dir;
+  const auto head =
+      RunCli({"fetch", Url(die_), "--budget", "1100", "--out", (dir / "head.glb").string()});
+  ASSERT_EQ(head.exit_code, 0) << head.err;
+  EXPECT_NE(head.out.find(" 0 of "), std::string::npos) << head.out;
+  EXPECT_NE(head.out.find("texture not received yet"), std::string::npos) << head.out;
+  const auto whole = RunCli({"fetch", Url(die_), "--out", (dir / "whole.glb").string()});
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  EXPECT_NE(whole.out.find("textured: 256 x 224 (level 2 of 2)"), std::string::npos) << whole.out;
+  auto asset = ReadMeshAsset(dir / "whole.glb");
+  ASSERT_TRUE(asset.ok()) << asset.status().ToString();
+  EXPECT_FALSE(asset->uv.empty());
+  ASSERT_EQ(asset->images.size(), 1u);
+  EXPECT_EQ(asset->images[0].width, 256u);
 }
 
 TEST_F(ClientE2eTest, MaxLevelFetchEqualsDecodeWithTheSameLimit) {

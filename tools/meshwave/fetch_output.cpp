@@ -57,6 +57,22 @@ std::string Db(double db) {
   return buf;
 }
 
+// ", textured: 448 x 448 (level 2 of 3)" for the base colour map (or the
+// first map) held; ", texture not received yet" before its first level.
+std::string TextureHeld(const ProgressiveDecoder& decoder, const DecodedMesh& decoded) {
+  if (!decoded.textured || decoder.texture().maps.empty()) return "";
+  if (decoded.images.empty()) return ", texture not received yet";
+  const TextureImage& image = decoded.images.front();
+  size_t levels = decoder.texture().maps.front().levels.size();
+  for (const TextureMapInfo& map : decoder.texture().maps) {
+    if (map.role == image.role) levels = map.levels.size();
+  }
+  char line[96];
+  std::snprintf(line, sizeof line, ", textured: %u x %u (level %d of %zu)", image.width,
+                image.height, image.level + 1, levels);
+  return line;
+}
+
 }  // namespace
 
 Result<std::unique_ptr<FetchOutput>> FetchOutput::Create(
@@ -170,9 +186,10 @@ Status FetchOutput::Finish(const ProgressiveDecoder* decoder, const client::Prog
   }
   if (!options_.out.empty()) {
     std::printf(
-        "wrote %s: %zu vertices, %zu faces (complete levels %d of %d)%s\n",
+        "wrote %s: %zu vertices, %zu faces (complete levels %d of %d)%s%s\n",
         options_.out.c_str(), mesh.positions.size(), mesh.faces.size(), p.level,
-        p.levels, decoded.colors.empty() ? "" : ", with vertex colours");
+        p.levels, decoded.colors.empty() ? "" : ", with vertex colours",
+        TextureHeld(*decoder, decoded).c_str());
   }
   std::printf(
       "%zu of %zu %s, %llu bytes (%llu received), estimated "

@@ -89,6 +89,7 @@ export class StreamSession {
         }
         this.stats.bytes += m.header.length;
         this.updateLevel();
+        this.scheduleMesh();  // the base mesh, drawn even when no packet fits the budget
         break;
       case 'selection':
         break;
