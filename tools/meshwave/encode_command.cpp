@@ -38,6 +38,7 @@ struct EncodeArgs {
   bool force_remesh = false;
   uint32_t sawt_alpha = EncodeOptions{}.sawt_alpha;
   double sawt_lambda = EncodeOptions{}.sawt_lambda_scale;
+  float texture_weight = EncodeOptions{}.texture_rd_weight;
   int threads = 0;
   TextureBakeOptions bake;
 };
@@ -141,6 +142,7 @@ Status Run(const EncodeArgs& args) {
   MW_RETURN_IF_ERROR(ApplyTransformOptions(args.predictor, args.update, precision, options));
   options.sawt_alpha = args.sawt_alpha;
   options.sawt_lambda_scale = args.sawt_lambda;
+  options.texture_rd_weight = args.texture_weight;
   MW_ASSIGN_OR_RETURN(options.coder, ParseCoderKind(args.coder));
   MW_RETURN_IF_ERROR(ApplyQuantizerOption(args.quantizer, options));
   options.name = std::filesystem::path(args.in).stem().string();
@@ -255,6 +257,11 @@ void AddEncodeCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--texture-quality", args->bake.jpeg_quality,
                   "Textured inputs: JPEG quality of the baked colour maps (normal maps are PNG)")
       ->check(CLI::Range(1, 100))
+      ->capture_default_str();
+  cmd->add_option("--texture-weight", args->texture_weight,
+                  "Textured inputs: the texture's distortion against the geometry's when the "
+                  "quality order places the texture levels (docs/FORMAT.md 7)")
+      ->check(CLI::PositiveNumber)
       ->capture_default_str();
   cmd->callback([args, cmd, &exit_code] {
     args->precision_given = cmd->count("--precision") > 0;

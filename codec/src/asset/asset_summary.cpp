@@ -60,8 +60,12 @@ std::string DescribeMeshAsset(const MeshAsset& asset) {
     out +=
         (i == 0 ? ": " : ", ") + image.name + " " + MimeShort(image.mime_type);
     if (!image.rgba.empty()) {
-      out += " " + std::to_string(image.width) + "x" +
-             std::to_string(image.height);
+      // Appended piece by piece: GCC 12's -Wrestrict misfires on
+      // `" " + std::to_string(...)` at -O3 outside a unity build.
+      out += ' ';
+      out += std::to_string(image.width);
+      out += 'x';
+      out += std::to_string(image.height);
     }
   }
   out += ".";

@@ -120,11 +120,14 @@ Result<AssetEncoding> EncodeAsset(FileSet& files, std::string_view main_file,
     TextureBakeNotes notes;
     TextureBakeOptions bake = options.bake;
     bake.threads = options.encode.threads;
-    MW_ASSIGN_OR_RETURN(std::optional<BakedTexture> texture,
-                        BakeTexture(asset, out.semiregular.mesh, bake, &notes));
+    Result<std::optional<BakedTexture>> baked =
+        BakeTexture(asset, out.semiregular.mesh, bake, &notes);
+    MW_RETURN_IF_ERROR(baked.status());
     out.bake_notes = std::move(notes.lines);
-    if (texture) {
-      attributes.texture = std::move(*texture);
+    // Moved out of the Result in place (a copy of the optional draws a
+    // false -Wmaybe-uninitialized from GCC 12 at -O3).
+    if (baked->has_value()) {
+      attributes.texture = std::move(**baked);
       attributes.colors.clear();
     }
   }
