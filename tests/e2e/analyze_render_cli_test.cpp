@@ -1,11 +1,18 @@
 // End-to-end: `meshwave analyze` (JSON report, --plots CSVs) and `meshwave
-// render` (a PNG of the asked size), and the PNG writer read back by an
-// independent reader (signature, chunk CRCs, IHDR, inflated pixels).
+// render` (a PNG of the asked size; textures and vertex colours drawn, grey
+// with --plain or without them, error colours with --reference), and the
+// PNG writer read back by an independent reader (signature, chunk CRCs,
+// IHDR, inflated pixels).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <regex>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "e2e/cli_runner.h"
 #include "e2e/png_reader_testonly.h"
@@ -123,6 +130,136 @@ TEST(RenderCliTest, WritesAPngOfTheAskedSizeColouredByError) {
               testing::SampleMesh("elephant.off").string()});
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("vertices"), std::string::npos) << r.err;
+}
+
+// What a render shows: pixels unlike the background (the top-left corner),
+// and those of them in colour (channels more than 24 levels apart: the
+// grey renders have none, every texel of the samples has some).
+struct PixelCounts {
+  size_t mesh = 0, chromatic = 0;
+};
+
+PixelCounts CountPixels(const testing::DecodedPng& png) {
+  PixelCounts n;
+  const uint8_t* bg = png.rgb.data();
+  for (size_t i = 0; i < png.rgb.size(); i += 3) {
+    const uint8_t* p = png.rgb.data() + i;
+    if (p[0] == bg[0] && p[1] == bg[1] && p[2] == bg[2]) continue;
+    ++n.mesh;
+    const auto [lo, hi] = std::minmax({p[0], p[1], p[2]});
+    n.chromatic += hi - lo > 24 ? 1 : 0;
+  }
+  return n;
+}
+
+// Renders `mesh` (plus `extra` arguments) to dir/out at 200x200 and reads
+// the picture back; empty rgb (and a test failure) when either fails.
+testing::DecodedPng Render(const std::filesystem::path& mesh, const TempDir& dir,
+                           const std::string& out, std::vector<std::string> extra = {}) {
+  std::vector<std::string> args = {"render", mesh.string(), (dir / out).string(), "--width",
+                                   "200", "--height", "200", "--view", "30,20"};
+  args.insert(args.end(), extra.begin(), extra.end());
+  const auto r = RunCli(args);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  auto png = testing::ReadPng(ReadBytes(dir / out));
+  EXPECT_TRUE(png.error.empty()) << out << ": " << png.error;
+  return png;
+}
+
+// `mesh` renders in colour over much of its surface, and grey with --plain.
+void ExpectColouredAndPlainGrey(const std::filesystem::path& mesh) {
+  SCOPED_TRACE(mesh.filename().string());
+  TempDir dir;
+  const auto look = Render(mesh, dir, "look.png");
+  const auto plain = Render(mesh, dir, "plain.png", {"--plain"});
+  const PixelCounts l = CountPixels(look), p = CountPixels(plain);
+  EXPECT_GT(l.mesh, 200u * 200 / 10);
+  EXPECT_GT(l.chromatic, l.mesh / 2) << l.chromatic << " of " << l.mesh;
+  EXPECT_GT(p.mesh, 200u * 200 / 10);
+  EXPECT_EQ(p.chromatic, 0u);
+  EXPECT_NE(look.rgb, plain.rgb);
+}
+
+TEST(RenderCliTest, AMeshWithoutAttributesRendersGrey) {
+  TempDir dir;
+  const auto in = testing::SampleMesh("holes.off");
+  const auto look = Render(in, dir, "look.png");
+  const PixelCounts n = CountPixels(look);
+  EXPECT_GT(n.mesh, 200u * 200 / 20);
+  EXPECT_EQ(n.chromatic, 0u);
+  // Nothing to draw beyond the geometry: --plain gives the same pixels.
+  EXPECT_EQ(Render(in, dir, "plain.png", {"--plain"}).rgb, look.rgb);
+}
+
+TEST(RenderCliTest, DrawsTheTexturedDie) {
+  ExpectColouredAndPlainGrey(testing::SampleMesh("textured/die.obj"));
+}
+
+TEST(RenderCliTest, DrawsTheColouredBall) {
+  ExpectColouredAndPlainGrey(testing::SampleMesh("textured/hue_ball.ply"));
+}
+
+TEST(RenderCliTest, DrawsTheGltfOfTheSamples) {
+  ExpectColouredAndPlainGrey(testing::SampleMesh("textured/ring.glb"));
+}
+
+// What `decode` writes: a .glb with a base colour texture and TEXCOORD_0
+// from a textured stream, and .ply and .glb with vertex colours from a
+// coloured one.
+TEST(RenderCliTest, DrawsTheTexturesAndColoursThatDecodeWrites) {
+  TempDir dir;
+  const std::pair<const char*, std::vector<const char*>> cases[] = {
+      {"textured/die.obj", {"die.glb"}}, {"textured/hue_ball.ply", {"ball.ply", "ball.glb"}}};
+  for (const auto& [sample, outputs] : cases) {
+    const auto stream = dir / (std::string(outputs[0]) + ".mwv");
+    auto r = RunCli({"encode", testing::SampleMesh(sample).string(), stream.string()});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    for (const char* out : outputs) {
+      r = RunCli({"decode", stream.string(), (dir / out).string()});
+      ASSERT_EQ(r.exit_code, 0) << r.err;
+      ExpectColouredAndPlainGrey(dir / out);
+    }
+  }
+}
+
+TEST(RenderCliTest, AMissingTextureOrFileFailsAndWritesNoPicture) {
+  TempDir dir;
+  for (const char* name : {"die.obj", "die.mtl"}) {
+    std::filesystem::copy_file(testing::SampleMesh(std::string("textured/") + name), dir / name);
+  }
+  auto r = RunCli({"render", (dir / "die.obj").string(), (dir / "a.png").string()});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("die.obj: texture die.png is missing"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--plain"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "a.png"));
+  // The geometry alone needs no texture.
+  EXPECT_EQ(CountPixels(Render(dir / "die.obj", dir, "b.png", {"--plain"})).chromatic, 0u);
+
+  r = RunCli({"render", (dir / "none.obj").string(), (dir / "c.png").string()});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("none.obj"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "c.png"));
+
+  r = RunCli({"render", (dir / "die.obj").string(), (dir / "d.png").string(), "--plain",
+              "--reference", (dir / "die.obj").string()});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("--plain and --reference"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "d.png"));
+}
+
+TEST(RenderCliTest, ErrorColoursIgnoreTheTexture) {
+  TempDir dir;
+  const auto die = testing::SampleMesh("textured/die.obj");
+  const auto png = Render(die, dir, "a.png", {"--reference", die.string()});
+  // Against itself: green wherever the mesh is, no texel colours.
+  size_t green = 0;
+  const PixelCounts n = CountPixels(png);
+  for (size_t i = 0; i < png.rgb.size(); i += 3) {
+    const uint8_t* p = png.rgb.data() + i;
+    green += (p[1] > p[0] + 24 && p[1] > p[2] + 24) ? 1 : 0;
+  }
+  EXPECT_GT(n.mesh, 200u * 200 / 10);
+  EXPECT_EQ(green, n.mesh);
 }
 
 TEST(PngWriterTest, WhatItWritesDecodesToTheSamePixels) {

@@ -5,6 +5,7 @@
 
 #include "mesh/vertex_normals.h"
 #include "quant/deadzone_quantizer.h"
+#include "stream/base_refinement.h"  // RefinedBasePosition, BaseRefinementBytes
 #include "stream/sawt_field_encoder.h"
 #include "stream/stream_format.h"
 #include "stream/stream_format_writer.h"
