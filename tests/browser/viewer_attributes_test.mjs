@@ -132,7 +132,12 @@ try {
 
   await test('a budget below the first packet shows the base mesh', async () => {
     const errors = [];
-    const page = await openViewer(textured, 1, errors);
+    // The header's size, as the server states it when refusing a smaller budget.
+    const refusal = await (await fetch(
+      `${server.url}/v1/meshes/${textured}/stream?order=quality&budget=1`)).text();
+    const header = refusal.match(/\((\d+) bytes\)/);
+    assert.ok(header, `the server's refusal names the header's size: ${refusal}`);
+    const page = await openViewer(textured, parseInt(header[1], 10) / 1024, errors);
     await page.click('#stream');
     await waitDone(page);
     const packets = await page.evaluate(() => document.getElementById('r-packets').textContent);
