@@ -12,7 +12,7 @@
 import { mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import path from 'node:path';
 import { parseArgs } from 'node:util';
-import { launchChromium } from '../tests/browser/harness.mjs';
+import { comparePictures, launchChromium } from '../tests/browser/harness.mjs';
 
 const { values: opt } = parseArgs({ options: {
   url: { type: 'string' }, catalog: { type: 'string' },
@@ -35,32 +35,11 @@ const shares = [5, 15, 35, 65, 100];
 
 const browser = await launchChromium(opt['node-modules']);
 
-// Of a screenshot and the grey render of the same view: pixels drawn (not
-// the white background), chromatic ones (max - min channel over 40) and
-// those that differ (channel differences summing over 24).
+// Of a screenshot and the grey render of the same view: pixels drawn,
+// chromatic ones and those that differ (harness.mjs).
 async function measure(png, grey) {
-  const page = await browser.context.newPage();
-  const r = await page.evaluate(async ([a64, b64]) => {
-    const pixels = async (b64) => {
-      const img = new Image();
-      img.src = `data:image/png;base64,${b64}`;
-      await img.decode();
-      const c = new OffscreenCanvas(img.width, img.height);
-      const g = c.getContext('2d');
-      g.drawImage(img, 0, 0);
-      return g.getImageData(0, 0, img.width, img.height).data;
-    };
-    const [p, q] = [await pixels(a64), await pixels(b64)];
-    let drawn = 0, chromatic = 0, differ = 0;
-    for (let i = 0; i < p.length; i += 4) {
-      if (p[i] + p[i + 1] + p[i + 2] < 3 * 240) ++drawn;
-      if (Math.max(p[i], p[i + 1], p[i + 2]) - Math.min(p[i], p[i + 1], p[i + 2]) > 40) ++chromatic;
-      if (Math.abs(p[i] - q[i]) + Math.abs(p[i + 1] - q[i + 1]) + Math.abs(p[i + 2] - q[i + 2]) > 24) ++differ;
-    }
-    return { drawn, chromatic, differ };
-  }, [png.toString('base64'), grey.toString('base64')]);
-  await page.close();
-  return r;
+  const r = await comparePictures(browser, png, grey);
+  return { drawn: r.drawn, chromatic: r.chromaticA, differ: r.differ };
 }
 
 async function stream(item, share) {

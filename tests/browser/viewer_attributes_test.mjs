@@ -17,7 +17,7 @@ import assert from 'node:assert/strict';
 import { existsSync, mkdirSync, readFileSync, rmSync } from 'node:fs';
 import path from 'node:path';
 import { parseArgs } from 'node:util';
-import { Server, checks, ingest, launchChromium, skip, tempDir, viewerDir } from './harness.mjs';
+import { Server, checks, comparePictures, ingest, launchChromium, skip, tempDir, viewerDir } from './harness.mjs';
 
 const { values: opt } = parseArgs({ options: {
   server: { type: 'string' }, cli: { type: 'string' }, decoder: { type: 'string' },
@@ -72,36 +72,8 @@ async function shot(page, name) {
   return readFileSync(file);
 }
 
-// Of two screenshots: pixels drawn (not the white background), chromatic
-// ones (max - min channel over 40: the grey render has none) and pixels
-// that differ between them.
-async function measure(a, b) {
-  const page = await browser.context.newPage();
-  const result = await page.evaluate(async ([a64, b64]) => {
-    const pixels = async (data) => {
-      const img = new Image();
-      img.src = `data:image/png;base64,${data}`;
-      await img.decode();
-      const c = new OffscreenCanvas(img.width, img.height);
-      const g = c.getContext('2d');
-      g.drawImage(img, 0, 0);
-      return g.getImageData(0, 0, img.width, img.height).data;
-    };
-    const [pa, pb] = [await pixels(a64), await pixels(b64)];
-    const r = { drawn: 0, chromaticA: 0, chromaticB: 0, differ: 0 };
-    for (let i = 0; i < pa.length; i += 4) {
-      if (pa[i] + pa[i + 1] + pa[i + 2] < 3 * 240) ++r.drawn;
-      const spread = (p) => Math.max(p[i], p[i + 1], p[i + 2]) - Math.min(p[i], p[i + 1], p[i + 2]);
-      if (spread(pa) > 40) ++r.chromaticA;
-      if (spread(pb) > 40) ++r.chromaticB;
-      const d = Math.abs(pa[i] - pb[i]) + Math.abs(pa[i + 1] - pb[i + 1]) + Math.abs(pa[i + 2] - pb[i + 2]);
-      if (d > 24) ++r.differ;
-    }
-    return r;
-  }, [a.toString('base64'), b.toString('base64')]);
-  await page.close();
-  return result;
-}
+// Of two screenshots: pixels drawn, chromatic ones and those that differ.
+const measure = (a, b) => comparePictures(browser, a, b);
 
 // The attributes shown, then the grey render of the same mesh.
 async function withAndWithout(page, name) {

@@ -21,7 +21,7 @@ import { execFileSync } from 'node:child_process';
 import { existsSync, mkdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import path from 'node:path';
 import { parseArgs } from 'node:util';
-import { Server, SKIP, ingest, launchChromium, skip, tempDir, viewerDir, checks } from './harness.mjs';
+import { Server, SKIP, ingest, launchChromium, skip, tempDir, viewerDir, checks, comparePictures } from './harness.mjs';
 import { decodeServerMessage } from '../../web/viewer/ws_protocol.js';
 
 const { values: opt } = parseArgs({ options: {
@@ -104,32 +104,8 @@ async function shot(page, name) {
 }
 
 // Pixels of two PNGs (same size) that differ, and pixels of each that are
-// not background: decoded by the browser's own image decoder.
-async function comparePngs(a, b) {
-  const page = await browser.context.newPage();
-  const result = await page.evaluate(async ([a64, b64]) => {
-    const pixels = async (b64) => {
-      const img = new Image();
-      img.src = `data:image/png;base64,${b64}`;
-      await img.decode();
-      const c = new OffscreenCanvas(img.width, img.height);
-      const g = c.getContext('2d');
-      g.drawImage(img, 0, 0);
-      return g.getImageData(0, 0, img.width, img.height).data;
-    };
-    const [pa, pb] = [await pixels(a64), await pixels(b64)];
-    let differ = 0, drawn = 0, drawnB = 0;
-    for (let i = 0; i < pa.length; i += 4) {
-      const d = Math.abs(pa[i] - pb[i]) + Math.abs(pa[i + 1] - pb[i + 1]) + Math.abs(pa[i + 2] - pb[i + 2]);
-      if (d > 24) ++differ;
-      if (pa[i] + pa[i + 1] + pa[i + 2] < 3 * 240) ++drawn;
-      if (pb[i] + pb[i + 1] + pb[i + 2] < 3 * 240) ++drawnB;
-    }
-    return { differ, drawn, drawnB, total: pa.length / 4 };
-  }, [a.toString('base64'), b.toString('base64')]);
-  await page.close();
-  return result;
-}
+// not background.
+const comparePngs = (a, b) => comparePictures(browser, a, b);
 
 async function openViewer(consoleErrors) {
   const page = await browser.context.newPage();
