@@ -259,6 +259,26 @@ TEST_F(ClientE2eTest, FetchSaysWhichTextureLevelItHolds) {
   EXPECT_EQ(asset->images[0].width, 256u);
 }
 
+// Region requests on a textured stream: the texture levels are global
+// (one image for the whole surface), so a region fetch gets them as any
+// fetch does; refined to the end, the .glb equals the whole stream's.
+TEST_F(ClientE2eTest, ARegionFetchOfATexturedStreamGetsItsTexture) {
+  TempDir dir;
+  const std::string state = (dir / "state.mwv").string();
+  const auto first = RunCli({"fetch", Url(die_), "--region", "0,0,0,0.5", "--budget", "16000",
+                             "--out", (dir / "region.glb").string(), "--state", state});
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  EXPECT_NE(first.out.find("textured: 128 x 112 (level 1 of 2)"), std::string::npos)
+      << first.out;
+  const auto last = RunCli({"refine", state, "--region", "0,0,0,0.5", "--more", "1GiB", "--out",
+                            (dir / "refined.glb").string()});
+  ASSERT_EQ(last.exit_code, 0) << last.err;
+  EXPECT_NE(last.out.find("textured: 256 x 224 (level 2 of 2)"), std::string::npos) << last.out;
+  const auto whole = RunCli({"fetch", Url(die_), "--out", (dir / "whole.glb").string()});
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  EXPECT_EQ(ReadBytes(dir / "refined.glb"), ReadBytes(dir / "whole.glb"));
+}
+
 TEST_F(ClientE2eTest, MaxLevelFetchEqualsDecodeWithTheSameLimit) {
   TempDir dir;
   const auto r =
