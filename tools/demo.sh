@@ -81,8 +81,9 @@ $server ingest --catalog "$out/catalog" data/elephant.off data/holes.off \
 # The id opens the line that names the file (grep -E: Debian's awk, mawk,
 # has no {12}).
 id=$(grep -E '^[0-9a-f]{12} .*elephant\.off' "$out/ingest.txt" | head -n 1 | cut -d ' ' -f 1)
-if [[ -z $id ]]; then
-  echo "demo: the ingest printed no id for elephant.off" >&2
+die=$(grep -E '^[0-9a-f]{12} .*die\.obj' "$out/ingest.txt" | head -n 1 | cut -d ' ' -f 1)
+if [[ -z $id || -z $die ]]; then
+  echo "demo: the ingest printed no id for elephant.off or die.obj" >&2
   exit 1
 fi
 echo
@@ -93,8 +94,8 @@ for _ in $(seq 100); do [[ -s $out/port ]] && break; sleep 0.1; done
 [[ -s $out/port ]] || { cat "$out/server.log"; echo "server did not start" >&2; exit 1; }
 url=http://127.0.0.1:$(cat "$out/port")
 echo "serving at $url"
-echo "the viewer: open $url/viewer/ in a browser (catalog, streaming, refine; pick 'die' for"
-echo "a textured mesh, 'hue_ball' for vertex colours)"
+echo "the viewer, on the textured die: open $url/viewer/?mesh=$die in a browser"
+echo "(catalog, streaming, refine; 'hue_ball' has vertex colours)"
 echo
 echo "== meshwave catalog $url"
 $cli catalog "$url"
@@ -109,7 +110,7 @@ for more in 2000 4000; do
 done
 echo
 if [[ -t 0 ]]; then
-  echo "== the viewer is at $url/viewer/ — press Enter to stop the server"
+  echo "== the viewer is at $url/viewer/?mesh=$die (the textured die) — press Enter to stop the server"
   read -r
 fi
 echo "== done: the server stops, the temporary catalog is removed"
