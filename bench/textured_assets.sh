@@ -74,7 +74,7 @@ while read -r id name _; do
     packets=$(sed -n 's/.* \([0-9]*\) packets.*/\1/p' <<< "$line" | head -n 1)
     vertices=$(sed -n 's/.*: \([0-9]*\) vertices, \([0-9]*\) faces.*/\1/p' <<< "$line" | head -n 1)
     faces=$(sed -n 's/.*: \([0-9]*\) vertices, \([0-9]*\) faces.*/\2/p' <<< "$line" | head -n 1)
-    texture=$(grep -o 'textured: [^,]*' <<< "$line" | head -n 1 | sed 's/textured: //' || true)
+    texture=$(grep -o 'textured: [^)]*)' <<< "$line" | head -n 1 | sed 's/textured: //' || true)
     colours=$(grep -q 'with vertex colours' <<< "$line" && echo yes || echo no)
     printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$name" "$share%" "$budget" "${packets:-?}" \
       "${vertices:-?}" "${faces:-?}" "${texture:--}" "$colours" "$report" >> "$tsv"

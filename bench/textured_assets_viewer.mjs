@@ -57,10 +57,16 @@ async function stream(item, share) {
   await page.click('#stream');
   await page.waitForSelector('body[data-state="done"], body[data-state="error"]', { timeout: 300000 });
   const seconds = (Date.now() - t0) / 1000;
-  // A texture level held is decoded by the browser after the stream's end:
-  // wait for its readout (none comes when no level fits the budget).
-  await page.waitForFunction(() => document.getElementById('r-texture').dataset.value !== '',
-    null, { timeout: 5000 }).catch(() => {});
+  // The texture levels held are decoded by the browser, the last one after
+  // the stream's end: wait until the readout has not changed for a second
+  // (at most 15 s; it stays '–' when no level fits the budget).
+  let last = null;
+  for (let quiet = 0, i = 0; quiet < 4 && i < 60; ++i) {
+    const now = await page.evaluate(() => document.getElementById('r-texture').textContent);
+    quiet = now === last ? quiet + 1 : 0;
+    last = now;
+    await page.waitForTimeout(250);
+  }
   await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
   const read = await page.evaluate(() => {
     const t = (id) => document.getElementById(id).textContent.trim();

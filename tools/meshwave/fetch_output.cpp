@@ -62,14 +62,17 @@ std::string Db(double db) {
 std::string TextureHeld(const ProgressiveDecoder& decoder, const DecodedMesh& decoded) {
   if (!decoded.textured || decoder.texture().maps.empty()) return "";
   if (decoded.images.empty()) return ", texture not received yet";
-  const TextureImage& image = decoded.images.front();
-  size_t levels = decoder.texture().maps.front().levels.size();
+  const TextureImage* image = &decoded.images.front();
+  for (const TextureImage& held : decoded.images) {
+    if (held.role == TextureRole::kBaseColor) image = &held;
+  }
+  size_t levels = 0;
   for (const TextureMapInfo& map : decoder.texture().maps) {
-    if (map.role == image.role) levels = map.levels.size();
+    if (map.role == image->role) levels = map.levels.size();
   }
   char line[96];
-  std::snprintf(line, sizeof line, ", textured: %u x %u (level %d of %zu)", image.width,
-                image.height, image.level + 1, levels);
+  std::snprintf(line, sizeof line, ", textured: %u x %u (level %d of %zu)", image->width,
+                image->height, image->level + 1, levels);
   return line;
 }
 
