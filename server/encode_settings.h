@@ -39,6 +39,11 @@ struct EncodeChoices {
   // from the server's configuration: UploadAssetLimits). Like threads, not
   // part of the settings text: they refuse inputs, never change a container.
   AssetLimits limits;
+  // When the original's attributes cannot be read but its geometry can:
+  // store the geometry alone (a warning says so) instead of refusing it.
+  // Off for ingests and uploads unless asked; on for re-encodes, whose
+  // originals an earlier version accepted. Not part of the settings text.
+  bool allow_geometry_only = false;
 };
 
 // "fidelity=84 max_vertex_ratio=4 remesh=auto precinct=4096 split=48":

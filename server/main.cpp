@@ -223,6 +223,10 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   ingest->add_flag("--remesh", ingest_options.choices.force_remesh,
                    "Remesh even meshes that are already semi-regular (meshwave encode --remesh)");
+  ingest->add_flag("--allow-geometry-only", ingest_options.choices.allow_geometry_only,
+                   "When a file's textures or attributes cannot be read (a missing image, a bad "
+                   "UV index, ...) but its geometry can: store the geometry alone, with a "
+                   "warning, instead of refusing the file");
   ingest->add_option("--precinct-size", ingest_options.choices.precinct_coefficients,
                      "Precincts, so that region requests can refine one part first: base faces "
                      "grouped into runs of at least this many coefficients per subband "

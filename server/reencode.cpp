@@ -49,7 +49,13 @@ Result<ReencodeStep> Reencode(Catalog& catalog, const CatalogEntry& entry,
   }
   std::vector<OriginalPart> parts;
   for (size_t i = 0; i < bytes.size(); ++i) parts.push_back({original->files[i].name, bytes[i]});
-  MW_ASSIGN_OR_RETURN(EncodedMesh encoded, EncodeOriginal(parts, original->main, entry.name, choices));
+  // The catalog accepted this original once (an earlier version may have
+  // kept its geometry alone): it stays servable even if its attributes
+  // still cannot be read.
+  EncodeChoices lenient = choices;
+  lenient.allow_geometry_only = true;
+  MW_ASSIGN_OR_RETURN(EncodedMesh encoded,
+                      EncodeOriginal(parts, original->main, entry.name, lenient));
   CatalogEntry now = EntryFor(encoded);
   now.id = entry.id;
   now.settings = FormatEncodeSettings(choices);

@@ -74,7 +74,14 @@ Result<UploadOutcome> ParseUploadOutcome(std::string_view text) {
 Result<IngestResult> IngestUpload(Catalog& catalog, std::string_view body, const std::string& name,
                                   const std::string& source, const std::string& boundary,
                                   const EncodeChoices& choices) {
-  if (boundary.empty()) return IngestMeshBytes(catalog, body, name, source, choices);
+  if (boundary.empty()) {
+    // One file alone cannot bring the files it names (an .obj's material
+    // library, a .gltf's external buffers or images): what it holds of its
+    // own is stored, and the log says what was not sent.
+    EncodeChoices alone = choices;
+    alone.allow_geometry_only = true;
+    return IngestMeshBytes(catalog, body, name, source, alone);
+  }
   MW_ASSIGN_OR_RETURN(UploadFiles files, FilesOfMultipart(body, boundary, source));
   return IngestOriginal(catalog, files.parts, files.main, name, choices);
 }

@@ -1,7 +1,8 @@
 // End-to-end: glTF into the CLI. The .glb that `meshwave decode` writes
 // reads back (`info`, `encode`), `info` describes a file's attributes (text
-// and JSON), a missing texture leaves the geometry described, and `encode`
-// names in one line what the stream leaves out.
+// and JSON), a missing texture leaves the geometry described, `encode`
+// names in one line what the stream leaves out, and every bad input is an
+// error that writes nothing.
 #include <google/protobuf/util/json_util.h>
 #include <gtest/gtest.h>
 
@@ -11,7 +12,9 @@
 #include <fstream>
 #include <string>
 #include <utility>
+#include <vector>
 
+#include "codec/image/png_encoder_testonly.h"
 #include "e2e/cli_runner.h"
 #include "e2e/mesh_info_testonly.h"
 #include "meshwave.pb.h"
@@ -24,6 +27,11 @@ namespace {
 using testing::InfoOf;
 using testing::RunCli;
 using testing::TempDir;
+
+void WriteText(const std::filesystem::path& path, const std::string& bytes) {
+  std::ofstream(path, std::ios::binary) << bytes;
+}
+
 
 TEST(AssetCliTest, TheGlbThatDecodeWritesReadsBack) {
   TempDir dir;
@@ -121,12 +129,21 @@ TEST(AssetCliTest, EncodeNamesWhatTheStreamLeavesOut) {
             std::string::npos)
       << r.err;
 
-  // A texture that cannot be read: the geometry is encoded, and said so.
+  // A texture that cannot be read: an error that says what is missing and
+  // what would encode the geometry alone; nothing is written.
   for (const char* name : {"die.obj", "die.mtl"}) {
     std::filesystem::copy_file(testing::SampleDataDir() / "textured" / name,
                                dir / name);
   }
   r = RunCli({"encode", (dir / "die.obj").string(), (dir / "die.mwv").string()});
+  EXPECT_NE(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("texture die.png is missing"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--allow-geometry-only"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "die.mwv"));
+
+  // Asked for: the geometry is encoded, and said so.
+  r = RunCli({"encode", "--allow-geometry-only", (dir / "die.obj").string(),
+              (dir / "die.mwv").string()});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("die.obj: the stream holds the geometry only; the "
                        "file's attributes could not be read (not found: "
@@ -203,6 +220,74 @@ TEST(AssetCliTest, ColouredPlyDecodesToItsColours) {
     const std::vector<Vec3> decoded = VertexColors(*glb);
     ASSERT_EQ(decoded.size(), glb->mesh.positions.size()) << "COLOR_0 dropped";
     EXPECT_GT(ColorPsnr(decoded, expected(*glb)), least);
+  }
+}
+
+}  // namespace
+}  // namespace meshwave
+
+namespace meshwave {
+namespace {
+
+// The bad inputs a user may hand over, each through `meshwave encode`: a
+// clear message naming the problem, a failing exit, and no stream written.
+TEST(AssetCliTest, EveryBadInputIsAnErrorAndWritesNothing) {
+  TempDir dir;
+  const auto textured = testing::SampleDataDir() / "textured";
+  struct Case {
+    std::string name, main, message;
+  };
+  std::vector<Case> cases;
+  auto folder = [&](const std::string& name) {
+    std::filesystem::create_directories(dir / name);
+    return dir / name;
+  };
+  {  // A decompression bomb: a PNG declaring 20000 x 20000 pixels.
+    const auto d = folder("bomb");
+    std::filesystem::copy_file(textured / "die.obj", d / "die.obj");
+    std::filesystem::copy_file(textured / "die.mtl", d / "die.mtl");
+    testing::PngSpec bomb;
+    bomb.width = 20000;
+    bomb.height = 20000;
+    bomb.color_type = 0;
+    bomb.raw_override = true;
+    bomb.raw = std::string(64, '\0');
+    WriteText(d / "die.png", testing::EncodePng(bomb, {}));
+    cases.push_back({"bomb", (d / "die.obj").string(), "PNG declares 20000x20000"});
+  }
+  {  // A missing image.
+    const auto d = folder("missing");
+    std::filesystem::copy_file(textured / "die.obj", d / "die.obj");
+    std::filesystem::copy_file(textured / "die.mtl", d / "die.mtl");
+    cases.push_back({"missing image", (d / "die.obj").string(), "texture die.png is missing"});
+  }
+  {  // A UV index out of range.
+    const auto d = folder("uv");
+    WriteText(d / "uv.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nvt 0 0\nvt 1 0\n"
+                            "f 1/1 3/2 2/1\nf 1/1 2/2 4/9\nf 1/1 4/1 3/2\nf 2/1 3/2 4/1\n");
+    cases.push_back({"UV index", (d / "uv.obj").string(),
+                     "uv.obj: line 8: texture coordinate index 9 out of range"});
+  }
+  {  // A truncated buffer: half of a .glb.
+    const auto d = folder("truncated");
+    const std::string glb = testing::ReadBytes(textured / "ring.glb");
+    ASSERT_GT(glb.size(), 100u);
+    WriteText(d / "ring.glb", glb.substr(0, glb.size() / 2));
+    cases.push_back({"truncated buffer", (d / "ring.glb").string(), "ring.glb: truncated"});
+  }
+  {  // NaN coordinates.
+    const auto d = folder("nan");
+    WriteText(d / "nan.obj", "v 0 0 0\nv 1 0 0\nv nan 1 0\nv 0 0 1\n"
+                             "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
+    cases.push_back({"NaN", (d / "nan.obj").string(),
+                     "nan.obj: line 3: coordinate \"nan\" is NaN or infinite"});
+  }
+  for (const Case& c : cases) {
+    const auto out = dir / (c.name + ".mwv");
+    const auto r = RunCli({"encode", c.main, out.string()});
+    EXPECT_NE(r.exit_code, 0) << c.name << ": " << r.err;
+    EXPECT_NE(r.err.find(c.message), std::string::npos) << c.name << ": " << r.err;
+    EXPECT_FALSE(std::filesystem::exists(out)) << c.name;
   }
 }
 

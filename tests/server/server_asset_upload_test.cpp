@@ -119,6 +119,16 @@ TEST_F(ServerHttpTest, AMultipartUploadKeepsEveryFileOfTheAsset) {
   }
 }
 
+// One .obj alone cannot bring its material library: its geometry is
+// stored (sent as parts without the .mtl, the same file is refused).
+TEST_F(ServerHttpTest, ASingleObjBodyNamingAMaterialLibraryKeepsItsGeometry) {
+  const HttpReply r = HttpConnection(port_).Send(http::verb::post,
+                                                 "/v1/meshes?name=lone_die&format=obj", {Auth()},
+                                                 ReadBytes(SampleMesh("textured/die.obj")));
+  ASSERT_EQ(r.status, 201u) << r.body;
+  EXPECT_EQ(Summary(r).vertices(), 866u);
+}
+
 TEST_F(ServerHttpTest, BadMultipartUploadsAreRefusedSayingWhyAndStoreNothing) {
   const std::string off = ReadBytes(SampleMesh("holes.off"));
   const std::string good = Multipart({{"a.off", off}});
@@ -137,6 +147,10 @@ TEST_F(ServerHttpTest, BadMultipartUploadsAreRefusedSayingWhyAndStoreNothing) {
        "no Content-Disposition"},
       {"&main=b.off", good, 400, "names none of the parts"},
       {"&format=off", good, 400, "format= is for a single-file body"},
+      // An asset whose texture is missing: refused, not stored without it.
+      {"", Multipart({{"die.obj", ReadBytes(SampleMesh("textured/die.obj"))},
+                      {"die.mtl", ReadBytes(SampleMesh("textured/die.mtl"))}}),
+       422, "texture die.png is missing"},
   };
   const auto blobs = [&] {
     size_t n = 0;

@@ -1,11 +1,9 @@
 #include "appearance_shader.h"
 
-#include <memory>
-
 // The codec's sampler, the one the texture bake reads the original through:
 // the render then shows the asset as the encoder sees it (same UV
 // convention, wrap modes, transform and sRGB handling).
-#include "texture/material_sampler.h"
+#include "meshwave/asset_appearance.h"
 
 namespace meshwave::cli {
 
@@ -20,18 +18,18 @@ bool HasAppearance(const MeshAsset& asset) {
 }
 
 PixelShader AppearanceShader(const MeshAsset& asset) {
-  auto sampler = std::make_shared<const MaterialSampler>(asset);
-  return [sampler](uint32_t face, const Vec3& weights, const Vec3& light) -> std::optional<Rgb8> {
-    const Eigen::Vector4f base = sampler->BaseColor(face, weights);
-    if (sampler->MaterialOf(face).alpha_mode == AlphaMode::kMask && base[3] == 0) {
-      return std::nullopt;
-    }
+  BaseColorFunction base_color = AssetBaseColor(asset);
+  return [base_color](uint32_t face, const Vec3& weights,
+                      const Vec3& light) -> std::optional<Rgb8> {
+    const std::optional<Eigen::Vector4f> color = base_color(face, weights);
+    if (!color) return std::nullopt;  // cut by a masked material
+    const Eigen::Vector4f& base = *color;
     // Shaded in linear light (the sampler decodes the sRGB texture and the
     // vertex colours are linear), then encoded to sRGB for the PNG, so a
     // texel under full light comes back to its own byte.
     const auto lit = static_cast<float>(weights.dot(light));
     Rgb8 out;
-    for (int k = 0; k < 3; ++k) out[static_cast<size_t>(k)] = LinearToSrgbByte(base[k] * lit);
+    for (int k = 0; k < 3; ++k) out[static_cast<size_t>(k)] = LinearToSrgb8(base[k] * lit);
     return out;
   };
 }

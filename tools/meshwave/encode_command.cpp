@@ -39,6 +39,7 @@ struct EncodeArgs {
   uint32_t sawt_alpha = EncodeOptions{}.sawt_alpha;
   double sawt_lambda = EncodeOptions{}.sawt_lambda_scale;
   float texture_weight = EncodeOptions{}.texture_rd_weight;
+  bool allow_geometry_only = false;
   int threads = 0;
   TextureBakeOptions bake;
 };
@@ -153,6 +154,7 @@ Status Run(const EncodeArgs& args) {
   pipeline.semiregular = SemiRegularOptions(args);
   pipeline.source_name = args.in;
   pipeline.keep_input_mesh = args.fidelity_db > 0;  // ReportFidelity measures against it
+  pipeline.geometry_if_attributes_unreadable = args.allow_geometry_only;
   pipeline.on_read = [](const AssetRead& read) {
     if (!read.left_out.empty()) std::cerr << "warning: " << read.left_out << "\n";
   };
@@ -258,6 +260,10 @@ void AddEncodeCommand(CLI::App& app, int& exit_code) {
                   "Textured inputs: JPEG quality of the baked colour maps (normal maps are PNG)")
       ->check(CLI::Range(1, 100))
       ->capture_default_str();
+  cmd->add_flag("--allow-geometry-only", args->allow_geometry_only,
+                "When the file's textures or attributes cannot be read (a missing image, a bad "
+                "UV index, ...) but its geometry can: encode the geometry alone, with a "
+                "warning, instead of failing");
   cmd->add_option("--texture-weight", args->texture_weight,
                   "Textured inputs: the texture's distortion against the geometry's when the "
                   "quality order places the texture levels (docs/FORMAT.md 7)")

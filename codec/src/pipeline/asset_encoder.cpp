@@ -98,6 +98,14 @@ Result<AssetEncoding> EncodeAsset(FileSet& files, std::string_view main_file,
   } else {
     out.read.attributes_read = false;
     MW_ASSIGN_OR_RETURN(asset.mesh, GeometryOnly(files, main_file, source, options.limits));
+    if (!options.geometry_if_attributes_unreadable) {
+      // Never a silent loss: the user fixes the files or asks for the
+      // geometry alone.
+      return Status(read.status().code(),
+                    std::string(read.status().message()) +
+                        "; nothing encoded (its geometry alone reads: "
+                        "--allow-geometry-only encodes it without the attributes)");
+    }
   }
   out.read.vertices = asset.mesh.positions.size();
   out.read.faces = asset.mesh.faces.size();

@@ -69,7 +69,7 @@ TEST(AssetEncoderTest, AMeshWithoutAttributesEncodesAsTheGeometryAlone) {
   }
 }
 
-TEST(AssetEncoderTest, MissingSidecarFilesLeaveTheGeometryAndSaySo) {
+TEST(AssetEncoderTest, MissingSidecarFilesAreAnErrorThatOffersTheGeometry) {
   MemoryFileSet files;
   ASSERT_TRUE(files
                   .Add("tet.obj",
@@ -78,6 +78,21 @@ TEST(AssetEncoderTest, MissingSidecarFilesLeaveTheGeometryAndSaySo) {
                   .ok());
   AssetEncodeOptions options = Options("tet");
   options.source_name = "uploads/tet.obj";
+  bool read_reported = false;
+  options.on_read = [&](const AssetRead&) { read_reported = true; };
+  auto strict = EncodeAsset(files, "tet.obj", options);
+  ASSERT_FALSE(strict.ok());
+  EXPECT_EQ(strict.status().code(), StatusCode::kNotFound) << strict.status().ToString();
+  EXPECT_NE(strict.status().message().find("tet.mtl"), std::string::npos)
+      << strict.status().ToString();
+  EXPECT_NE(strict.status().message().find("nothing encoded (its geometry alone reads: "
+                                            "--allow-geometry-only"),
+            std::string::npos)
+      << strict.status().ToString();
+  EXPECT_FALSE(read_reported);  // strict before any step began
+
+  // Asked for: the geometry alone, and said so.
+  options.geometry_if_attributes_unreadable = true;
   auto encoded = EncodeAsset(files, "tet.obj", options);
   ASSERT_TRUE(encoded.ok()) << encoded.status().ToString();
   EXPECT_FALSE(encoded->read.attributes_read);

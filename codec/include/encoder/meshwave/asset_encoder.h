@@ -48,6 +48,12 @@ struct AssetEncodeOptions {
   // The file as the user named it ("data/cow.obj"), for messages; empty:
   // the main file's name in the set.
   std::string source_name;
+  // When the asset's attributes cannot be read (a missing or undecodable
+  // image, a UV index out of range, an image over the pixel limits) but its
+  // geometry can: encode the geometry alone and say so in
+  // AssetRead::left_out. Off (the default): the reader's error, and
+  // nothing is encoded.
+  bool geometry_if_attributes_unreadable = false;
   // Keep the geometry as read (AssetEncoding::input_mesh), e.g. to measure
   // the complete stream against it (CompleteStreamPsnr).
   bool keep_input_mesh = false;
@@ -73,9 +79,9 @@ struct AssetEncoding {
 // .gltf, .obj, .ply, .off by its extension). Safe on untrusted files:
 // errors are the readers' (kParseError, kNotFound, kInvalidArgument,
 // kUnsupported naming the file), ToSemiRegular's and EncodeMesh's. When
-// the asset reader fails but the main file's geometry reads, the geometry
-// is encoded alone and AssetRead says so: an input is never refused for
-// attributes it cannot carry anyway.
+// the asset reader fails but the main file's geometry reads, the error
+// says that the geometry alone could be encoded; with
+// geometry_if_attributes_unreadable it is, and AssetRead says so.
 Result<AssetEncoding> EncodeAsset(FileSet& files, std::string_view main_file,
                                   const AssetEncodeOptions& options);
 
