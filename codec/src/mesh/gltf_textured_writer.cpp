@@ -65,9 +65,11 @@ SplitVertices Split(const TriMesh& mesh, std::span<const float> corner_uvs) {
         *link = static_cast<uint32_t>(out.source.size());
         out.source.push_back(v);
         out.uv.push_back(uv);
-        next.push_back(kNone);
       }
-      out.corner.push_back(*link);
+      // Read before `next` grows: `link` may point into it.
+      const uint32_t written = *link;
+      if (written == next.size()) next.push_back(kNone);
+      out.corner.push_back(written);
     }
   }
   return out;
