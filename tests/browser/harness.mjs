@@ -117,8 +117,9 @@ export async function launchChromium(nodeModules) {
 // Of two screenshots (PNG buffers of the same size), decoded by the
 // browser's own image decoder: pixels drawn in each (not the white
 // background: channels summing under 3 x 240), chromatic ones in each (max
-// - min channel over 40: a grey render has none) and pixels that differ
-// (channel differences summing over 24).
+// - min channel over 40: a grey render has none), warm ones in each (red
+// over blue by more than 60: the error colours' yellow to red) and pixels
+// that differ (channel differences summing over 24).
 export async function comparePictures(browser, a, b) {
   const page = await browser.context.newPage();
   const result = await page.evaluate(async ([a64, b64]) => {
@@ -132,13 +133,16 @@ export async function comparePictures(browser, a, b) {
       return g.getImageData(0, 0, img.width, img.height).data;
     };
     const [pa, pb] = [await pixels(a64), await pixels(b64)];
-    const r = { drawn: 0, drawnB: 0, chromaticA: 0, chromaticB: 0, differ: 0, total: pa.length / 4 };
+    const r = { drawn: 0, drawnB: 0, chromaticA: 0, chromaticB: 0, warmA: 0, warmB: 0, differ: 0,
+                total: pa.length / 4 };
     const spread = (p, i) => Math.max(p[i], p[i + 1], p[i + 2]) - Math.min(p[i], p[i + 1], p[i + 2]);
     for (let i = 0; i < pa.length; i += 4) {
       if (pa[i] + pa[i + 1] + pa[i + 2] < 3 * 240) ++r.drawn;
       if (pb[i] + pb[i + 1] + pb[i + 2] < 3 * 240) ++r.drawnB;
       if (spread(pa, i) > 40) ++r.chromaticA;
       if (spread(pb, i) > 40) ++r.chromaticB;
+      if (pa[i] > pa[i + 2] + 60) ++r.warmA;
+      if (pb[i] > pb[i + 2] + 60) ++r.warmB;
       const d = Math.abs(pa[i] - pb[i]) + Math.abs(pa[i + 1] - pb[i + 1]) + Math.abs(pa[i + 2] - pb[i + 2]);
       if (d > 24) ++r.differ;
     }

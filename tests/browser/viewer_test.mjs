@@ -182,19 +182,9 @@ try {
     await page.check('#errors');
     await page.waitForFunction(() => document.getElementById('status').textContent.startsWith('error colours:'));
     const coloured = await shot(page, 'viewer_error_colours_6KiB.png');
-    const warm = await page.evaluate(async ([a64, b64]) => {
-      const pixels = async (b64) => {
-        const img = new Image();
-        img.src = `data:image/png;base64,${b64}`;
-        await img.decode();
-        const c = new OffscreenCanvas(img.width, img.height);
-        c.getContext('2d').drawImage(img, 0, 0);
-        return c.getContext('2d').getImageData(0, 0, img.width, img.height).data;
-      };
-      // Yellow to red: red well above blue; the plain grey never is.
-      const count = (p) => { let n = 0; for (let i = 0; i < p.length; i += 4) if (p[i] > p[i + 2] + 60) ++n; return n; };
-      return [count(await pixels(a64)), count(await pixels(b64))];
-    }, [plain.toString('base64'), coloured.toString('base64')]);
+    // Yellow to red: red well above blue; the plain grey never is.
+    const cmp = await comparePngs(plain, coloured);
+    const warm = [cmp.warmA, cmp.warmB];
     console.log(`  warm pixels: ${warm[0]} plain, ${warm[1]} with error colours`);
     assert.equal(warm[0], 0, 'the plain mesh has no error colour');
     assert.ok(warm[1] > 100, 'a 6 KiB prefix differs visibly from the complete stream');

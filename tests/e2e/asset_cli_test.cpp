@@ -246,13 +246,7 @@ TEST(AssetCliTest, EveryBadInputIsAnErrorAndWritesNothing) {
     const auto d = folder("bomb");
     std::filesystem::copy_file(textured / "die.obj", d / "die.obj");
     std::filesystem::copy_file(textured / "die.mtl", d / "die.mtl");
-    testing::PngSpec bomb;
-    bomb.width = 20000;
-    bomb.height = 20000;
-    bomb.color_type = 0;
-    bomb.raw_override = true;
-    bomb.raw = std::string(64, '\0');
-    WriteText(d / "die.png", testing::EncodePng(bomb, {}));
+    WriteText(d / "die.png", testing::BombPng(20000, 20000));
     cases.push_back({"bomb", (d / "die.obj").string(), "PNG declares 20000x20000"});
   }
   {  // A missing image.

@@ -497,13 +497,7 @@ TEST(GltfReaderTest, RefusesWhatWouldHurtTinygltf) {
 
 TEST(GltfReaderTest, ImagesAreDecodedWithLimits) {
   GltfBuilder b = OneTriangle();
-  testing::PngSpec bomb;
-  bomb.width = 20000;
-  bomb.height = 20000;
-  bomb.color_type = 0;
-  bomb.raw_override = true;
-  bomb.raw = std::string(64, '\0');
-  const int view = b.View(testing::EncodePng(bomb, {}));
+  const int view = b.View(testing::BombPng(20000, 20000));
   b.doc["images"] = {{{"bufferView", view}, {"mimeType", "image/png"}}};
   b.doc["textures"] = {{{"source", 0}}};
   b.doc["materials"] = {

@@ -17,6 +17,7 @@
 namespace meshwave {
 namespace {
 
+using testing::BombPng;
 using testing::EncodePng;
 using ::testing::HasSubstr;
 using testing::PngSpec;
@@ -165,13 +166,7 @@ TEST(ImageDecoderTest, InterlacedPngDecodesLikeTheProgressiveOne) {
 TEST(ImageDecoderTest, RefusesAPngBombFromItsHeader) {
   // 100,000 x 100,000 declared, a few bytes of data: refused before any
   // pixel buffer exists.
-  PngSpec spec;
-  spec.width = 100000;
-  spec.height = 100000;
-  spec.color_type = 0;
-  spec.raw_override = true;
-  spec.raw = std::string(64, '\0');
-  std::string png = EncodePng(spec, {});
+  const std::string png = BombPng(100000, 100000);
   const auto image = DecodeImage(png, {}, "bomb.png");
   EXPECT_EQ(image.status().code(), StatusCode::kUnsupported);
   EXPECT_THAT(

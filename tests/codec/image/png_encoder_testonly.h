@@ -153,6 +153,18 @@ inline std::string EncodeRgbaPng(uint32_t width, uint32_t height,
   return EncodePng(spec, std::vector<uint16_t>(rgba.begin(), rgba.end()));
 }
 
+// A decompression bomb: a small PNG whose header declares width x height
+// grey pixels (its data a few zero bytes, never enough for them).
+inline std::string BombPng(uint32_t width, uint32_t height) {
+  PngSpec bomb;
+  bomb.width = width;
+  bomb.height = height;
+  bomb.color_type = 0;
+  bomb.raw_override = true;
+  bomb.raw = std::string(64, '\0');
+  return EncodePng(bomb, {});
+}
+
 }  // namespace meshwave::testing
 
 #endif  // MESHWAVE_TESTS_CODEC_IMAGE_PNG_ENCODER_TESTONLY_H_
