@@ -1,0 +1,3 @@
+#include "original/original_connectivity.h"
+
+namespace meshwave::original {}  // namespace meshwave::original

@@ -1,0 +1,3 @@
+#include "original/original_positions.h"
+
+namespace meshwave::original {}  // namespace meshwave::original

@@ -1,0 +1,3 @@
+#include "original/original_connectivity.h"
+
+#include <gtest/gtest.h>

@@ -1,0 +1,3 @@
+#include "original/original_positions.h"
+
+#include <gtest/gtest.h>
