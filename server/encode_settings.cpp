@@ -43,7 +43,8 @@ std::string FormatEncodeSettings(const EncodeChoices& c) {
   return "fidelity=" + Number(c.fidelity_db) + " max_vertex_ratio=" + Number(c.max_vertex_ratio) +
          " remesh=" + (c.force_remesh ? "always" : "auto") +
          " precinct=" + std::to_string(c.precinct_coefficients) +
-         " split=" + std::to_string(c.split_bytes_per_precinct);
+         " split=" + std::to_string(c.split_bytes_per_precinct) +
+         (c.original_layer ? "" : " original=no");
 }
 
 Result<EncodeChoices> ParseEncodeSettings(std::string_view text) {
@@ -64,8 +65,12 @@ Result<EncodeChoices> ParseEncodeSettings(std::string_view text) {
   }
   static constexpr std::string_view kKeys[] = {"fidelity", "max_vertex_ratio", "remesh",
                                                "precinct", "split"};
+  // Keys a text may leave out: their defaults.
+  static constexpr std::string_view kOptionalKeys[] = {"original"};
   for (const auto& [key, value] : fields) {
-    if (std::find(std::begin(kKeys), std::end(kKeys), key) == std::end(kKeys)) {
+    if (std::find(std::begin(kKeys), std::end(kKeys), key) == std::end(kKeys) &&
+        std::find(std::begin(kOptionalKeys), std::end(kOptionalKeys), key) ==
+            std::end(kOptionalKeys)) {
       return InvalidArgument("encoder settings: unknown key '" + key + "'");
     }
   }
@@ -85,6 +90,12 @@ Result<EncodeChoices> ParseEncodeSettings(std::string_view text) {
   c.force_remesh = remesh == "always";
   MW_ASSIGN_OR_RETURN(c.precinct_coefficients, ReadCount("precinct", fields.find("precinct")->second));
   MW_ASSIGN_OR_RETURN(c.split_bytes_per_precinct, ReadCount("split", fields.find("split")->second));
+  if (const auto it = fields.find("original"); it != fields.end()) {
+    if (it->second != "yes" && it->second != "no") {
+      return InvalidArgument("encoder settings: original=" + it->second + " (yes or no)");
+    }
+    c.original_layer = it->second == "yes";
+  }
   return c;
 }
 

@@ -44,6 +44,10 @@ struct EncodeChoices {
   // Off for ingests and uploads unless asked; on for re-encodes, whose
   // originals an earlier version accepted. Not part of the settings text.
   bool allow_geometry_only = false;
+  // End the stream in the original mesh (docs/FORMAT.md 2.5; `--no-original`
+  // leaves it out). In the settings text as "original=no" when off, so that
+  // the default's text is the one earlier versions wrote.
+  bool original_layer = true;
 };
 
 // "fidelity=84 max_vertex_ratio=4 remesh=auto precinct=4096 split=48":

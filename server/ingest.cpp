@@ -125,6 +125,7 @@ Result<EncodedMesh> EncodeOriginal(const std::vector<OriginalPart>& parts, const
   if (fidelity) pipeline.encode.precision = PrecisionForFidelity(choices.fidelity_db);
   pipeline.keep_input_mesh = fidelity;
   pipeline.geometry_if_attributes_unreadable = choices.allow_geometry_only;
+  pipeline.original_layer = choices.original_layer;
   auto step = std::chrono::steady_clock::now();
   pipeline.on_read = [&](const AssetRead& read) {
     spdlog::info("{}: read {} vertices, {} faces{} in {:.1f} s", main, read.vertices, read.faces,

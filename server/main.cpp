@@ -227,6 +227,9 @@ int main(int argc, char** argv) {
                    "When a file's textures or attributes cannot be read (a missing image, a bad "
                    "UV index, ...) but its geometry can: store the geometry alone, with a "
                    "warning, instead of refusing the file");
+  ingest->add_flag("!--no-original", ingest_options.choices.original_layer,
+                   "Leave out the final layer that restores each mesh's own connectivity and "
+                   "positions (docs/FORMAT.md 2.5): the stream ends in the remesh");
   ingest->add_option("--precinct-size", ingest_options.choices.precinct_coefficients,
                      "Precincts, so that region requests can refine one part first: base faces "
                      "grouped into runs of at least this many coefficients per subband "

@@ -182,11 +182,21 @@ Result<std::string> ReadFileBytes(const std::string& path) {
 int OutputLevel(const ProgressiveDecoder& decoder, int max_level, int extra_levels) {
   const int levels = static_cast<int>(decoder.header().transform.levels);
   const int cap = (max_level < 0 || max_level > levels) ? levels : max_level;
+  // The original mesh stands above every level (DecodeLevel).
+  if (decoder.OriginalReady() && cap == levels) return levels;
   return std::min(cap, decoder.DetailLevels() + std::max(extra_levels, 0));
 }
 
 DecodedMesh DecodeLevel(const ProgressiveDecoder& decoder, int level) {
   DecodedMesh out;
+  // The user's own mesh once its layer gives it, unless a coarser level is
+  // asked for (docs/FORMAT.md 2.5).
+  const int levels = static_cast<int>(decoder.header().transform.levels);
+  if (decoder.OriginalReady() && (level < 0 || level >= levels)) {
+    out.mesh = decoder.OriginalMesh();
+    out.original = true;
+    return out;
+  }
   out.mesh = decoder.Mesh(level);
   out.colors = decoder.Colors(level);
   out.textured = decoder.HasTexture();

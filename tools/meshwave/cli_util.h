@@ -64,6 +64,7 @@ Status ApplyQuantizerOption(const QuantizerArgs& args, EncodeOptions& options);
 // surface (bunny and horse: +1.3 to +3.4 dB of surface PSNR against the
 // original), the next ones add little for four times the faces each
 // (about +0.1 dB; docs/RD_RESULTS.md, "Decoded vertex count").
+// With the original layer held (DecodeLevel gives its mesh): the finest.
 int OutputLevel(const ProgressiveDecoder& decoder, int max_level, int extra_levels);
 inline constexpr int kDefaultExtraLevels = 1;
 
@@ -71,6 +72,9 @@ inline constexpr int kDefaultExtraLevels = 1;
 // one per vertex; empty when the stream has no colour channel).
 struct DecodedMesh {
   TriMesh mesh;
+  // The original layer's mesh (ProgressiveDecoder::OriginalMesh), not a
+  // level of the remesh.
+  bool original = false;
   std::vector<Vec3> colors;
   // With a texture: each map's finest level held (views into the decoder:
   // valid while it lives and is not reset) and, when any is held, the UVs
@@ -80,6 +84,8 @@ struct DecodedMesh {
   std::vector<float> uvs;
   TextureMaterial material;
 };
+// Level `level` of the remesh, or the original mesh when the decoder holds
+// enough of its layer and `level` is the finest (or beyond).
 DecodedMesh DecodeLevel(const ProgressiveDecoder& decoder, int level);
 // Writes it by the path's extension (WriteMesh: the colours go into .ply
 // and glTF files; .obj has no place for them; the texture into glTF files

@@ -40,13 +40,20 @@ struct EncodeArgs {
   double sawt_lambda = EncodeOptions{}.sawt_lambda_scale;
   float texture_weight = EncodeOptions{}.texture_rd_weight;
   bool allow_geometry_only = false;
+  bool original_layer = true;
   int threads = 0;
   TextureBakeOptions bake;
 };
 
-// The first texture packet's id: texture packets close the index.
+// Packets of the original layer, which closes the index (FORMAT.md 2.5).
+size_t OriginalPackets(const StreamHeader& header) {
+  return header.original ? 2 + header.original->refinement_planes : 0;
+}
+
+// The first texture packet's id: texture packets come before the original
+// layer's.
 size_t TexturePacketsStart(const StreamHeader& header) {
-  size_t first = header.packets.length.size();
+  size_t first = header.packets.length.size() - OriginalPackets(header);
   if (!header.texture) return first;
   for (const StreamHeader::Texture::Map& map : header.texture->maps) {
     for (const StreamHeader::Texture::Level& level : map.levels) {
@@ -155,6 +162,7 @@ Status Run(const EncodeArgs& args) {
   pipeline.source_name = args.in;
   pipeline.keep_input_mesh = args.fidelity_db > 0;  // ReportFidelity measures against it
   pipeline.geometry_if_attributes_unreadable = args.allow_geometry_only;
+  pipeline.original_layer = args.original_layer;
   pipeline.on_read = [](const AssetRead& read) {
     if (!read.left_out.empty()) std::cerr << "warning: " << read.left_out << "\n";
   };
@@ -178,7 +186,7 @@ Status Run(const EncodeArgs& args) {
               args.out.c_str(), bytes.size(), bytes.size() - payload,
               stream.header.base.coded.size(), stream.packets.size(),
               static_cast<unsigned long long>(payload), planes,
-              planes == 0 ? size_t{0} : stream.packets.back().size());
+              planes == 0 ? size_t{0} : (3 * size_t{stream.header.base.vertex_count} + 7) / 8);
   std::printf("%llu vertices, %u levels, %s/%s %s: %.3f bits per vertex in all\n",
               static_cast<unsigned long long>(stream.header.vertices),
               stream.header.transform.levels,
@@ -196,7 +204,8 @@ Status Run(const EncodeArgs& args) {
       }
     }
     // ... and before the texture's (docs/FORMAT.md 2.4).
-    const size_t texture_packets = stream.packets.size() - TexturePacketsStart(stream.header);
+    const size_t texture_packets =
+        stream.packets.size() - OriginalPackets(stream.header) - TexturePacketsStart(stream.header);
     const size_t geometry_packets = stream.packets.size() - texture_packets - channel_packets;
     uint64_t channel_bytes = 0;
     for (size_t id = geometry_packets; id < geometry_packets + channel_packets; ++id) {
@@ -206,6 +215,22 @@ Status Run(const EncodeArgs& args) {
                 static_cast<unsigned long long>(channel_bytes), options.color_precision);
   }
   if (stream.header.texture) PrintTexture(stream);
+  if (const auto& original = stream.header.original) {
+    const size_t first = stream.packets.size() - OriginalPackets(stream.header);
+    uint64_t positions = 0;
+    for (size_t id = first + 1; id < stream.packets.size(); ++id) positions += stream.packets[id].size();
+    const double n = std::max<double>(original->vertex_count, 1);
+    std::printf("original layer: %u vertices, %llu faces; connectivity %zu bytes (%.2f bits per "
+                "vertex), positions %llu bytes (%.2f bits per vertex) in %u + 1 packets "
+                "(precision %d)\n",
+                original->vertex_count, static_cast<unsigned long long>(original->face_count),
+                stream.packets[first].size(), 8.0 * static_cast<double>(stream.packets[first].size()) / n,
+                static_cast<unsigned long long>(positions), 8.0 * static_cast<double>(positions) / n,
+                original->refinement_planes, options.precision);
+  } else if (args.original_layer) {
+    std::printf("original layer: left out (the mesh's colours or texture travel on the remesh "
+                "only)\n");
+  }
   for (const std::string& note : encoded.bake_notes) std::cerr << "warning: " << note << "\n";
   if (!stream.sawt_filter_usage.empty()) {
     // The field as the header carries it: tag, length and message.
@@ -260,6 +285,10 @@ void AddEncodeCommand(CLI::App& app, int& exit_code) {
                   "Textured inputs: JPEG quality of the baked colour maps (normal maps are PNG)")
       ->check(CLI::Range(1, 100))
       ->capture_default_str();
+  cmd->add_flag("!--no-original", args->original_layer,
+                "Leave out the final layer that restores the input's own connectivity, vertex "
+                "order and positions at --precision (docs/FORMAT.md 2.5): the stream ends in "
+                "the remesh");
   cmd->add_flag("--allow-geometry-only", args->allow_geometry_only,
                 "When the file's textures or attributes cannot be read (a missing image, a bad "
                 "UV index, ...) but its geometry can: encode the geometry alone, with a "

@@ -114,7 +114,9 @@ Result<AssetEncoding> EncodeAsset(FileSet& files, std::string_view main_file,
 
   // 2. Geometry: semi-regular as it is, or remeshed.
   if (options.keep_input_mesh) out.input_mesh = asset.mesh;
-  TriMesh geometry = NeedsInputSurface(asset) ? asset.mesh : std::move(asset.mesh);
+  const bool original_layer = options.original_layer && asset.color.empty() && !MayBake(asset);
+  TriMesh geometry =
+      NeedsInputSurface(asset) || original_layer ? asset.mesh : std::move(asset.mesh);
   MW_ASSIGN_OR_RETURN(out.semiregular, ToSemiRegular(std::move(geometry), options.semiregular));
   if (options.on_semiregular) options.on_semiregular(out.semiregular);
 
@@ -140,7 +142,8 @@ Result<AssetEncoding> EncodeAsset(FileSet& files, std::string_view main_file,
     }
   }
 
-  // 5. Encode.
+  // 5. Encode, ending in the original where asked.
+  if (original_layer) attributes.original = &asset.mesh;
   MW_ASSIGN_OR_RETURN(out.stream,
                       EncodeMesh(out.semiregular.mesh, options.encode, attributes));
   out.semiregular.mesh = SemiRegularMesh{};  // the stream's copy is what callers use

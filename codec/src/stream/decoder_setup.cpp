@@ -7,6 +7,7 @@
 #include "core/quoted.h"
 #include "meshwave/stream_limits.h"
 #include "meshwave/texture.h"
+#include "original/original_positions.h"
 #include "stream/packet_index.h"
 #include "texture/atlas_layout.h"
 #include "quant/deadzone_quantizer.h"
@@ -174,6 +175,35 @@ Status ValidateTexture(const StreamHeader& h) {
       }
       ++id;
     }
+  }
+  return Status::Ok();
+}
+
+Status ValidateOriginal(const StreamHeader& h) {
+  if (!h.original) return Status::Ok();
+  const StreamHeader::Original& o = *h.original;
+  if (o.vertex_count == 0 || o.vertex_count > kMaxOriginalVertices) {
+    return ParseError("header: original layer: " + std::to_string(o.vertex_count) +
+                      " vertices (1 to " + std::to_string(kMaxOriginalVertices) + ")");
+  }
+  if (o.face_count > kMaxOriginalFaces) {
+    return ParseError("header: original layer: " + std::to_string(o.face_count) +
+                      " faces (at most " + std::to_string(kMaxOriginalFaces) + ")");
+  }
+  bool finite = o.origin.size() == 3 && std::isfinite(o.step) && o.step > 0;
+  for (double v : o.origin) finite = finite && std::isfinite(v);
+  if (!finite) {
+    return ParseError("header: original layer: the grid needs 3 finite origin coordinates and a "
+                      "finite positive step");
+  }
+  if (o.extent > original::kMaxGridCoordinate) {
+    return ParseError("header: original layer: grid extent " + std::to_string(o.extent) +
+                      " beyond " + std::to_string(original::kMaxGridCoordinate));
+  }
+  if (o.refinement_planes > kMaxOriginalRefinementPlanes) {
+    return ParseError("header: original layer: " + std::to_string(o.refinement_planes) +
+                      " refinement planes (at most " +
+                      std::to_string(kMaxOriginalRefinementPlanes) + ")");
   }
   return Status::Ok();
 }

@@ -37,6 +37,14 @@ Status ValidateChannels(const StreamHeader& h);
 // finite positive rd weight.
 Status ValidateTexture(const StreamHeader& h);
 
+// The original layer (format version 10, docs/FORMAT.md 2.5), when the
+// header has one: 1 to kMaxOriginalVertices vertices, at most
+// kMaxOriginalFaces faces, a
+// grid of 3 finite origin coordinates and a finite positive step, an
+// extent within the positions code's range, and at most
+// kMaxOriginalRefinementPlanes refinement planes.
+Status ValidateOriginal(const StreamHeader& h);
+
 // Decodes the base mesh (at most `max_base_vertices`) into `base`, builds
 // `hierarchy` and checks the header's vertex and face counts and bounding
 // box against it; returns the header's transform settings (with the SAWT

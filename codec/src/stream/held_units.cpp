@@ -23,6 +23,13 @@ HeldUnits::HeldUnits(const StreamHeader& header, PrecinctParents parents)
       part_count_.push_back(0);
       continue;
     }
+    if (const int part = layout.OriginalPart(id); part >= 0) {
+      // The original layer's parts go one after the other.
+      up_.push_back(part > 0 ? static_cast<int>(id) - 1 : -1);
+      parent_.push_back(-1);
+      part_count_.push_back(0);
+      continue;
+    }
     if (const int k = layout.Channel(id); k >= 0) {
       // A channel's packets need their channel's only, and are never split.
       up_.push_back(layout.ChannelId(k, j, b + 1));

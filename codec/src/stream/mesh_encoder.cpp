@@ -7,6 +7,7 @@
 
 #include "bitplane/subband_layout.h"
 #include "meshwave/encoder.h"
+#include "original/original_layer_encoder.h"
 #include "quant/subband_gains.h"
 #include "stream/base_mesh_decoder.h"
 #include "stream/base_refinement_encoder.h"
@@ -145,6 +146,24 @@ Result<EncodedStream> EncodeMesh(const SemiRegularMesh& input, const EncodeOptio
       }
     }
     *header.mutable_texture() = std::move(texture.header);
+  }
+  // The original layer after everything, one chain (FORMAT.md 2.5).
+  if (attributes.original) {
+    MW_ASSIGN_OR_RETURN(
+        original::EncodedLayer layer,
+        original::EncodeLayer(*attributes.original, out.mesh.Finest(), header.vertices(),
+                              options.precision, options.original_refinement_planes,
+                              options.threads));
+    if (model.geometry_chains > model.chain_start.size()) {
+      model.geometry_chains = model.chain_start.size();
+    }
+    const auto chain = static_cast<uint32_t>(model.chain_start.size());
+    model.chain_start.push_back(layer.chain_start);
+    for (size_t i = 0; i < layer.packets.size(); ++i) {
+      AddCodedPacket(layer.packets[i], chain, layer.reduction[i], index, model);
+      out.packets.push_back(std::move(layer.packets[i]));
+    }
+    *header.mutable_original() = std::move(layer.header);
   }
   WriteDistortionIndex(model, prepared.zero_packet_distortion, header);
   MW_ASSIGN_OR_RETURN(out.header, ToStreamHeader(header));

@@ -80,6 +80,16 @@ PacketLayout::PacketLayout(const StreamHeader& h) {
       count_ += map_levels;
     }
   }
+  original_first_ = count_;
+  if (h.original) {
+    // Clamped for headers not validated yet (ValidateOriginal refuses more).
+    const int parts = 2 + static_cast<int>(std::min<uint32_t>(h.original->refinement_planes,
+                                                              kMaxOriginalRefinementPlanes));
+    subband_.insert(subband_.end(), static_cast<size_t>(parts), -1);
+    channel_.insert(channel_.end(), static_cast<size_t>(parts), -1);
+    texture_.insert(texture_.end(), static_cast<size_t>(parts), -1);
+    count_ += parts;
+  }
 }
 
 int PacketLayout::TextureId(int map, int level) const {
@@ -107,6 +117,11 @@ int PacketLayout::Id(int j, int b) const {
 PacketLayout::Needs PacketLayout::Dependencies(uint32_t id, bool parent_contexts) const {
   Needs needs;
   if (id >= static_cast<uint32_t>(count()) || IsTexture(id)) return needs;
+  if (const int part = OriginalPart(id); part >= 0) {
+    // Each part needs the one before: positions need the traversal.
+    if (part > 0) needs.ids[needs.count++] = id - 1;
+    return needs;
+  }
   if (IsBase(id)) {
     if (int up = BaseId(Bitplane(id) + 1); up >= 0) {
       needs.ids[needs.count++] = static_cast<uint32_t>(up);
@@ -128,6 +143,7 @@ PacketLayout::Needs PacketLayout::Dependencies(uint32_t id, bool parent_contexts
 
 int PacketLayout::Bitplane(uint32_t id) const {
   if (IsBase(id)) return base_planes_ - 1 - (static_cast<int>(id) - detail_count_);
+  if (const int part = OriginalPart(id); part >= 0) return part;
   if (const int m = TextureMap(id); m >= 0) {
     return static_cast<int>(id) - texture_first_[static_cast<size_t>(m)];
   }
@@ -151,6 +167,7 @@ std::vector<uint32_t> PacketChains(const StreamHeader& header) {
     if (const int m = layout.TextureMap(u); m >= 0) {
       c = levels + 1 + layout.channels() * levels + m;
     }
+    if (layout.IsOriginal(u)) c = levels + 1 + layout.channels() * levels + layout.texture_maps();
     chain[static_cast<size_t>(id)] = static_cast<uint32_t>(c);
   }
   return chain;
@@ -160,7 +177,7 @@ size_t ChainCount(const StreamHeader& header) {
   const PacketLayout layout(header);
   const auto levels = static_cast<size_t>(layout.levels());
   return levels + 1 + static_cast<size_t>(layout.channels()) * levels +
-         static_cast<size_t>(layout.texture_maps());
+         static_cast<size_t>(layout.texture_maps()) + (header.original ? 1 : 0);
 }
 
 double HeaderDiagonal(const StreamHeader& header) {
@@ -194,7 +211,8 @@ DistortionEstimates ReadDistortionIndex(const StreamHeader& header,
   for (float e : index.chain_distortion) out.chain_start.push_back(e);
   const size_t channel_chains =
       std::min<size_t>(header.channels.size(), kMaxChannels) * header.transform.levels +
-      (header.texture ? std::min<size_t>(header.texture->maps.size(), kMaxTextureMaps) : 0);
+      (header.texture ? std::min<size_t>(header.texture->maps.size(), kMaxTextureMaps) : 0) +
+      (header.original ? 1 : 0);
   out.geometry_chains =
       out.chain_start.size() - std::min(out.chain_start.size(), channel_chains);
   std::vector<double> current = out.chain_start;

@@ -74,6 +74,21 @@ class PacketLayout {
   int TextureLevels(int map) const { return texture_levels_[static_cast<size_t>(map)]; }
   // Id of level `level` of texture map `map`, -1 when it does not exist.
   int TextureId(int map, int level) const;
+  // The original layer (FORMAT.md 2.5): its connectivity packet (part 0),
+  // then its positions, coarse (part 1) to finest; they follow every other
+  // packet. Part of `id` in it, -1 for every other packet.
+  int OriginalPart(uint32_t id) const {
+    return id >= static_cast<uint32_t>(original_first_) && id < static_cast<uint32_t>(count_)
+               ? static_cast<int>(id) - original_first_
+               : -1;
+  }
+  bool IsOriginal(uint32_t id) const { return OriginalPart(id) >= 0; }
+  // Packets of the original layer (0 without one) and the id of part `part`
+  // (-1 when it does not exist).
+  int original_parts() const { return count_ - original_first_; }
+  int OriginalId(int part) const {
+    return part >= 0 && part < original_parts() ? original_first_ + part : -1;
+  }
   // Whether detail packet `id` holds one codeword per precinct behind a
   // table of their lengths (PacketIndex.split_planes).
   bool IsSplit(uint32_t id) const {
@@ -120,8 +135,21 @@ class PacketLayout {
   std::vector<uint32_t> split_planes_;  // per subband, as in the header
   int detail_count_ = 0;
   int base_planes_ = 0;
+  int original_first_ = 0;  // == count_ without an original layer
   int count_ = 0;
 };
+
+// Every order ends with the original layer's packets, parts in order
+// (FORMAT.md 7): after the semi-regular stream, so a client stops at the
+// remesh or goes on to the exact mesh. Orders limited to fewer than all
+// `map.levels()` levels (`used_levels`) leave it out.
+inline void AppendOriginalLayer(const PacketLayout& map, int used_levels,
+                                std::vector<uint32_t>& order) {
+  if (used_levels < map.levels()) return;
+  for (int part = 0; part < map.original_parts(); ++part) {
+    order.push_back(static_cast<uint32_t>(map.OriginalId(part)));
+  }
+}
 
 // The estimates a reader derives from a validated header. For any set of
 // packets closed under the dependencies the estimate is base + the sum over
@@ -146,7 +174,8 @@ DistortionEstimates ReadDistortionIndex(const StreamHeader& header,
                                         std::span<const uint32_t> chain_of);
 // The chain of each packet: its subband (3xC and SIM), J for the base
 // refinement's packets, J + 1 + k J + j for subband j of channel k, then
-// J + 1 + K J + m for texture map m (K channels).
+// J + 1 + K J + m for texture map m (K channels), and after them one for
+// the original layer (FORMAT.md 2.5).
 std::vector<uint32_t> PacketChains(const StreamHeader& header);
 // How many chains a header's packets form (the count PacketChains uses).
 size_t ChainCount(const StreamHeader& header);

@@ -71,6 +71,7 @@ Status ValidateStreamHeader(const StreamHeader& h) {
   }
   MW_RETURN_IF_ERROR(ValidateChannels(h));
   MW_RETURN_IF_ERROR(ValidateTexture(h));
+  MW_RETURN_IF_ERROR(ValidateOriginal(h));
   const PacketLayout map(h);
   // One chain per subband and the base refinement's, then one per subband
   // of each channel, then one per texture map.
@@ -308,6 +309,7 @@ std::vector<uint32_t> PacketOrder(const StreamHeader& h,
       break;
     }
   }
+  AppendOriginalLayer(map, used, order);
   return order;
 }
 

@@ -23,6 +23,7 @@
 #include "stream/decoder_setup.h"
 #include "stream/packet_index.h"
 #include "meshwave/packet_parts.h"
+#include "original/original_layer_decoder.h"
 #include "stream/precinct_partition.h"
 #include "stream/sawt_field_decoder.h"
 #include "stream/stream_format.h"
@@ -175,6 +176,10 @@ struct ProgressiveDecoder::Impl {
   std::optional<AtlasLayout> atlas;
   uint32_t first_texture = 0;
   std::vector<std::string> texture_bytes;
+  // The original layer (FORMAT.md 2.5), when the stream has one, and its
+  // chain (its estimate replaces the remesh's once its mesh is given).
+  std::optional<original::LayerDecoder> original;
+  uint32_t original_chain = 0;
   // Last, so that it stops (its thread joined) before what it builds goes.
   WorkAhead ahead;
 
@@ -346,6 +351,16 @@ Result<std::unique_ptr<ProgressiveDecoder>> ProgressiveDecoder::Create(
     impl->texture = TextureInfoOf(t);
     impl->first_texture = static_cast<uint32_t>(impl->packets->TextureId(0, 0));
   }
+  if (header.original) {
+    if (header.original->face_count > options.max_faces) {
+      return Status(StatusCode::kUnsupported,
+                    "header: the original layer's " + std::to_string(header.original->face_count) +
+                        " faces, more than this decoder's limit of " +
+                        std::to_string(options.max_faces));
+    }
+    impl->original.emplace(*header.original);
+    impl->original_chain = static_cast<uint32_t>(ChainCount(header) - 1);
+  }
   impl->estimates = ReadDistortionIndex(header, PacketChains(header));
   for (const StreamHeader::Channel& channel : header.channels) {
     MW_ASSIGN_OR_RETURN(std::vector<Vec3> base,
@@ -430,7 +445,10 @@ void ProgressiveDecoder::Reset() {
     }
   }
   m.held->Clear();
-  m.texture_bytes.assign(m.held->packet_count() - m.first_texture, std::string());
+  const int first_original = m.packets->original_parts() > 0 ? m.packets->OriginalId(0)
+                                                              : m.packets->count();
+  m.texture_bytes.assign(static_cast<size_t>(first_original) - m.first_texture, std::string());
+  if (m.original) m.original->Reset();
   m.part_bytes.assign(m.held->packet_count(), 0);
   m.chain_now = m.estimates.chain_start;
   m.distortion = m.estimates.start();
@@ -460,6 +478,11 @@ Status ProgressiveDecoder::AddPacket(uint32_t id, std::string_view payload) {
   // A packet's name, for errors only: built on the way out (it was a
   // tenth of a small packet's decoding time).
   auto name = [&](uint32_t p) {
+    if (const int part = m.packets->OriginalPart(p); part >= 0) {
+      return "packet " + std::to_string(p) + " (original layer, " +
+             (part == 0 ? std::string("connectivity") : "positions " + std::to_string(part - 1)) +
+             ")";
+    }
     if (m.packets->IsTexture(p)) {
       return "packet " + std::to_string(p) + " (texture map " +
              std::to_string(m.packets->TextureMap(p)) + ", level " +
@@ -491,6 +514,14 @@ Status ProgressiveDecoder::AddPacket(uint32_t id, std::string_view payload) {
     // Its length is checked (the index's, validated): every bit pattern is
     // a refinement, and the dependencies bring the planes in turn.
     if (Status s = RefineBase(m.header.base, b, payload, m.base); !s.ok()) {
+      m.broken = true;
+      return s.WithContext(what());
+    }
+    Impl::Record(m, {id}, payload.size());
+    return Status::Ok();
+  }
+  if (const int part = m.packets->OriginalPart(id); part >= 0) {
+    if (Status s = m.original->Add(part, payload); !s.ok()) {
       m.broken = true;
       return s.WithContext(what());
     }
@@ -623,7 +654,21 @@ int ProgressiveDecoder::DetailLevels() const {
 }
 
 double ProgressiveDecoder::EstimatedPsnr() const {
-  return EstimatedPsnrFromDistortion(impl_->header, impl_->diagonal, impl_->distortion);
+  const Impl& m = *impl_;
+  if (OriginalReady() && m.original_chain < m.chain_now.size()) {
+    return EstimatedPsnrFromDistortion(m.header, m.diagonal, m.chain_now[m.original_chain]);
+  }
+  return EstimatedPsnrFromDistortion(m.header, m.diagonal, m.distortion);
+}
+
+bool ProgressiveDecoder::HasOriginal() const { return impl_->original.has_value(); }
+
+bool ProgressiveDecoder::OriginalReady() const {
+  return impl_->original && impl_->original->ready();
+}
+
+TriMesh ProgressiveDecoder::OriginalMesh() const {
+  return OriginalReady() ? impl_->original->Mesh() : TriMesh();
 }
 
 std::vector<Vec3> ProgressiveDecoder::Positions(int max_level) const {

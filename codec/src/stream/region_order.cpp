@@ -110,6 +110,8 @@ std::vector<StreamUnit> RegionOrder(const StreamHeader& header, const StreamPrec
   for (uint32_t id = 0; id < n; ++id) {
     first_unit[id] = static_cast<uint32_t>(units.size());
     const int j = layout.Subband(id);
+    // The original layer is global and last (FORMAT.md 7): appended below.
+    if (layout.IsOriginal(id)) continue;
     if (layout.IsTexture(id)) {
       // Texture levels are global (one image for the whole surface): each
       // one where the uniform orders send it (its mesh level within
@@ -241,6 +243,11 @@ std::vector<StreamUnit> RegionOrder(const StreamHeader& header, const StreamPrec
     for (uint32_t d : dependants[k]) {
       if (--pending[d] == 0) ready.push(d);
     }
+  }
+  std::vector<uint32_t> original;
+  AppendOriginalLayer(layout, used, original);
+  for (uint32_t id : original) {
+    if (!held.Has({id, StreamUnit::kWholePacket})) order.push_back({id, StreamUnit::kWholePacket});
   }
   return order;
 }

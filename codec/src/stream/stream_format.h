@@ -16,7 +16,8 @@ namespace meshwave {
 
 // The version this build writes (meshwave/stream_header.h).
 inline constexpr uint32_t kFormatVersion = kStreamFormatVersion;
-// The oldest version it reads. Version 8 is version 9 without textures,
+// The oldest version it reads. Version 9 is version 10 without the
+// original layer, version 8 is version 9 without textures,
 // version 7 is version 8 without channels,
 // version 6 is version 7 without precincts
 // (docs/FORMAT.md 2.2): kept readable so that a catalog written by the
@@ -47,6 +48,10 @@ inline Status CheckFormatVersion(const StreamHeader& h) {
     return ParseError("header: a version-" + std::to_string(h.format_version) +
                       " stream with a texture (textures came with version 9)");
   }
+  if (h.format_version < 10 && h.original) {
+    return ParseError("header: a version-" + std::to_string(h.format_version) +
+                      " stream with an original layer (it came with version 10)");
+  }
   return Status::Ok();
 }
 inline constexpr char kContainerMagic[4] = {'M', 'W', 'V', '1'};
@@ -59,6 +64,8 @@ inline constexpr uint32_t kMaxBaseVertices = 1u << 24;
 inline constexpr uint32_t kMaxBaseRefinementPlanes = 20;
 // Channels a stream may have: one of each kind.
 inline constexpr uint32_t kMaxChannels = 1;
+// The original layer's positions packets after the coarse one.
+inline constexpr uint32_t kMaxOriginalRefinementPlanes = 8;
 
 inline Result<TransformSettings> ReadTransformSettings(const StreamHeader::Transform& t) {
   TransformSettings s;

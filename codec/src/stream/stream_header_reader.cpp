@@ -152,6 +152,19 @@ wire::Field ReadTexture(uint32_t number, uint32_t type, wire::WireReader& r, int
   }
 }
 
+wire::Field ReadOriginal(uint32_t number, uint32_t type, wire::WireReader& r,
+                         StreamHeader::Original& o) {
+  switch (number) {
+    case 1: return wire::ReadVarint32(type, r, o.vertex_count);
+    case 2: return wire::ReadU64(type, r, o.face_count);
+    case 3: return wire::ReadRepeatedFixed<double>(type, r, o.origin);
+    case 4: return wire::ReadDouble(type, r, o.step);
+    case 5: return wire::ReadVarint32(type, r, o.extent);
+    case 6: return wire::ReadVarint32(type, r, o.refinement_planes);
+    default: return wire::Field::kUnknown;
+  }
+}
+
 wire::Field ReadHeaderField(uint32_t number, uint32_t type, wire::WireReader& r, int depth,
                             StreamHeader& h) {
   switch (number) {
@@ -203,6 +216,12 @@ wire::Field ReadHeaderField(uint32_t number, uint32_t type, wire::WireReader& r,
       if (!h.texture) h.texture = StreamHeader::Texture();
       return wire::ReadEmbedded(r, depth, [&](uint32_t n, uint32_t w, wire::WireReader& f, int d) {
         return ReadTexture(n, w, f, d, *h.texture);
+      });
+    case 17:
+      if (type != kLengthDelimited) return wire::Field::kUnknown;
+      if (!h.original) h.original = StreamHeader::Original();
+      return wire::ReadEmbedded(r, depth, [&](uint32_t n, uint32_t w, wire::WireReader& f, int) {
+        return ReadOriginal(n, w, f, *h.original);
       });
     default: return wire::Field::kUnknown;
   }

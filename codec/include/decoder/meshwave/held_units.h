@@ -36,7 +36,8 @@ using PrecinctParents = std::vector<std::vector<uint32_t>>;
 // (every part of a split one); a part needs its precinct's share of the
 // packet one bitplane up and, with 3xC, its parent precinct's share of the
 // parent subband's packet at the same bitplane (a share: that part, or the
-// packet whole where it is not split). A texture packet needs nothing.
+// packet whole where it is not split). A texture packet needs nothing; a
+// part of the original layer needs the part before it.
 class HeldUnits {
  public:
   // `header` validated (ValidateStreamHeader); `parents` from its

@@ -114,6 +114,20 @@ class ProgressiveDecoder {
   std::vector<Face> Faces(int max_level = -1) const;
   TriMesh Mesh(int max_level = -1) const;
 
+  // Whether the stream has the original layer (format version 10,
+  // docs/FORMAT.md 2.5): the user's own mesh after the semi-regular
+  // stream. OriginalReady: enough of it is held to give that mesh (its
+  // connectivity and coarse positions); EstimatedPsnr is then the
+  // original's.
+  bool HasOriginal() const;
+  bool OriginalReady() const;
+  // The user's mesh: its faces over its own vertex ids (face i's corners
+  // possibly rotated, faces in another order), each position the middle
+  // of the grid cell the packets held leave it in: within half a grid step
+  // per coordinate once every positions packet is held. Empty before
+  // OriginalReady.
+  TriMesh OriginalMesh() const;
+
   // Whether the stream has a colour channel (format version 8).
   bool HasColors() const;
   // Per vertex of Positions(max_level), its colour from the packets added

@@ -23,8 +23,9 @@ namespace meshwave {
 // The stream format version this build writes (docs/FORMAT.md). 3:
 // Transform.sawt; 4: compact packet index; 5: base refinement packets; 6:
 // 3xC's significance contexts count significant neighbours; 7: precincts
-// and split packets; 8: channels (per-vertex colours); 9: textures.
-inline constexpr uint32_t kStreamFormatVersion = 9;
+// and split packets; 8: channels (per-vertex colours); 9: textures; 10:
+// the original mesh as a final layer.
+inline constexpr uint32_t kStreamFormatVersion = 10;
 
 // Enum fields keep whatever value the bytes hold, as protobuf's open proto3
 // enums do: validation (ValidateStreamHeader), not reading, refuses values
@@ -111,6 +112,16 @@ struct StreamHeader {
     float rd_weight = 0;
   };
 
+  // Version 10 (docs/FORMAT.md 2.5).
+  struct Original {
+    uint32_t vertex_count = 0;
+    uint64_t face_count = 0;
+    std::vector<double> origin;
+    double step = 0;
+    uint32_t extent = 0;
+    uint32_t refinement_planes = 0;
+  };
+
   uint32_t format_version = 0;
   std::string name;
   uint64_t vertices = 0;
@@ -127,6 +138,7 @@ struct StreamHeader {
   std::vector<uint32_t> present;
   std::vector<Channel> channels;
   std::optional<Texture> texture;  // present or not, as on the wire
+  std::optional<Original> original;  // present or not, as on the wire
 
   // The header's bytes without its `present` records: what a container
   // holding other packets starts its header with (SerializeContainerHead

@@ -23,6 +23,12 @@ inline constexpr uint32_t kMaxTextureMaps = 5;
 inline constexpr uint32_t kMaxTextureLevels = 8;
 inline constexpr const char* kTextureMimeTypes[] = {"image/jpeg", "image/png"};
 
+// The original layer (docs/FORMAT.md 2.5): the user's mesh, at most this
+// many vertices and faces (a decoder may accept fewer faces:
+// DecoderOptions::max_faces).
+inline constexpr uint32_t kMaxOriginalVertices = 1u << 28;
+inline constexpr uint64_t kMaxOriginalFaces = uint64_t{1} << 29;
+
 }  // namespace meshwave
 
 #endif  // MESHWAVE_STREAM_LIMITS_H_

@@ -54,6 +54,11 @@ struct AssetEncodeOptions {
   // AssetRead::left_out. Off (the default): the reader's error, and
   // nothing is encoded.
   bool geometry_if_attributes_unreadable = false;
+  // End the stream in the mesh as read: its connectivity over its own
+  // vertex ids and its positions at encode.precision (format version 10,
+  // docs/FORMAT.md 2.5). Meshes with vertex colours or a texture leave it
+  // out: their attributes travel on the remesh only.
+  bool original_layer = true;
   // Keep the geometry as read (AssetEncoding::input_mesh), e.g. to measure
   // the complete stream against it (CompleteStreamPsnr).
   bool keep_input_mesh = false;

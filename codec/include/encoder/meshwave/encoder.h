@@ -84,6 +84,10 @@ struct EncodeOptions {
   // 1.3 dB of the best weight at every budget; 1 sent all of the texture
   // before the geometry's refinement, 2-8 dB worse.
   float texture_rd_weight = 1e-4f;
+  // The original layer's positions packets after its coarse one
+  // (docs/FORMAT.md 2.5); -1: as many as keep the coarse positions closer
+  // to the original than the remesh is.
+  int original_refinement_planes = -1;
   std::string name;
   // Threads for quantising and coding (subbands on workers, the largest
   // first); 0: the machine's cores. The stream does not depend on it.
@@ -118,12 +122,16 @@ struct EncodedStream {
 struct VertexAttributes {
   std::vector<Vec3> colors;  // linear RGB in [0, 1]: the colour channel
   std::optional<BakedTexture> texture;
+  // The user's mesh as read, when the stream is to end in it (format
+  // version 10, docs/FORMAT.md 2.5): its connectivity over its own vertex
+  // ids and its positions at EncodeOptions::precision. Not owned.
+  const TriMesh* original = nullptr;
 };
 
 Result<EncodedStream> EncodeMesh(const SemiRegularMesh& mesh,
                                  const EncodeOptions& options);
-// With a channel per attribute present (format version 8) and the
-// texture's maps as packets (version 9). kInvalidArgument when an
+// With a channel per attribute present (format version 8), the
+// texture's maps as packets (version 9) and the original layer (version 10). kInvalidArgument when an
 // attribute does not have one finite value per vertex, or the texture does
 // not fit the mesh (stream/texture_encoder.h says what is checked).
 Result<EncodedStream> EncodeMesh(const SemiRegularMesh& mesh, const EncodeOptions& options,
