@@ -64,7 +64,10 @@ class Decoder {
           MW_ASSIGN_OR_RETURN(x, Introduce(Prediction{gate.a, gate.b, gate.c}));
         } else if (region_.BorderCandidates(gate.a, gate.b, candidates_),
                    dec_.Decode(ctx_.traversal.on_border)) {
-          const uint32_t i = DecodeGolomb(dec_, ctx_.traversal.border_index);
+          uint32_t i = 0;
+          if (!dec_.Decode(FirstBorderContext(ctx_, candidates_.size()))) {
+            i = dec_.Decode(ctx_.border_second) ? 1 : 2 + DecodeGolomb(dec_, ctx_.traversal.border_index);
+          }
           if (i >= candidates_.size()) return Fail("names a border vertex that does not exist");
           x = candidates_[i];
         } else {
@@ -80,22 +83,21 @@ class Decoder {
   // A vertex the traversal meets for the first time: its original id.
   Result<uint32_t> Introduce(const Prediction& p) {
     int64_t id;
-    const auto& listed = likely_.ids();
+    const auto& listed = likely_.For(p, vertex_count_, position_);
     if (dec_.Decode(ctx_.id_listed)) {
       const uint32_t i = DecodeGolomb(dec_, ctx_.id_list_index);
       if (i >= listed.size()) return Fail("names a likely vertex id that does not exist");
       id = listed[i];
     } else {
-      id = last_id_ + 1 + DecodeSignedGolomb(dec_, ctx_.id_delta);
+      id = likely_.Next() + DecodeSignedGolomb(dec_, ctx_.id_delta);
     }
     if (id < 0 || id >= vertex_count_) {
       return Fail("names vertex id " + std::to_string(id) + " of " + std::to_string(vertex_count_));
     }
     const uint32_t v = static_cast<uint32_t>(id);
     if (position_[v] != kNoVertex) return Fail("introduces vertex " + std::to_string(v) + " twice");
+    likely_.Introduce(v, p, vertex_count_, position_);
     Append(v, p);
-    last_id_ = v;
-    likely_.Introduce(v, vertex_count_, position_);
     return v;
   }
 
@@ -177,8 +179,7 @@ class Decoder {
   std::vector<uint32_t> position_;  // in out_.order, by id
   connectivity::CodedRegion region_;
   ConnectivityContexts ctx_;
-  LikelyIds likely_;
-  int64_t last_id_ = -1;
+  IdCandidates likely_;
   std::vector<PendingGate> stack_;
   std::vector<uint32_t> candidates_;
 };

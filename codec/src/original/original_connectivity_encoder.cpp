@@ -117,8 +117,12 @@ class Encoder {
           const auto it = std::find(candidates_.begin(), candidates_.end(), x);
           enc_.Encode(it != candidates_.end(), ctx_.traversal.on_border);
           if (it != candidates_.end()) {
-            EncodeGolomb(enc_, ctx_.traversal.border_index,
-                         static_cast<uint32_t>(it - candidates_.begin()));
+            const uint32_t i = static_cast<uint32_t>(it - candidates_.begin());
+            enc_.Encode(i == 0, FirstBorderContext(ctx_, candidates_.size()));
+            if (i > 0) {
+              enc_.Encode(i == 1, ctx_.border_second);
+              if (i > 1) EncodeGolomb(enc_, ctx_.traversal.border_index, i - 2);
+            }
           } else {
             CodeOlder(x);
           }
@@ -133,17 +137,16 @@ class Encoder {
 
  private:
   void Introduce(uint32_t v, const Prediction& p) {
-    const auto& listed = likely_.ids();
+    const auto& listed = likely_.For(p, vertex_count_, position_);
     const auto it = std::find(listed.begin(), listed.end(), v);
     enc_.Encode(it != listed.end(), ctx_.id_listed);
     if (it != listed.end()) {
       EncodeGolomb(enc_, ctx_.id_list_index, static_cast<uint32_t>(it - listed.begin()));
     } else {
-      EncodeSignedGolomb(enc_, ctx_.id_delta, int64_t{v} - (last_id_ + 1));
+      EncodeSignedGolomb(enc_, ctx_.id_delta, int64_t{v} - likely_.Next());
     }
+    likely_.Introduce(v, p, vertex_count_, position_);
     Append(v, p);
-    last_id_ = v;
-    likely_.Introduce(v, vertex_count_, position_);
   }
 
   void Append(uint32_t v, const Prediction& p) {
@@ -219,8 +222,7 @@ class Encoder {
   connectivity::CodedRegion region_;
   ArithmeticEncoder enc_;
   ConnectivityContexts ctx_;
-  LikelyIds likely_;
-  int64_t last_id_ = -1;  // the first id's prediction is 0
+  IdCandidates likely_;
   std::vector<std::pair<PendingGate, uint32_t>> stack_;  // gate, face behind it
   std::vector<uint32_t> candidates_;
 };
