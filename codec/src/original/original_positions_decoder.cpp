@@ -1,6 +1,6 @@
+#include <algorithm>
 #include <string>
 
-#include "entropy/adaptive_golomb_decoder.h"
 #include "entropy/arithmetic_decoder.h"
 #include "original/original_positions.h"
 #include "original/original_positions_model.h"
@@ -32,6 +32,21 @@ Status CheckTraversalBounds(const Traversal& traversal) {
     }
   }
   return Status::Ok();
+}
+
+// Never loops more than kMaxClass times, whatever the bytes.
+int64_t DecodeResidual(ArithmeticDecoder& dec, ResidualContexts& ctx) {
+  if (dec.Decode(ctx.zero)) return 0;
+  const bool negative = dec.DecodeUnpredictable(ctx.sign);
+  int k = 0;
+  while (k < ResidualContexts::kMaxClass && dec.Decode(ctx.unary[k])) ++k;
+  uint64_t u = 1;
+  if (k > 0) {
+    u = (u << 1) | static_cast<uint64_t>(dec.Decode(ctx.second_bit[k]));
+    u = (u << (k - 1)) | dec.DecodeBits(k - 1);
+  }
+  const int64_t m = static_cast<int64_t>(u);
+  return negative ? -m : m;
 }
 
 // Damaged bytes are caught by the padding budget (FORMAT.md 4.1) at the
@@ -71,9 +86,10 @@ Status PositionsDecoder::Add(int k, std::string_view payload) {
       const uint32_t v = order[i];
       const Prediction& p = traversal_.predictions[i];
       const PredictionKind kind = KindOf(p);
+      int64_t largest = 0;
       for (int c = 0; c < 3; ++c) {
         const int64_t predicted = PredictComponent(kind, p, previous, c, clamp_top, at);
-        const int64_t residual = DecodeSignedGolomb(
+        const int64_t residual = DecodeResidual(
             dec, contexts.residual[static_cast<int>(kind)][c][last_class]);
         const int64_t value = predicted + residual;
         if (value < 0 || value > top || dec.overrun()) {
@@ -82,7 +98,8 @@ Status PositionsDecoder::Add(int k, std::string_view payload) {
                             " leaves the grid or the coded bytes end");
         }
         known_[v][c] = static_cast<uint32_t>(value);
-        last_class = ResidualClass(residual);
+        largest = std::max(largest, residual < 0 ? -residual : residual);
+        last_class = ResidualClass(largest);
       }
       previous = v;
     }
@@ -97,14 +114,22 @@ Status PositionsDecoder::Add(int k, std::string_view payload) {
     const int bit = shift_ - k;
     const uint32_t top = max_coordinate_ >> bit;
     RefinementContexts contexts;
+    const auto at = [this, bit](uint32_t v, int c) { return int64_t{known_[v][c] >> bit}; };
+    const int64_t clamp_top = int64_t{kMaxGridCoordinate} >> bit;
     bool damaged = false;
+    uint32_t previous = kNoVertex;
     for (size_t i = 0; i < order.size() && !damaged; ++i) {
-      GridPoint& point = known_[order[i]];
+      const uint32_t v = order[i];
+      const Prediction& p = traversal_.predictions[i];
+      const PredictionKind kind = KindOf(p);
       for (int c = 0; c < 3; ++c) {
-        point[c] |= static_cast<uint32_t>(dec.DecodeUnpredictable(contexts.bit[c])) << bit;
-        damaged |= (point[c] >> bit) > top;
+        const int cls = RefinementClass(kind, p, previous, v, c, clamp_top, at);
+        known_[v][c] |= static_cast<uint32_t>(dec.DecodeUnpredictable(contexts.bit[c][cls]))
+                        << bit;
+        damaged |= (known_[v][c] >> bit) > top;
       }
       if ((i % kOverrunCheckInterval) == 0) damaged |= dec.overrun();
+      previous = v;
     }
     if (damaged || dec.overrun()) {
       // The plane's bits were all zero before: clearing them restores the

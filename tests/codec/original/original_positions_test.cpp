@@ -168,6 +168,14 @@ TEST(OriginalPositionsTest, RefinementPlanesCostAboutOneBitPerCoordinate) {
   }
 }
 
+TEST(OriginalPositionsTest, RefinementBitsOfASmoothSurfaceCostLessThanOneBit) {
+  // The contexts use the finer prediction: on an exact smooth field most
+  // low bits follow from the neighbours.
+  const Case c = SmoothGrid(40, 40, 12);
+  const std::vector<std::string> payloads = EncodePositions(c.traversal, c.q, 6);
+  EXPECT_LT(payloads[1].size() * 8.0 / (3 * c.q.size()), 0.7);
+}
+
 TEST(OriginalPositionsTest, RefusesPayloadsOutOfTurnLeavingThePointsHeld) {
   const Case c = SmoothGrid(8, 8, 12);
   const std::vector<std::string> payloads = EncodePositions(c.traversal, c.q, 2);
