@@ -342,7 +342,11 @@ Result<std::unique_ptr<ProgressiveDecoder>> ProgressiveDecoder::Create(
                                                WaveletTransform::Stencils::kOnFirstUse));
   impl->transform = std::make_unique<WaveletTransform>(std::move(transform));
   impl->packets = std::make_unique<PacketLayout>(header);
-  impl->first_texture = static_cast<uint32_t>(impl->packets->count());
+  // Without a texture, its (empty) range ends where the original layer
+  // starts.
+  impl->first_texture = static_cast<uint32_t>(impl->packets->original_parts() > 0
+                                                  ? impl->packets->OriginalId(0)
+                                                  : impl->packets->count());
   if (header.texture) {
     const StreamHeader::Texture& t = *header.texture;
     MW_ASSIGN_OR_RETURN(AtlasLayout atlas,
