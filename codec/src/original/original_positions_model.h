@@ -30,7 +30,10 @@ inline PredictionKind KindOf(const Prediction& p) {
 // Component k of the prediction from `at(vertex)`, the points already
 // decoded at the current precision; `previous` is the vertex before in the
 // order (kNoVertex for the first: the origin). The parallelogram is
-// computed in 64 bits and clamped to the grid [0, top].
+// computed in 64 bits and clamped to [0, top]; both sides pass
+// kMaxGridCoordinate at the current precision, not the header's extent, so
+// the encoder needs no extent (clamping to the true extent would save
+// nothing measurable: 386 predictions beyond it in 2.7 M vertices coded).
 template <typename At>
 inline int64_t PredictComponent(PredictionKind kind, const Prediction& p, uint32_t previous,
                                 int k, int64_t top, const At& at) {
@@ -49,8 +52,9 @@ inline int64_t PredictComponent(PredictionKind kind, const Prediction& p, uint32
 
 // Residual contexts: one set per prediction kind (parallelogram residuals
 // are far smaller than the previous vertex's), per component, and per
-// magnitude class of the residual just coded before it (the same vertex's
-// previous component; for x, the previous vertex's z).
+// magnitude class (bit length, at most 7) of the largest residual of the
+// vertex so far (for x: of the previous vertex). Against one class per kind
+// and component: -2.2 % bits on payload 0 over data/meshes at precision 14.
 inline constexpr int kResidualClasses = 8;
 
 inline int ResidualClass(int64_t residual) {
