@@ -50,6 +50,50 @@ TEST(EncodeDecodeCliTest, FullStreamIsNearLossless) {
 
 // --threads: the same stream from one thread or several, for a remeshed
 // mesh (elephant.off) and a semi-regular one; --help says so.
+// The stream ends in the user's own mesh (docs/FORMAT.md 2.5): the same
+// faces over the same vertex ids, every coordinate within half the
+// precision's step; `--no-original` ends it in the remesh.
+TEST(EncodeDecodeCliTest, CompleteStreamGivesBackTheInputsOwnMesh) {
+  TempDir dir;
+  const auto in = testing::SampleMesh("elephant.off");
+  auto r = RunCli({"encode", in.string(), (dir / "e.mwv").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("original layer: 2775 vertices, 5558 faces"), std::string::npos) << r.out;
+  // OBJ keeps every double exactly.
+  r = RunCli({"decode", (dir / "e.mwv").string(), (dir / "e.obj").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto input = ReadMesh(in);
+  auto decoded = ReadMesh(dir / "e.obj");
+  ASSERT_TRUE(input.ok() && decoded.ok());
+  ASSERT_EQ(decoded->positions.size(), input->positions.size());
+  auto key = [](Face f) {
+    std::rotate(f.begin(), std::min_element(f.begin(), f.end()), f.end());
+    return f;
+  };
+  std::vector<Face> a, b;
+  for (const Face& f : input->faces) a.push_back(key(f));
+  for (const Face& f : decoded->faces) b.push_back(key(f));
+  std::sort(a.begin(), a.end());
+  std::sort(b.begin(), b.end());
+  EXPECT_EQ(a, b);
+  Vec3 lo = input->positions[0], hi = lo;
+  for (const Vec3& p : input->positions) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  const double half_step = std::ldexp((hi - lo).norm(), -16) / 2 * (1 + 1e-9);
+  for (size_t v = 0; v < input->positions.size(); ++v) {
+    ASSERT_LE((decoded->positions[v] - input->positions[v]).cwiseAbs().maxCoeff(), half_step)
+        << "vertex " << v;
+  }
+  // Without the layer: the remesh, more vertices than the input.
+  r = RunCli({"encode", in.string(), (dir / "n.mwv").string(), "--no-original"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.find("original layer"), std::string::npos) << r.out;
+  r = RunCli({"decode", (dir / "n.mwv").string(), (dir / "n.ply").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto remesh = ReadMesh(dir / "n.ply");
+  ASSERT_TRUE(remesh.ok());
+  EXPECT_GT(remesh->positions.size(), input->positions.size());
+}
+
 TEST(EncodeDecodeCliTest, ThreadCountDoesNotChangeTheStream) {
   TempDir dir;
   for (const char* name : {"elephant.off", "holes.off"}) {
@@ -103,7 +147,10 @@ TEST(EncodeDecodeCliTest, SawtStreamIsNearLosslessLikeTheDefault) {
 TEST(EncodeDecodeCliTest, BudgetAndMaxLevelGiveCoarserMeshes) {
   TempDir dir;
   const auto in = testing::SampleMesh("holes.off");
-  ASSERT_EQ(RunCli({"encode", in.string(), (dir / "h.mwv").string()}).exit_code, 0);
+  // The remesh's prefixes: without the original layer, whose bytes would
+  // be most of a semi-regular input's payload.
+  ASSERT_EQ(RunCli({"encode", in.string(), (dir / "h.mwv").string(), "--no-original"}).exit_code,
+            0);
   // A budget of the header plus a quarter of the payload.
   const std::string bytes = testing::ReadBytes(dir / "h.mwv");
   ASSERT_GT(bytes.size(), 8u);
@@ -138,7 +185,8 @@ TEST(EncodeDecodeCliTest, ExtraLevelsSetHowFarPastTheDetailsTheMeshGoes) {
   TempDir dir;
   const auto in = testing::SampleMesh("holes.off");  // 2 levels over 518 base faces
   // The whole base in the header: every payload byte of the budget is detail.
-  ASSERT_EQ(RunCli({"encode", in.string(), (dir / "h.mwv").string(), "--base-refinement", "0"})
+  ASSERT_EQ(RunCli({"encode", in.string(), (dir / "h.mwv").string(), "--base-refinement", "0",
+                    "--no-original"})
                 .exit_code,
             0);
   const std::string bytes = testing::ReadBytes(dir / "h.mwv");
@@ -199,13 +247,21 @@ TEST(EncodeDecodeCliTest, FidelityIsReachedAndReported) {
   EXPECT_GE(compare.surface().rms().psnr_db(), 65.0);
   EXPECT_NEAR(compare.surface().rms().psnr_db(), reported, 0.5);  // float32 PLY vs in memory
 
+  // Beyond what the remesh reaches: the original layer reaches it; without
+  // the layer, a warning says why the stream stops short.
   r = RunCli({"encode", in.string(), (dir / "f.mwv").string(), "--fidelity", "100",
               "--max-vertex-ratio", "2"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const size_t f = r.out.find(key);
+  ASSERT_NE(f, std::string::npos) << r.out;
+  EXPECT_GE(std::stod(r.out.substr(f + key.size())), 100.0) << r.out;
+  r = RunCli({"encode", in.string(), (dir / "g.mwv").string(), "--fidelity", "100",
+              "--max-vertex-ratio", "2", "--no-original"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("fidelity 100.00 dB not reached: the remesh reached the density limit"),
             std::string::npos)
       << r.err;
-  EXPECT_TRUE(std::filesystem::exists(dir / "f.mwv"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "g.mwv"));
 }
 
 TEST(EncodeDecodeCliTest, JsonReportDescribesTheDecode) {
@@ -310,7 +366,7 @@ TEST(EncodeDecodeCliTest, TexturedStreamInfoAndDecode) {
   }
   auto info = RunCli({"info", mwv.string()});
   ASSERT_EQ(info.exit_code, 0) << info.err;
-  EXPECT_NE(info.out.find("format version 9"), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("format version 10"), std::string::npos) << info.out;
   EXPECT_NE(info.out.find("texture map:            base colour, image/png, 2 levels: 16 x 16"),
             std::string::npos)
       << info.out;

@@ -120,15 +120,27 @@ class Layout:
             self.id[("base", b)] = n
             self.base[b] = n
             n += 1
+        # The original layer's parts last (FORMAT.md 2.5); this check's
+        # streams have no channel or texture before it.
+        self.original = []
+        if header.HasField("original"):
+            for part in range(2 + header.original.refinement_planes):
+                self.id[("original", part)] = n
+                self.original.append(n)
+                n += 1
         self.jb = {v: k for k, v in self.id.items()}
         self.count = n
 
     def chain(self, i):
         j, _ = self.jb[i]
+        if j == "original":
+            return self.levels + 1
         return self.levels if j == "base" else j
 
     def deps(self, i):
         j, b = self.jb[i]
+        if j == "original":
+            return [self.original[b - 1]] if b > 0 else []
         if j == "base":
             return [self.base[b + 1]] if b + 1 < self.base_planes else []
         out = []
@@ -143,6 +155,12 @@ class Layout:
 
     def order(self, name, max_level=None):
         used = self.levels if max_level is None else min(max_level, self.levels)
+        # Every order ends with the original layer, unless it stops at a
+        # coarser level (FORMAT.md 7).
+        last = self.original if used == self.levels else []
+        return self._remesh_order(name, used) + last
+
+    def _remesh_order(self, name, used):
         base = [self.base[b] for b in range(self.base_planes - 1, -1, -1)]
         if name == "resolution":
             return base + [self.id[(j, b)] for j in range(used) for b in range(self.top[j], -1, -1)]
@@ -233,12 +251,17 @@ def check_http(ck, web, mesh_id, header_bytes, header, layout, packets, full):
             ck.eq(hdrs.get("x-meshwave-complete"), "true" if k == len(order) else "false", "complete " + what)
             ids = order[:k]
             ck.eq(body, assemble(header_bytes, ids, [packets[i] for i in ids]), "/stream = /header + /packets, " + what)
-            # Re-serializing with protobuf gives the same head: `present` is
-            # the last field.
+            # Re-serializing with protobuf gives the same head, `present`
+            # being the last field, in field order only where fields above
+            # 14 (channels, texture, original) come before it (FORMAT.md 1).
             h2 = pb.stream.StreamHeader()
             h2.ParseFromString(header_bytes)
             h2.present.extend(ids)
-            ck.eq(h2.SerializeToString(), header_bytes + present_field(ids), "present appended = serialized, " + what)
+            h3 = pb.stream.StreamHeader()
+            h3.ParseFromString(header_bytes + present_field(ids))
+            ck.eq(h3, h2, "present appended parses as the serialized header, " + what)
+            if not (h2.channels or h2.HasField("texture") or h2.HasField("original")):
+                ck.eq(h2.SerializeToString(), header_bytes + present_field(ids), "present appended = serialized, " + what)
         for cursor, budget in ((1, 2000), (5, 5000), (len(order) - 1, None)):
             status, hdrs, body = web.get(base + "/stream?order=%s&from=%d%s" % (
                 name, cursor, "" if budget is None else "&budget=%d" % budget))

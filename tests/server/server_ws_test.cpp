@@ -223,7 +223,8 @@ TEST_F(ServerWsTest, PacesToTheRequestedRate) {
   // The whole mesh at the rate that takes about 2.7 s. The first message
   // goes at once and each later one when the bytes before it are paid for,
   // so the rate is the bytes before the last message over the time between
-  // first and last.
+  // first and last (the last, the original layer's finest positions, is a
+  // large share: the time is what the bytes before it take).
   const HttpReply container = HttpGet(port(), "/v1/meshes/" + Id("elephant") + "/container");
   ASSERT_EQ(container.status, 200u);
   const double kRate = std::floor(static_cast<double>(container.body.size()) / 2.7);
@@ -243,7 +244,7 @@ TEST_F(ServerWsTest, PacesToTheRequestedRate) {
   }
   ASSERT_TRUE(first && last);
   const double seconds = std::chrono::duration<double>(*last - *first).count();
-  ASSERT_GE(seconds, 2.0) << bytes << " bytes";
+  ASSERT_GE(seconds, 1.0) << bytes << " bytes";
   const double rate = static_cast<double>(bytes - last_size) / seconds;
   EXPECT_NEAR(rate, kRate, 0.1 * kRate)
       << bytes << " bytes in " << seconds << " s";

@@ -201,6 +201,29 @@ void PrintHuman(const proto::MeshInfo& i) {
                           : "not readable: " + i.asset().error());
 }
 
+// The texture's atlas and maps, each level's bytes and whether it is held.
+template <typename Line, typename Num>
+void DescribeTexture(const StreamHeader& h, const ParsedContainer& parsed, const Line& line,
+                     const Num& num) {
+  if (!h.texture) return;
+  const StreamHeader::Texture& t = *h.texture;
+  line("texture atlas:", num(t.columns) + " columns of " + num(t.cell) + "-texel cells, gutter " +
+                             num(t.gutter));
+  std::vector<char> present(h.packets.length.size(), 0);
+  for (uint32_t id : parsed.ids) present[id] = 1;
+  for (const StreamHeader::Texture::Map& map : t.maps) {
+    std::string levels;
+    for (const StreamHeader::Texture::Level& level : map.levels) {
+      levels += (levels.empty() ? "" : ", ") + num(level.width) + " x " + num(level.height) +
+                " (" + num(h.packets.length[level.packet]) + " bytes" +
+                (present[level.packet] ? "" : ", not held") + ")";
+    }
+    line("texture map:", std::string(TextureRoleName(static_cast<TextureRole>(map.role))) + ", " +
+                             map.mime_type + ", " + num(map.levels.size()) +
+                             (map.levels.size() == 1 ? " level: " : " levels: ") + levels);
+  }
+}
+
 // A stream (.mwv): its header's counts, channels and texture, and the
 // packets the file holds.
 Status DescribeStream(const InfoArgs& args) {
@@ -231,25 +254,23 @@ Status DescribeStream(const InfoArgs& args) {
   for (const StreamHeader::Channel& channel : h.channels) {
     line("channel:", channel.kind == StreamChannelKind::kColor ? "vertex colours" : "unknown");
   }
-  if (!h.texture) return Status::Ok();
-  const StreamHeader::Texture& t = *h.texture;
-  line("texture atlas:", num(t.columns) + " columns of " + num(t.cell) + "-texel cells, gutter " +
-                             num(t.gutter));
-  std::vector<char> present(h.packets.length.size(), 0);
-  for (uint32_t id : parsed->ids) present[id] = 1;
-  for (const StreamHeader::Texture::Map& map : t.maps) {
-    std::string levels;
-    for (const StreamHeader::Texture::Level& level : map.levels) {
-      levels += (levels.empty() ? "" : ", ") + num(level.width) + " x " + num(level.height) +
-                " (" + num(h.packets.length[level.packet]) + " bytes" +
-                (present[level.packet] ? "" : ", not held") + ")";
-    }
-    line("texture map:", std::string(TextureRoleName(static_cast<TextureRole>(map.role))) + ", " +
-                             map.mime_type + ", " + num(map.levels.size()) +
-                             (map.levels.size() == 1 ? " level: " : " levels: ") + levels);
+  if (h.original) {
+    // The last packets of the index (docs/FORMAT.md 2.5).
+    const size_t parts = 2 + h.original->refinement_planes;
+    const size_t first = h.packets.length.size() - parts;
+    uint64_t layer_bytes = 0;
+    size_t held_parts = 0;
+    for (size_t id = first; id < h.packets.length.size(); ++id) layer_bytes += h.packets.length[id];
+    for (uint32_t id : parsed->ids) held_parts += id >= first ? 1 : 0;
+    line("original layer:", num(h.original->vertex_count) + " vertices, " +
+                                num(h.original->face_count) + " faces, " + num(parts) +
+                                " packets of " + num(layer_bytes) + " bytes (" + num(held_parts) +
+                                " held)");
   }
+  DescribeTexture(h, *parsed, line, num);
   return Status::Ok();
 }
+
 
 }  // namespace
 

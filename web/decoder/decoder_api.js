@@ -63,6 +63,10 @@
     // The decoder's float64 values (tests compare them with the native decoder).
     positions64(maxLevel) { return this.live_()['positions64'](level(maxLevel)); }
     faces(maxLevel) { return this.live_()['faces'](level(maxLevel)); }
+    // The original layer (format 10): whether the user's own mesh is held,
+    // and that mesh: {positions: Float32Array, faces: Uint32Array}.
+    originalReady() { return this.live_()['originalReady'](); }
+    originalMesh() { return this.live_()['originalMesh'](); }
     // Vertex colours (format 8's colour channel): linear RGB in [0, 1] per
     // vertex of positions(maxLevel), interleaved; empty without a channel.
     hasColors() { return this.live_()['hasColors'](); }

@@ -110,12 +110,16 @@ class RawDecoder {
     return val::null();
   }
 
-  val Faces(int max_level) const {
-    const std::vector<Face> faces = decoder_->Faces(max_level);
-    std::vector<uint32_t> out;
-    out.reserve(3 * faces.size());
-    for (const Face& f : faces) out.insert(out.end(), f.begin(), f.end());
-    return TypedArrayCopy("Uint32Array", out);
+  val Faces(int max_level) const { return FlattenFaces(decoder_->Faces(max_level)); }
+
+  // The original layer (format 10): the user's own mesh once held.
+  bool OriginalReady() const { return decoder_->OriginalReady(); }
+  val OriginalMesh() const {
+    const TriMesh mesh = decoder_->OriginalMesh();
+    val out = val::object();
+    out.set("positions", Flatten<float>("Float32Array", mesh.positions));
+    out.set("faces", FlattenFaces(mesh.faces));
+    return out;
   }
 
  private:
@@ -133,6 +137,13 @@ class RawDecoder {
   template <class T>
   val InterleavedColors(const char* type, int max_level) const {
     return Flatten<T>(type, decoder_->Colors(ClampLevel(max_level)));
+  }
+
+  static val FlattenFaces(const std::vector<Face>& faces) {
+    std::vector<uint32_t> out;
+    out.reserve(3 * faces.size());
+    for (const Face& f : faces) out.insert(out.end(), f.begin(), f.end());
+    return TypedArrayCopy("Uint32Array", out);
   }
 
   template <class T>
@@ -195,6 +206,8 @@ EMSCRIPTEN_BINDINGS(meshwave_decoder) {
       .function("positions", &RawDecoder::Positions)
       .function("positions64", &RawDecoder::Positions64)
       .function("faces", &RawDecoder::Faces)
+      .function("originalReady", &RawDecoder::OriginalReady)
+      .function("originalMesh", &RawDecoder::OriginalMesh)
       .function("hasColors", &RawDecoder::HasColors)
       .function("colors", &RawDecoder::Colors)
       .function("colors64", &RawDecoder::Colors64)

@@ -163,6 +163,15 @@ export class StreamSession {
     if (!this.dirty || !this.decoder) return;
     this.dirty = false;
     const level = this.stats.level;
+    if (this.decoder.originalReady() && !this.decoder.hasColors() && !this.decoder.hasTexture()) {
+      // The stream's last layer: the user's own mesh (docs/FORMAT.md 2.5).
+      const original = this.decoder.originalMesh();
+      this.callbacks.onMesh({
+        positions: original.positions, faces: original.faces, colors: null, texture: null,
+        level, levels: this.stats.levels, psnr: this.stats.psnr, original: true,
+      });
+      return;
+    }
     this.callbacks.onMesh({
       positions: this.decoder.positions(level), faces: this.decoder.faces(level),
       colors: this.decoder.hasColors() ? this.decoder.colors(level) : null,

@@ -6,7 +6,7 @@
 // The code, one arithmetic-coded payload:
 //   per component of the traversal: a 1 ("another component"), its first
 //     face's three corners, then the base mesh's depth-first traversal
-//     (stream/base_connectivity.h) over gates: per face entered, "flipped",
+//     (connectivity/gate_traversal.h) over gates: per face entered, "flipped",
 //     "new third vertex", else "on the border" + index (two binary
 //     decisions, then a Golomb code) or "older" + how far back in the
 //     order; per open edge of a coded face, "enters";
@@ -32,7 +32,7 @@
 #include "entropy/adaptive_golomb.h"
 #include "meshwave/mesh.h"
 #include "original/original_traversal.h"
-#include "stream/base_connectivity.h"
+#include "connectivity/gate_traversal.h"
 
 namespace meshwave::original {
 

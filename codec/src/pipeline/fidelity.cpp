@@ -151,7 +151,10 @@ Result<double> CompleteStreamPsnr(const TriMesh& original, const EncodedStream& 
   options.threads = threads;
   options.max_samples = kFidelitySamples;
   MW_ASSIGN_OR_RETURN(SurfaceDistance d,
-                      SymmetricSurfaceDistance(original, decoder->Mesh(), options));
+                      SymmetricSurfaceDistance(original,
+                                               decoder->OriginalReady() ? decoder->OriginalMesh()
+                                                                        : decoder->Mesh(),
+                                               options));
   return d.PsnrDb(d.rms);
 }
 

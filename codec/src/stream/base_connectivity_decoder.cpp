@@ -5,7 +5,7 @@
 #include <string>
 
 #include "entropy/adaptive_golomb_decoder.h"
-#include "stream/base_connectivity.h"
+#include "connectivity/gate_traversal.h"
 
 namespace meshwave {
 

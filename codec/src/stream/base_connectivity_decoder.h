@@ -1,4 +1,4 @@
-// The decoder of the base mesh's connectivity (stream/base_connectivity.h).
+// The decoder of the base mesh's connectivity (connectivity/gate_traversal.h).
 #ifndef MESHWAVE_STREAM_BASE_CONNECTIVITY_DECODER_H_
 #define MESHWAVE_STREAM_BASE_CONNECTIVITY_DECODER_H_
 

@@ -7,7 +7,7 @@
 
 #include "core/edge_key.h"
 #include "entropy/adaptive_golomb_encoder.h"
-#include "stream/base_connectivity.h"
+#include "connectivity/gate_traversal.h"
 
 namespace meshwave {
 

@@ -1,4 +1,4 @@
-// The encoder of the base mesh's connectivity (stream/base_connectivity.h):
+// The encoder of the base mesh's connectivity (connectivity/gate_traversal.h):
 // the traversal that orders the base mesh for transmission, writing its
 // code as it goes.
 #ifndef MESHWAVE_STREAM_BASE_CONNECTIVITY_ENCODER_H_

@@ -74,12 +74,15 @@ std::vector<double> EstimatedPsnrCurve(const StreamHeader& header,
   std::vector<double> now = estimates.chain_start;
   double distortion = estimates.Estimate(now);
   out.push_back(psnr(distortion));
+  const PacketLayout layout(header);
+  bool original_ready = false;  // the layer's coarse positions taken
   for (uint32_t id : order) {
     // Chains sum in a fixed order: the decoder's figure, bit for bit.
     if (id < estimates.chain.size() && estimates.chain[id] < now.size()) {
       now[estimates.chain[id]] = estimates.after[id];
     }
-    distortion = estimates.Estimate(now);
+    original_ready = original_ready || layout.OriginalPart(id) == 1;
+    distortion = estimates.ShownEstimate(now, original_ready);
     out.push_back(psnr(distortion));
   }
   return out;

@@ -7,7 +7,7 @@
 
 #include "bitplane/subband_layout.h"
 #include "meshwave/encoder.h"
-#include "original/original_layer_encoder.h"
+#include "stream/original_layer_encoder.h"
 #include "quant/subband_gains.h"
 #include "stream/base_mesh_decoder.h"
 #include "stream/base_refinement_encoder.h"
@@ -151,9 +151,9 @@ Result<EncodedStream> EncodeMesh(const SemiRegularMesh& input, const EncodeOptio
   if (attributes.original) {
     MW_ASSIGN_OR_RETURN(
         original::EncodedLayer layer,
-        original::EncodeLayer(*attributes.original, out.mesh.Finest(), header.vertices(),
-                              options.precision, options.original_refinement_planes,
-                              options.threads));
+        original::EncodeLayer(*attributes.original, attributes.original_remesh_rms,
+                              header.vertices(), options.precision,
+                              options.original_refinement_planes));
     if (model.geometry_chains > model.chain_start.size()) {
       model.geometry_chains = model.chain_start.size();
     }

@@ -215,6 +215,9 @@ DistortionEstimates ReadDistortionIndex(const StreamHeader& header,
       (header.original ? 1 : 0);
   out.geometry_chains =
       out.chain_start.size() - std::min(out.chain_start.size(), channel_chains);
+  if (header.original && !out.chain_start.empty()) {
+    out.original_chain = static_cast<int>(out.chain_start.size()) - 1;
+  }
   std::vector<double> current = out.chain_start;
   const std::string& steps = index.distortion_step;
   out.chain.assign(chain_of.begin(), chain_of.end());

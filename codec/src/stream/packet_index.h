@@ -161,6 +161,9 @@ struct DistortionEstimates {
   // The chains of the geometry, which Estimate sums: the first ones, the
   // channels' and the texture maps' chains following them.
   size_t geometry_chains = 0;
+  // The original layer's chain (FORMAT.md 2.5), -1 without one: once its
+  // coarse positions are held its term is the estimate (ShownEstimate).
+  int original_chain = -1;
   std::vector<double> chain_start;  // per chain
   std::vector<uint32_t> chain;      // per packet
   std::vector<double> after;        // per packet: its chain's term after it
@@ -169,6 +172,14 @@ struct DistortionEstimates {
   // The geometry's estimated error. `current`: every chain's term
   // (chain_start, or `after` of its last packet).
   double Estimate(const std::vector<double>& current) const;
+  // The estimate of the mesh a decoder shows: the original layer's term
+  // once `original_ready`, else Estimate.
+  double ShownEstimate(const std::vector<double>& current, bool original_ready) const {
+    return original_ready && original_chain >= 0 &&
+                   static_cast<size_t>(original_chain) < current.size()
+               ? current[static_cast<size_t>(original_chain)]
+               : Estimate(current);
+  }
 };
 DistortionEstimates ReadDistortionIndex(const StreamHeader& header,
                                         std::span<const uint32_t> chain_of);

@@ -23,7 +23,7 @@
 #include "stream/decoder_setup.h"
 #include "stream/packet_index.h"
 #include "meshwave/packet_parts.h"
-#include "original/original_layer_decoder.h"
+#include "stream/original_layer_decoder.h"
 #include "stream/precinct_partition.h"
 #include "stream/sawt_field_decoder.h"
 #include "stream/stream_format.h"
@@ -176,10 +176,9 @@ struct ProgressiveDecoder::Impl {
   std::optional<AtlasLayout> atlas;
   uint32_t first_texture = 0;
   std::vector<std::string> texture_bytes;
-  // The original layer (FORMAT.md 2.5), when the stream has one, and its
-  // chain (its estimate replaces the remesh's once its mesh is given).
+  // The original layer (FORMAT.md 2.5), when the stream has one (its
+  // chain's estimate replaces the remesh's once its mesh is given).
   std::optional<original::LayerDecoder> original;
-  uint32_t original_chain = 0;
   // Last, so that it stops (its thread joined) before what it builds goes.
   WorkAhead ahead;
 
@@ -363,7 +362,6 @@ Result<std::unique_ptr<ProgressiveDecoder>> ProgressiveDecoder::Create(
                         std::to_string(options.max_faces));
     }
     impl->original.emplace(*header.original);
-    impl->original_chain = static_cast<uint32_t>(ChainCount(header) - 1);
   }
   impl->estimates = ReadDistortionIndex(header, PacketChains(header));
   for (const StreamHeader::Channel& channel : header.channels) {
@@ -659,10 +657,9 @@ int ProgressiveDecoder::DetailLevels() const {
 
 double ProgressiveDecoder::EstimatedPsnr() const {
   const Impl& m = *impl_;
-  if (OriginalReady() && m.original_chain < m.chain_now.size()) {
-    return EstimatedPsnrFromDistortion(m.header, m.diagonal, m.chain_now[m.original_chain]);
-  }
-  return EstimatedPsnrFromDistortion(m.header, m.diagonal, m.distortion);
+  return EstimatedPsnrFromDistortion(m.header, m.diagonal,
+                                     OriginalReady() ? m.estimates.ShownEstimate(m.chain_now, true)
+                                                     : m.distortion);
 }
 
 bool ProgressiveDecoder::HasOriginal() const { return impl_->original.has_value(); }

@@ -226,40 +226,5 @@ TEST(OriginalConnectivityTest, RefusesTruncatedAndDamagedPayloads) {
   EXPECT_GT(refused, 40);
 }
 
-// Bits per vertex (connectivity and ids) and times on the shared meshes,
-// with how far apart neighbours' ids are in the file (quartiles of
-// log2(1 + |i - j|) over edges): run with --gtest_also_run_disabled_tests
-// --gtest_filter=*Measure*.
-TEST(OriginalConnectivityTest, DISABLED_MeasureSharedMeshes) {
-  std::printf("%-28s %8s %8s %7s %16s %7s %7s\n", "mesh", "V", "F", "bpv", "id gaps (log2)",
-              "enc ms", "dec ms");
-  for (const auto& path : testing::AllSharedMeshes()) {
-    auto mesh = ReadMesh(path);
-    if (!mesh.ok()) continue;
-    const uint32_t n = static_cast<uint32_t>(mesh->positions.size());
-    Traversal t;
-    const auto t0 = std::chrono::steady_clock::now();
-    auto payload = EncodeConnectivity(n, mesh->faces, &t);
-    const auto t1 = std::chrono::steady_clock::now();
-    ASSERT_TRUE(payload.ok());
-    auto got = DecodeConnectivity(*payload, n, mesh->faces.size());
-    const auto t2 = std::chrono::steady_clock::now();
-    ASSERT_TRUE(got.ok()) << got.status().ToString();
-    ASSERT_EQ(got->order, t.order);
-    std::vector<double> gaps;
-    for (const Face& f : mesh->faces) {
-      for (int c = 0; c < 3; ++c) {
-        gaps.push_back(std::log2(1.0 + std::abs(static_cast<double>(f[c]) - static_cast<double>(f[(c + 1) % 3]))));
-      }
-    }
-    std::sort(gaps.begin(), gaps.end());
-    std::printf("%-28s %8u %8zu %7.2f   %4.1f %4.1f %4.1f %7.1f %7.1f\n",
-                path.filename().string().c_str(), n, mesh->faces.size(), payload->size() * 8.0 / n,
-                gaps[gaps.size() / 4], gaps[gaps.size() / 2], gaps[gaps.size() * 3 / 4],
-                std::chrono::duration<double, std::milli>(t1 - t0).count(),
-                std::chrono::duration<double, std::milli>(t2 - t1).count());
-  }
-}
-
 }  // namespace
 }  // namespace meshwave::original

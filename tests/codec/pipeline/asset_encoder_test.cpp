@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "meshwave/container.h"
 #include "meshwave/file_set.h"
 #include "meshwave/mesh_io.h"
@@ -63,10 +65,29 @@ TEST(AssetEncoderTest, AMeshWithoutAttributesEncodesAsTheGeometryAlone) {
     auto input = ToSemiRegular(std::move(*mesh), options.semiregular);
     ASSERT_TRUE(input.ok());
     EXPECT_EQ(encoded->semiregular.remeshed, input->remeshed);
-    auto alone = EncodeMesh(input->mesh, options.encode);
+    // The stream ends in the mesh as read (the original layer).
+    VertexAttributes original;
+    original.original = &encoded->input_mesh;
+    if (encoded->semiregular.remeshed && encoded->semiregular.remesh_psnr_db > 0) {
+      Vec3 lo = encoded->input_mesh.positions[0], hi = lo;
+      for (const Vec3& p : encoded->input_mesh.positions) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+      original.original_remesh_rms =
+          (hi - lo).norm() * std::pow(10.0, -encoded->semiregular.remesh_psnr_db / 20);
+    }
+    auto alone = EncodeMesh(input->mesh, options.encode, original);
     ASSERT_TRUE(alone.ok());
+    ASSERT_TRUE(alone->header.original.has_value());
     EXPECT_EQ(SerializeFullContainer(encoded->stream), SerializeFullContainer(*alone)) << name;
   }
+}
+
+TEST(AssetEncoderTest, WithoutTheOriginalLayerTheStreamEndsInTheRemesh) {
+  AssetEncodeOptions options = Options("holes.off");
+  options.original_layer = false;
+  DirectoryFileSet files(testing::SampleDataDir());
+  auto encoded = EncodeAsset(files, "holes.off", options);
+  ASSERT_TRUE(encoded.ok()) << encoded.status().ToString();
+  EXPECT_FALSE(encoded->stream.header.original.has_value());
 }
 
 TEST(AssetEncoderTest, MissingSidecarFilesAreAnErrorThatOffersTheGeometry) {

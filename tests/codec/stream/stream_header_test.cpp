@@ -201,7 +201,8 @@ TEST(StreamHeaderTest, ProtoHasTheFieldsTheReaderKnows) {
   };
   using V = std::vector<int>;
   EXPECT_EQ(numbers(proto::StreamHeader::descriptor()),
-            (V{1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16}));
+            (V{1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17}));
+  EXPECT_EQ(numbers(proto::Original::descriptor()), (V{1, 2, 3, 4, 5, 6}));
   EXPECT_EQ(numbers(proto::Transform::descriptor()), (V{1, 2, 3, 4, 5}));
   EXPECT_EQ(numbers(proto::SawtChoices::descriptor()), (V{1, 2, 3, 4}));
   EXPECT_EQ(numbers(proto::BaseMesh::descriptor()), (V{1, 2, 3, 4, 6, 7}));

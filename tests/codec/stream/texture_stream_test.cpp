@@ -101,7 +101,7 @@ std::vector<uint32_t> TextureIds(const StreamHeader& h) {
 
 TEST(TextureStreamTest, HeaderCarriesTheTextureAndBothReadersAgree) {
   const EncodedStream& s = Textured();
-  EXPECT_EQ(s.header.format_version, 9u);
+  EXPECT_EQ(s.header.format_version, kStreamFormatVersion);
   ASSERT_TRUE(s.header.texture.has_value());
   const StreamHeader::Texture& t = *s.header.texture;
   EXPECT_EQ(t.cell, 64u);

@@ -48,7 +48,8 @@ struct FidelityRemesh {
 Result<FidelityRemesh> RemeshToFidelity(const TriMesh& input, RemeshOptions options,
                                         double fidelity_db, double max_vertex_ratio);
 
-// The complete stream's symmetric surface PSNR against `original`, on
+// The complete stream's symmetric surface PSNR against `original` (its
+// original layer's mesh where it has one, else its finest level), on
 // `threads` threads (0: the machine's cores; the same value for any count).
 Result<double> CompleteStreamPsnr(const TriMesh& original, const EncodedStream& stream,
                                   int threads = 0);

@@ -1,4 +1,5 @@
-// The base mesh's connectivity code (docs/FORMAT.md 3.1): a depth-first
+// The gate traversal of a triangle mesh's connectivity, which the base
+// mesh's code (docs/FORMAT.md 3.1) and the original layer's (2.5) share: a depth-first
 // traversal over shared edges. Each face after the first of its component
 // is entered through a "gate" edge of a face already coded, so only its
 // third vertex travels: new (the next index), one of the few vertices on the
@@ -10,8 +11,8 @@
 // What the encoder (base_connectivity_encoder.h) and the decoder
 // (base_connectivity_decoder.h) must agree on: the contexts, and the coded
 // region whose border both sides track.
-#ifndef MESHWAVE_STREAM_BASE_CONNECTIVITY_H_
-#define MESHWAVE_STREAM_BASE_CONNECTIVITY_H_
+#ifndef MESHWAVE_CONNECTIVITY_GATE_TRAVERSAL_H_
+#define MESHWAVE_CONNECTIVITY_GATE_TRAVERSAL_H_
 
 #include <algorithm>
 #include <array>
@@ -105,4 +106,4 @@ inline std::array<bool, 3> EdgesToAsk(const CodedRegion& region, const Face& f, 
 
 }  // namespace meshwave::connectivity
 
-#endif  // MESHWAVE_STREAM_BASE_CONNECTIVITY_H_
+#endif  // MESHWAVE_CONNECTIVITY_GATE_TRAVERSAL_H_

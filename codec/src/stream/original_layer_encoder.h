@@ -2,8 +2,8 @@
 // user's mesh as read, its connectivity and its positions on a grid of
 // step diagonal x 2^-precision, as packets that follow the semi-regular
 // stream.
-#ifndef MESHWAVE_ORIGINAL_ORIGINAL_LAYER_ENCODER_H_
-#define MESHWAVE_ORIGINAL_ORIGINAL_LAYER_ENCODER_H_
+#ifndef MESHWAVE_STREAM_ORIGINAL_LAYER_ENCODER_H_
+#define MESHWAVE_STREAM_ORIGINAL_LAYER_ENCODER_H_
 
 #include <cstdint>
 #include <string>
@@ -27,16 +27,15 @@ struct EncodedLayer {
   std::vector<double> reduction;
 };
 
-// `original` as read (any faces the readers accept); `remesh`: the finest
-// level of the semi-regular mesh the stream ends in, which the coarse
-// positions must beat. refinement_planes -1: the most that keep the coarse
-// positions' error below the remesh's against the original (at most
-// kMaxOriginalRefinementPlanes). Errors: an empty mesh, a non-finite
-// coordinate, a precision outside [4, 29].
-Result<EncodedLayer> EncodeLayer(const TriMesh& original, const TriMesh& remesh,
-                                 uint64_t remesh_vertices, int precision, int refinement_planes,
-                                 int threads);
+// `original` as read (any faces the readers accept); `remesh_rms`: the RMS
+// distance between the remesh the stream ends in and the original (0 when
+// unknown or exact), which the coarse positions must beat.
+// refinement_planes -1: the most that keep the coarse positions' error
+// below the remesh's (at most kMaxOriginalRefinementPlanes). Errors: an
+// empty mesh, a non-finite coordinate, a precision outside [4, 29].
+Result<EncodedLayer> EncodeLayer(const TriMesh& original, double remesh_rms,
+                                 uint64_t remesh_vertices, int precision, int refinement_planes);
 
 }  // namespace meshwave::original
 
-#endif  // MESHWAVE_ORIGINAL_ORIGINAL_LAYER_ENCODER_H_
+#endif  // MESHWAVE_STREAM_ORIGINAL_LAYER_ENCODER_H_

@@ -1,4 +1,4 @@
-#include "original/original_layer_decoder.h"
+#include "stream/original_layer_decoder.h"
 
 #include <string>
 

@@ -1,44 +1,18 @@
-#include "original/original_layer_encoder.h"
+#include "stream/original_layer_encoder.h"
 
 #include <algorithm>
 #include <cmath>
 #include <string>
 
-#include "core/parallel_for.h"
-#include "metrics/triangle_bvh.h"
 #include "original/original_connectivity.h"
 #include "original/original_positions.h"
 #include "stream/stream_format.h"
 
 namespace meshwave::original {
 
-namespace {
 
-// Mean squared distance of the original's vertices to the remesh's surface:
-// the remesh's error where the original is exact.
-double RemeshError(const TriMesh& original, const TriMesh& remesh, int threads) {
-  if (remesh.faces.empty()) return 0;
-  const metrics::TriangleBvh bvh(remesh.positions, remesh.faces, threads);
-  const size_t n = original.positions.size();
-  std::vector<double> squared(n, 0);
-  ParallelFor(n, threads, [&](size_t begin, size_t end) {
-    uint32_t hint = metrics::TriangleBvh::kNoFace;
-    for (size_t v = begin; v < end; ++v) {
-      const metrics::TriangleBvh::Hit hit = bvh.ClosestPoint(original.positions[v], hint);
-      squared[v] = hit.distance_squared;
-      hint = hit.face;
-    }
-  });
-  double sum = 0;
-  for (double s : squared) sum += s;
-  return n > 0 ? sum / static_cast<double>(n) : 0;
-}
-
-}  // namespace
-
-Result<EncodedLayer> EncodeLayer(const TriMesh& original, const TriMesh& remesh,
-                                 uint64_t remesh_vertices, int precision, int refinement_planes,
-                                 int threads) {
+Result<EncodedLayer> EncodeLayer(const TriMesh& original, double remesh_rms,
+                                 uint64_t remesh_vertices, int precision, int refinement_planes) {
   const size_t n = original.positions.size();
   if (n == 0) return InvalidArgument("original layer: the mesh has no vertices");
   if (n > kMaxOriginalVertices || original.faces.size() > kMaxOriginalFaces) {
@@ -69,7 +43,8 @@ Result<EncodedLayer> EncodeLayer(const TriMesh& original, const TriMesh& remesh,
 
   // The coarse positions must be at least as close to the original as the
   // remesh is: a cell of 2^s steps errs by (2^s step)^2 / 4 per vertex.
-  const double remesh_error = RemeshError(original, remesh, threads);
+  const double remesh_error =
+      std::isfinite(remesh_rms) && remesh_rms > 0 ? remesh_rms * remesh_rms : 0.0;
   int planes = refinement_planes;
   if (planes < 0) {
     planes = 0;
@@ -97,7 +72,8 @@ Result<EncodedLayer> EncodeLayer(const TriMesh& original, const TriMesh& remesh,
 
   // The chain in the remesh's units: mean squared error x its vertices.
   const double vertices = static_cast<double>(std::max<uint64_t>(remesh_vertices, 1));
-  out.chain_start = remesh_error * vertices;
+  // Never below the coarse positions' own error: a chain only falls.
+  out.chain_start = std::max(remesh_error, std::pow(std::ldexp(step, planes), 2) / 4) * vertices;
   out.reduction.push_back(0);  // the connectivity alone changes no position
   double before = out.chain_start;
   for (int s = planes; s >= 0; --s) {

@@ -2,8 +2,8 @@
 // connectivity packet, then the positions packets coarse to fine, into the
 // user's own mesh. ProgressiveDecoder holds one when the stream has the
 // layer and hands it the layer's packets.
-#ifndef MESHWAVE_ORIGINAL_ORIGINAL_LAYER_DECODER_H_
-#define MESHWAVE_ORIGINAL_ORIGINAL_LAYER_DECODER_H_
+#ifndef MESHWAVE_STREAM_ORIGINAL_LAYER_DECODER_H_
+#define MESHWAVE_STREAM_ORIGINAL_LAYER_DECODER_H_
 
 #include <optional>
 #include <string_view>
@@ -50,4 +50,4 @@ class LayerDecoder {
 
 }  // namespace meshwave::original
 
-#endif  // MESHWAVE_ORIGINAL_ORIGINAL_LAYER_DECODER_H_
+#endif  // MESHWAVE_STREAM_ORIGINAL_LAYER_DECODER_H_
