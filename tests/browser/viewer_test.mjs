@@ -9,6 +9,8 @@
 //     a readable error, the last good mesh still drawn, the page answering.
 //  3. The socket closed by the server mid-stream: the same.
 //  4. Error colours against the complete stream: a 6 KiB prefix shows them.
+//  5. The whole stream ends in the input's own mesh (the original layer):
+//     the viewer draws the input's vertex and face counts.
 // Screenshots are kept in the artefacts directory.
 //
 // node viewer_test.mjs --server BIN --cli BIN --decoder meshwave_decoder.js
@@ -170,6 +172,23 @@ try {
     assert.ok(Math.abs(cmp.drawnB - cmp.drawn) < cmp.drawn * 0.3, 'the same view, refined');
     const first_ms = await page.evaluate(() => Number(document.getElementById('r-first').dataset.value));
     assert.ok(first_ms > 0, 'time to first mesh shown');
+    assert.deepEqual(errors, [], 'console errors');
+    await page.close();
+  });
+
+  await test('the whole stream ends in the input\'s own mesh', async () => {
+    const errors = [];
+    const page = await openViewer(errors);
+    await page.fill('#budget', '100000');
+    await streamAndWait(page);
+    const info = JSON.parse(execFileSync(opt.cli, ['info', opt.mesh, '--json'], { encoding: 'utf8' }));
+    const want = `${info.as_read.vertices} / ${info.as_read.faces}`;
+    const size = await page.evaluate(() => document.getElementById('r-size').textContent);
+    console.log(`  drawn: ${size} vertices / faces (the input: ${want})`);
+    assert.equal(size, want, 'the original mesh drawn');
+    const drawn = await shot(page, 'viewer_original.png');
+    const cmp = await comparePngs(drawn, drawn);
+    assert.ok(cmp.drawn > cmp.total * 0.02, 'the mesh is drawn (over 2 % of the view)');
     assert.deepEqual(errors, [], 'console errors');
     await page.close();
   });
