@@ -355,9 +355,14 @@ Result<std::unique_ptr<ProgressiveDecoder>> ProgressiveDecoder::Create(
     impl->first_texture = static_cast<uint32_t>(impl->packets->TextureId(0, 0));
   }
   if (header.original) {
-    if (header.original->face_count > options.max_faces) {
+    // Its vertices too: the layer's decoder holds some 40 bytes for each.
+    const uint64_t elements =
+        std::max<uint64_t>(header.original->face_count, header.original->vertex_count);
+    if (elements > options.max_faces) {
       return Status(StatusCode::kUnsupported,
-                    "header: the original layer's " + std::to_string(header.original->face_count) +
+                    "header: the original layer's " +
+                        std::to_string(header.original->vertex_count) + " vertices and " +
+                        std::to_string(header.original->face_count) +
                         " faces, more than this decoder's limit of " +
                         std::to_string(options.max_faces));
     }

@@ -206,6 +206,10 @@ TEST(OriginalLayerStreamTest, RefusesALayerItsVersionOrItsFieldsCannotHold) {
   StreamHeader many = s.layered.header;
   many.original->face_count = s.layered.header.faces + 1;
   EXPECT_EQ(ProgressiveDecoder::Create(many, small).status().code(), StatusCode::kUnsupported);
+  StreamHeader crowded = s.layered.header;
+  crowded.original->vertex_count = static_cast<uint32_t>(s.layered.header.faces + 1);
+  EXPECT_EQ(ProgressiveDecoder::Create(crowded, small).status().code(), StatusCode::kUnsupported);
+  EXPECT_TRUE(ProgressiveDecoder::Create(s.layered.header, small).ok());
 }
 
 }  // namespace

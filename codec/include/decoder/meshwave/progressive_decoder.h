@@ -27,6 +27,7 @@ struct DecoderOptions {
   // Faces of the finest level. A header is refused before anything is
   // allocated when it claims more: a client bounds its memory with it (a
   // small header can claim 12 levels), the fuzzers their time per input.
+  // The original layer's faces and vertices are bounded by it too.
   uint64_t max_faces = uint64_t{1} << 27;
   // Create builds what the base mesh and the first mesh need and returns;
   // the rest of the set-up (each subband's octree and coding state, which
