@@ -84,6 +84,12 @@ struct DecodedMesh {
   std::vector<float> uvs;
   TextureMaterial material;
 };
+// Packets of the original layer, which closes the index (docs/FORMAT.md
+// 2.5): its connectivity, coarse positions and refinement planes.
+inline size_t OriginalPackets(const StreamHeader& header) {
+  return header.original ? 2 + size_t{header.original->refinement_planes} : 0;
+}
+
 // Level `level` of the remesh, or the original mesh when the decoder holds
 // enough of its layer and `level` is the finest (or beyond).
 DecodedMesh DecodeLevel(const ProgressiveDecoder& decoder, int level);

@@ -45,11 +45,6 @@ struct EncodeArgs {
   TextureBakeOptions bake;
 };
 
-// Packets of the original layer, which closes the index (FORMAT.md 2.5).
-size_t OriginalPackets(const StreamHeader& header) {
-  return header.original ? 2 + header.original->refinement_planes : 0;
-}
-
 // The first texture packet's id: texture packets come before the original
 // layer's.
 size_t TexturePacketsStart(const StreamHeader& header) {

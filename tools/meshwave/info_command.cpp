@@ -256,7 +256,7 @@ Status DescribeStream(const InfoArgs& args) {
   }
   if (h.original) {
     // The last packets of the index (docs/FORMAT.md 2.5).
-    const size_t parts = 2 + h.original->refinement_planes;
+    const size_t parts = OriginalPackets(h);
     const size_t first = h.packets.length.size() - parts;
     uint64_t layer_bytes = 0;
     size_t held_parts = 0;

@@ -1,7 +1,6 @@
 #include "meshwave/asset_encoder.h"
 
 #include <cctype>
-#include <cmath>
 #include <optional>
 #include <string>
 #include <utility>
@@ -146,13 +145,7 @@ Result<AssetEncoding> EncodeAsset(FileSet& files, std::string_view main_file,
   // 5. Encode, ending in the original where asked.
   if (original_layer) {
     attributes.original = &asset.mesh;
-    const SemiRegularInput& sr = out.semiregular;
-    if (sr.remeshed && sr.remesh_psnr_db > 0 && !asset.mesh.positions.empty()) {
-      // PSNR's peak is the input's bounding-box diagonal.
-      Vec3 lo = asset.mesh.positions[0], hi = lo;
-      for (const Vec3& p : asset.mesh.positions) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-      attributes.original_remesh_rms = (hi - lo).norm() * std::pow(10.0, -sr.remesh_psnr_db / 20);
-    }
+    if (out.semiregular.remeshed) attributes.original_remesh_psnr_db = out.semiregular.remesh_psnr_db;
   }
   MW_ASSIGN_OR_RETURN(out.stream,
                       EncodeMesh(out.semiregular.mesh, options.encode, attributes));

@@ -4,6 +4,7 @@
 #ifndef MESHWAVE_STREAM_DISTORTION_INDEX_WRITER_H_
 #define MESHWAVE_STREAM_DISTORTION_INDEX_WRITER_H_
 
+#include <algorithm>
 #include <cstdint>
 #include <limits>
 #include <string_view>
@@ -24,6 +25,14 @@ struct DistortionModel {
   // Chains from this one on are a channel's (in its own units): not summed
   // into the geometry's start, not scaled.
   size_t geometry_chains = std::numeric_limits<size_t>::max();
+
+  // Adds a chain of another signal (a channel's subband, a texture map,
+  // the original layer), after the geometry's; returns its index.
+  uint32_t AddOtherChain(double start) {
+    geometry_chains = std::min(geometry_chains, chain_start.size());
+    chain_start.push_back(start);
+    return static_cast<uint32_t>(chain_start.size() - 1);
+  }
 };
 
 // Writes base_distortion, chain_distortion and distortion_step, scaling

@@ -114,12 +114,11 @@ Result<EncodedStream> EncodeMesh(const SemiRegularMesh& input, const EncodeOptio
     }
     MW_ASSIGN_OR_RETURN(EncodedChannel channel,
                         EncodeColorChannel(prepared, out.mesh, out.colors, layouts, options));
-    model.geometry_chains = model.chain_start.size();
-    model.chain_start.insert(model.chain_start.end(), channel.chain_start.begin(),
-                             channel.chain_start.end());
+    const auto first_chain = static_cast<uint32_t>(model.chain_start.size());
+    for (double start : channel.chain_start) model.AddOtherChain(start);
     for (int j = 0; j < levels; ++j) {
       for (CodedPacket& packet : channel.coded.subbands[static_cast<size_t>(j)]) {
-        AddCodedPacket(packet.payload, static_cast<uint32_t>(model.geometry_chains + j),
+        AddCodedPacket(packet.payload, first_chain + static_cast<uint32_t>(j),
                        packet.reduction, index, model);
         out.packets.push_back(std::move(packet.payload));
       }
@@ -131,12 +130,8 @@ Result<EncodedStream> EncodeMesh(const SemiRegularMesh& input, const EncodeOptio
     MW_ASSIGN_OR_RETURN(EncodedTexture texture,
                         EncodeTexture(*attributes.texture, input, out.mesh, prepared.input_vertex,
                                       static_cast<uint32_t>(out.packets.size()), options));
-    if (model.geometry_chains > model.chain_start.size()) {
-      model.geometry_chains = model.chain_start.size();
-    }
     const auto first_chain = static_cast<uint32_t>(model.chain_start.size());
-    model.chain_start.insert(model.chain_start.end(), texture.chain_start.begin(),
-                             texture.chain_start.end());
+    for (double start : texture.chain_start) model.AddOtherChain(start);
     size_t next = 0;
     for (int m = 0; m < texture.header.maps_size(); ++m) {
       for (int k = 0; k < texture.header.maps(m).levels_size(); ++k, ++next) {
@@ -151,14 +146,10 @@ Result<EncodedStream> EncodeMesh(const SemiRegularMesh& input, const EncodeOptio
   if (attributes.original) {
     MW_ASSIGN_OR_RETURN(
         original::EncodedLayer layer,
-        original::EncodeLayer(*attributes.original, attributes.original_remesh_rms,
+        original::EncodeLayer(*attributes.original, attributes.original_remesh_psnr_db,
                               header.vertices(), options.precision,
                               options.original_refinement_planes));
-    if (model.geometry_chains > model.chain_start.size()) {
-      model.geometry_chains = model.chain_start.size();
-    }
-    const auto chain = static_cast<uint32_t>(model.chain_start.size());
-    model.chain_start.push_back(layer.chain_start);
+    const uint32_t chain = model.AddOtherChain(layer.chain_start);
     for (size_t i = 0; i < layer.packets.size(); ++i) {
       AddCodedPacket(layer.packets[i], chain, layer.reduction[i], index, model);
       out.packets.push_back(std::move(layer.packets[i]));

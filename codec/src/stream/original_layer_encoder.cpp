@@ -10,8 +10,7 @@
 
 namespace meshwave::original {
 
-
-Result<EncodedLayer> EncodeLayer(const TriMesh& original, double remesh_rms,
+Result<EncodedLayer> EncodeLayer(const TriMesh& original, double remesh_psnr_db,
                                  uint64_t remesh_vertices, int precision, int refinement_planes) {
   const size_t n = original.positions.size();
   if (n == 0) return InvalidArgument("original layer: the mesh has no vertices");
@@ -43,8 +42,9 @@ Result<EncodedLayer> EncodeLayer(const TriMesh& original, double remesh_rms,
 
   // The coarse positions must be at least as close to the original as the
   // remesh is: a cell of 2^s steps errs by (2^s step)^2 / 4 per vertex.
+  const double remesh_rms = diagonal * std::pow(10.0, -remesh_psnr_db / 20);
   const double remesh_error =
-      std::isfinite(remesh_rms) && remesh_rms > 0 ? remesh_rms * remesh_rms : 0.0;
+      std::isfinite(remesh_psnr_db) && remesh_psnr_db > 0 ? remesh_rms * remesh_rms : 0.0;
   int planes = refinement_planes;
   if (planes < 0) {
     planes = 0;

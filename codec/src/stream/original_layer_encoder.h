@@ -27,13 +27,14 @@ struct EncodedLayer {
   std::vector<double> reduction;
 };
 
-// `original` as read (any faces the readers accept); `remesh_rms`: the RMS
-// distance between the remesh the stream ends in and the original (0 when
-// unknown or exact), which the coarse positions must beat.
+// `original` as read (any faces the readers accept); `remesh_psnr_db`: the
+// symmetric surface PSNR of the remesh the stream ends in against the
+// original, peak its bounding-box diagonal (0 when unknown or exact), which
+// the coarse positions must beat.
 // refinement_planes -1: the most that keep the coarse positions' error
 // below the remesh's (at most kMaxOriginalRefinementPlanes). Errors: an
 // empty mesh, a non-finite coordinate, a precision outside [4, 29].
-Result<EncodedLayer> EncodeLayer(const TriMesh& original, double remesh_rms,
+Result<EncodedLayer> EncodeLayer(const TriMesh& original, double remesh_psnr_db,
                                  uint64_t remesh_vertices, int precision, int refinement_planes);
 
 }  // namespace meshwave::original

@@ -209,12 +209,14 @@ DistortionEstimates ReadDistortionIndex(const StreamHeader& header,
   DistortionEstimates out;
   out.base = header.base_distortion;
   for (float e : index.chain_distortion) out.chain_start.push_back(e);
-  const size_t channel_chains =
+  // Chains of other signals than the geometry (channels, texture maps, the
+  // original layer): after the geometry's, not summed into its estimate.
+  const size_t other_chains =
       std::min<size_t>(header.channels.size(), kMaxChannels) * header.transform.levels +
       (header.texture ? std::min<size_t>(header.texture->maps.size(), kMaxTextureMaps) : 0) +
       (header.original ? 1 : 0);
   out.geometry_chains =
-      out.chain_start.size() - std::min(out.chain_start.size(), channel_chains);
+      out.chain_start.size() - std::min(out.chain_start.size(), other_chains);
   if (header.original && !out.chain_start.empty()) {
     out.original_chain = static_cast<int>(out.chain_start.size()) - 1;
   }

@@ -83,8 +83,10 @@ class PacketLayout {
                : -1;
   }
   bool IsOriginal(uint32_t id) const { return OriginalPart(id) >= 0; }
-  // Packets of the original layer (0 without one) and the id of part `part`
-  // (-1 when it does not exist).
+  // The id of the layer's first part (count() without a layer), its number
+  // of packets (0 without one) and the id of part `part` (-1 when it does
+  // not exist).
+  int original_first() const { return original_first_; }
   int original_parts() const { return count_ - original_first_; }
   int OriginalId(int part) const {
     return part >= 0 && part < original_parts() ? original_first_ + part : -1;

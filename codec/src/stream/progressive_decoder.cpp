@@ -343,9 +343,7 @@ Result<std::unique_ptr<ProgressiveDecoder>> ProgressiveDecoder::Create(
   impl->packets = std::make_unique<PacketLayout>(header);
   // Without a texture, its (empty) range ends where the original layer
   // starts.
-  impl->first_texture = static_cast<uint32_t>(impl->packets->original_parts() > 0
-                                                  ? impl->packets->OriginalId(0)
-                                                  : impl->packets->count());
+  impl->first_texture = static_cast<uint32_t>(impl->packets->original_first());
   if (header.texture) {
     const StreamHeader::Texture& t = *header.texture;
     MW_ASSIGN_OR_RETURN(AtlasLayout atlas,
@@ -452,9 +450,8 @@ void ProgressiveDecoder::Reset() {
     }
   }
   m.held->Clear();
-  const int first_original = m.packets->original_parts() > 0 ? m.packets->OriginalId(0)
-                                                              : m.packets->count();
-  m.texture_bytes.assign(static_cast<size_t>(first_original) - m.first_texture, std::string());
+  m.texture_bytes.assign(static_cast<size_t>(m.packets->original_first()) - m.first_texture,
+                         std::string());
   if (m.original) m.original->Reset();
   m.part_bytes.assign(m.held->packet_count(), 0);
   m.chain_now = m.estimates.chain_start;

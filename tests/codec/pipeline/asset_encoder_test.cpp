@@ -6,8 +6,6 @@
 
 #include <gtest/gtest.h>
 
-#include <cmath>
-
 #include "meshwave/container.h"
 #include "meshwave/file_set.h"
 #include "meshwave/mesh_io.h"
@@ -68,11 +66,8 @@ TEST(AssetEncoderTest, AMeshWithoutAttributesEncodesAsTheGeometryAlone) {
     // The stream ends in the mesh as read (the original layer).
     VertexAttributes original;
     original.original = &encoded->input_mesh;
-    if (encoded->semiregular.remeshed && encoded->semiregular.remesh_psnr_db > 0) {
-      Vec3 lo = encoded->input_mesh.positions[0], hi = lo;
-      for (const Vec3& p : encoded->input_mesh.positions) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-      original.original_remesh_rms =
-          (hi - lo).norm() * std::pow(10.0, -encoded->semiregular.remesh_psnr_db / 20);
+    if (encoded->semiregular.remeshed) {
+      original.original_remesh_psnr_db = encoded->semiregular.remesh_psnr_db;
     }
     auto alone = EncodeMesh(input->mesh, options.encode, original);
     ASSERT_TRUE(alone.ok());

@@ -126,10 +126,10 @@ struct VertexAttributes {
   // version 10, docs/FORMAT.md 2.5): its connectivity over its own vertex
   // ids and its positions at EncodeOptions::precision. Not owned.
   const TriMesh* original = nullptr;
-  // The remesh's RMS surface distance to `original` (0: unknown or exact):
-  // the layer's coarse positions err less (EncodeOptions::
-  // original_refinement_planes).
-  double original_remesh_rms = 0;
+  // The remesh's symmetric surface PSNR against `original` (peak: its
+  // bounding-box diagonal; 0: unknown or exact): the layer's coarse
+  // positions err less (EncodeOptions::original_refinement_planes).
+  double original_remesh_psnr_db = 0;
 };
 
 Result<EncodedStream> EncodeMesh(const SemiRegularMesh& mesh,
