@@ -5,8 +5,10 @@
 // the caller.
 #include <png.h>
 
+#include <algorithm>
 #include <csetjmp>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -20,12 +22,28 @@ namespace {
 // zTXt, iTXt): libpng's own default, made explicit.
 constexpr png_alloc_size_t kMaxChunkBytes = 8'000'000;
 
+// Headroom over the largest row libpng may hold (16-bit RGBA of the widest
+// image the pixel limit allows) for its chunk and zlib buffers.
+constexpr size_t kAllocationSlack = 16u << 20;
+
 struct PngInput {
   const unsigned char* data;
   size_t size;
   size_t offset;
-  char message[200];  // the last error libpng reported
+  size_t max_allocation;  // the largest block libpng may ask for
+  char message[200];      // the last error libpng reported
 };
+
+// libpng's allocations go through here so that no length read from the file
+// (a chunk's, an embedded profile's) makes it take more than the image could
+// need: a refused block is an error libpng reports, not an out-of-memory.
+png_voidp AllocateForPng(png_structp png, png_alloc_size_t size) {
+  auto* input = static_cast<PngInput*>(png_get_mem_ptr(png));
+  if (size > input->max_allocation) return nullptr;
+  return std::malloc(size);
+}
+
+void FreeForPng(png_structp, png_voidp block) { std::free(block); }
 
 void OnPngError(png_structp png, png_const_charp message) {
   auto* input = static_cast<PngInput*>(png_get_error_ptr(png));
@@ -103,17 +121,21 @@ class PngReadGuard {
 Result<DecodedImage> DecodePng(std::string_view bytes,
                                const ImageLimits& limits,
                                std::string_view name) {
+  // The pixel limit bounds the widest row: one row of max_pixels pixels.
+  const uint64_t widest_row = std::min<uint64_t>(limits.max_pixels, 0x7fffffff);
   PngInput input{reinterpret_cast<const unsigned char*>(bytes.data()),
                  bytes.size(),
                  0,
+                 static_cast<size_t>(widest_row * 8 + kAllocationSlack),
                  {}};
   auto failed = [&](const char* stage) {
     return ParseError(
         std::string(name) + ": PNG " + stage + ": " +
         (input.message[0] != '\0' ? input.message : "corrupt data"));
   };
-  png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &input,
-                                           OnPngError, OnPngWarning);
+  png_structp png = png_create_read_struct_2(PNG_LIBPNG_VER_STRING, &input,
+                                             OnPngError, OnPngWarning, &input,
+                                             AllocateForPng, FreeForPng);
   if (png == nullptr) {
     return Status(StatusCode::kInternal, "libpng: cannot create a reader");
   }
@@ -124,6 +146,9 @@ Result<DecodedImage> DecodePng(std::string_view bytes,
   }
   png_set_read_fn(png, &input, ReadPngBytes);
   png_set_chunk_malloc_max(png, kMaxChunkBytes);
+  // Only IHDR, PLTE, tRNS, IDAT and IEND shape the pixels we keep (no gamma
+  // or colour management): every other chunk is skipped unread.
+  png_set_keep_unknown_chunks(png, PNG_HANDLE_CHUNK_NEVER, nullptr, -1);
   // libpng's own per-side limit is 1,000,000; the pixel count is ours.
   png_set_user_limits(png, 0x7fffffff, 0x7fffffff);
 

@@ -20,6 +20,7 @@ namespace {
 using testing::BombPng;
 using testing::EncodePng;
 using ::testing::HasSubstr;
+using testing::PngChunk;
 using testing::PngSpec;
 
 std::vector<uint8_t> Pixel(const DecodedImage& image, uint32_t x, uint32_t y) {
@@ -185,6 +186,39 @@ TEST(ImageDecoderTest, RefusesAPngBombFromItsHeader) {
                   .message(),
               HasSubstr("past their byte limit"));
   EXPECT_TRUE(DecodeImage(ok, {.max_pixels = 4096}, "s").ok());
+}
+
+TEST(ImageDecoderTest, SkipsAncillaryChunksWhateverTheyClaim) {
+  // An embedded colour profile whose header claims 1.9 GB, a text chunk and
+  // an unknown chunk: none shapes the pixels, so none is read, and the image
+  // decodes as it would without them.
+  PngSpec spec;
+  spec.width = 8;
+  spec.height = 4;
+  const std::string plain = EncodePng(spec, Gradient(8, 4, 3));
+  std::string profile(132, '\0');
+  const uint32_t claimed = 0x73000000;
+  for (int i = 0; i < 4; ++i) profile[i] = char(claimed >> (24 - 8 * i));
+  profile.replace(12, 12, "mntrRGB XYZ ");
+  profile.replace(36, 4, "acsp");
+  uLongf packed_size = compressBound(profile.size());
+  std::string packed(packed_size, '\0');
+  ASSERT_EQ(compress(reinterpret_cast<Bytef*>(packed.data()), &packed_size,
+                     reinterpret_cast<const Bytef*>(profile.data()),
+                     profile.size()),
+            Z_OK);
+  packed.resize(packed_size);
+  std::string chunks;
+  PngChunk(chunks, "iCCP", std::string("icc\0\0", 5) + packed);
+  PngChunk(chunks, "tEXt", std::string("Comment\0", 8) + "hello");
+  PngChunk(chunks, "vpAg", std::string(9, '\1'));
+  constexpr size_t kAfterHeader = 8 + 25;  // signature, IHDR
+  const std::string with_chunks =
+      plain.substr(0, kAfterHeader) + chunks + plain.substr(kAfterHeader);
+  const auto expected = DecodePng(plain, {}, "plain");
+  const auto image = DecodePng(with_chunks, {}, "chunks");
+  ASSERT_TRUE(expected.ok() && image.ok()) << image.status().ToString();
+  EXPECT_EQ(image->rgba, expected->rgba);
 }
 
 TEST(ImageDecoderTest, RefusesTruncatedAndCorruptPng) {
