@@ -2,6 +2,9 @@
 
 #include <array>
 #include <fstream>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <system_error>
 #include <utility>
 
@@ -37,6 +40,49 @@ bool Inside(const std::filesystem::path& root,
     if (f == file.end() || *r != *f) return false;
   }
   return true;
+}
+
+// A viewer file as last read, with its ETag: a page load revalidates every
+// file, and hashing three.js (1.5 MB) again for each 304 would cost more
+// than the request.
+struct CachedFile {
+  std::filesystem::file_time_type mtime;
+  uintmax_t size = 0;
+  std::string body;
+  std::string etag;
+};
+
+// The file's content and ETag, read again when its time or size changed;
+// null when it cannot be read.
+std::shared_ptr<const CachedFile> ReadCached(const std::filesystem::path& file,
+                                             uintmax_t size) {
+  static std::mutex mutex;
+  static std::map<std::filesystem::path, std::shared_ptr<const CachedFile>>
+      files;
+  std::error_code ec;
+  const auto mtime = std::filesystem::last_write_time(file, ec);
+  if (ec) return nullptr;
+  {
+    const std::scoped_lock lock(mutex);
+    const auto it = files.find(file);
+    if (it != files.end() && it->second->mtime == mtime &&
+        it->second->size == size) {
+      return it->second;
+    }
+  }
+  auto cached = std::make_shared<CachedFile>();
+  cached->mtime = mtime;
+  cached->size = size;
+  cached->body.resize(static_cast<size_t>(size));
+  std::ifstream in(file, std::ios::binary);
+  if (!in.read(cached->body.data(),
+               static_cast<std::streamsize>(cached->body.size()))) {
+    return nullptr;
+  }
+  cached->etag = StrongEtag(Sha256Hex(cached->body), "");
+  const std::scoped_lock lock(mutex);
+  files[file] = cached;
+  return cached;
 }
 
 }  // namespace
@@ -118,23 +164,20 @@ Response ServeViewerFile(const ServerContext& ctx, const Request& req) {
   const uintmax_t size = std::filesystem::file_size(file, ec);
   if (ec || size > kMaxFileBytes)
     return JsonError(http::status::not_found, "no such viewer file");
-  std::string body(static_cast<size_t>(size), '\0');
-  std::ifstream in(file, std::ios::binary);
-  if (!in.read(body.data(), static_cast<std::streamsize>(body.size()))) {
+  const auto cached = ReadCached(file, size);
+  if (cached == nullptr) {
     return JsonError(http::status::internal_server_error,
                      "cannot read a viewer file");
   }
-
-  const std::string etag = StrongEtag(Sha256Hex(body), "");
   Response r{http::status::ok, 11};
   const auto inm = req[http::field::if_none_match];
-  if (!inm.empty() && IfNoneMatchMatches(inm, etag)) {
+  if (!inm.empty() && IfNoneMatchMatches(inm, cached->etag)) {
     r.result(http::status::not_modified);
   } else {
     r.set(http::field::content_type, ViewerContentType(file));
-    r.body().owned = std::move(body);
+    r.body().owned = cached->body;
   }
-  r.set(http::field::etag, etag);
+  r.set(http::field::etag, cached->etag);
   r.set(http::field::cache_control, "no-cache");
   r.set("X-Content-Type-Options", "nosniff");
   return r;
