@@ -59,18 +59,16 @@ for mesh in "${meshes[@]}"; do
   echo "| $name | $vertices | $payload | $native | $wasm | ${ratio}x | $(mesh_ms_native < "$tmp/$name.native") | $(mesh_ms_wasm < "$tmp/$name.wasm") |"
 done
 
-# Sizes: what a page downloads, raw and gzip -9. Our module is one file
-# (the wasm inlined as base64); its wasm alone is decoded from it.
+# Sizes: what a page downloads, raw and gzip -9: the module's JS (API and
+# embind glue) and its wasm.
 gz() { gzip -9 -c "$1" | wc -c; }
-node -e '
-  const s = require("fs").readFileSync(process.argv[1], "utf8");
-  const m = s.match(/data:application\/octet-stream;base64,([A-Za-z0-9+\/=]+)/);
-  require("fs").writeFileSync(process.argv[2], Buffer.from(m[1], "base64"));' "$module" "$tmp/meshwave.wasm"
+wasm_file=${module%.js}.wasm
 echo
 echo "| file | bytes | gzip -9 bytes |"
 echo "| --- | --- | --- |"
-echo "| meshwave_decoder.js (all in one) | $(wc -c < "$module") | $(gz "$module") |"
-echo "| its wasm alone | $(wc -c < "$tmp/meshwave.wasm") | $(gz "$tmp/meshwave.wasm") |"
+echo "| meshwave_decoder.js | $(wc -c < "$module") | $(gz "$module") |"
+echo "| meshwave_decoder.wasm | $(wc -c < "$wasm_file") | $(gz "$wasm_file") |"
+echo "| both | $(( $(wc -c < "$module") + $(wc -c < "$wasm_file") )) | $(( $(gz "$module") + $(gz "$wasm_file") )) |"
 if [[ -n ${DRACO3D_DIR:-} ]]; then
   for f in draco_decoder.wasm draco_decoder_nodejs.js; do
     echo "| draco3d $f | $(wc -c < "$DRACO3D_DIR/$f") | $(gz "$DRACO3D_DIR/$f") |"

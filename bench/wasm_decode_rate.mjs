@@ -5,9 +5,8 @@
 // in its order through addPacket (timed: process CPU and wall), then one
 // positions() + faces() (timed apart: the mesh a page would upload).
 import { readFileSync } from 'node:fs';
-import { resolve } from 'node:path';
 import { performance } from 'node:perf_hooks';
-import { pathToFileURL } from 'node:url';
+import { loadDecoderModule } from '../tests/browser/harness.mjs';
 
 const args = process.argv.slice(2);
 if (args.length < 2 || args.includes('--help')) {
@@ -16,8 +15,7 @@ if (args.length < 2 || args.includes('--help')) {
 }
 const runsAt = args.indexOf('--runs');
 const runs = runsAt >= 0 ? Number(args[runsAt + 1]) : 9;
-const { default: createMeshwave } = await import(pathToFileURL(resolve(args[0])).href);
-const mw = await createMeshwave();
+const mw = await loadDecoderModule(args[0]);
 const { header, packets } = mw.parseContainer(readFileSync(args[1]));
 const payload = packets.reduce((n, p) => n + p.payload.length, 0);
 

@@ -4,11 +4,12 @@
 #   web/build_decoder.sh --dist [BUILD_DIR] and copies it to web/dist/, the
 #                                           module shipped for builds without
 #                                           emscripten (wasm_dist_test)
-# The module is BUILD_DIR/web/decoder/meshwave_decoder.js (one ES module,
-# the wasm inlined): import createMeshwave from './meshwave_decoder.js'.
+# The module is BUILD_DIR/web/decoder/meshwave_decoder.js (an ES module:
+# import createMeshwave from './meshwave_decoder.js') with
+# meshwave_decoder.wasm beside it, which it fetches.
 set -eu
 if [ "${1:-}" = "-h" ] || [ "${1:-}" = "--help" ]; then
-  sed -n '2,8p' "$0" | sed 's/^# \{0,1\}//'
+  sed -n '2,9p' "$0" | sed 's/^# \{0,1\}//'
   exit 0
 fi
 dist=
@@ -32,7 +33,8 @@ emcmake cmake -S "$src" -B "$out" -G Ninja -DCMAKE_BUILD_TYPE=Release \
 cmake --build "$out" --parallel "${MESHWAVE_JOBS:-2}" --target meshwave_decoder_js
 if [ -n "$dist" ]; then
   mkdir -p "$src/web/dist"
-  cp "$out/web/decoder/meshwave_decoder.js" "$src/web/dist/meshwave_decoder.js"
+  install -m 644 "$out/web/decoder/meshwave_decoder.js" "$out/web/decoder/meshwave_decoder.wasm" \
+    "$src/web/dist/"
   echo "$src/web/dist/meshwave_decoder.js"
 else
   echo "$out/web/decoder/meshwave_decoder.js"

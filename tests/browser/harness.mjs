@@ -9,6 +9,7 @@ import { createRequire } from 'node:module';
 import { tmpdir } from 'node:os';
 import path from 'node:path';
 import { setTimeout as sleep } from 'node:timers/promises';
+import { pathToFileURL } from 'node:url';
 
 export const CHROMIUM = '/usr/bin/chromium';
 export const SKIP = 77;  // ctest's SKIP_RETURN_CODE for these tests
@@ -50,11 +51,22 @@ export function ingest(serverBinary, catalog, meshFile, options = []) {
   return found[1];
 }
 
-// web/viewer with `decoderModule` as its meshwave_decoder.js, in `dir`.
+// web/viewer with `decoderModule` as its meshwave_decoder.js (and the
+// .wasm beside it, which the test-only fake has not), in `dir`.
 export function viewerDir(sourceViewer, decoderModule, dir) {
   cpSync(sourceViewer, dir, { recursive: true });
   cpSync(decoderModule, path.join(dir, 'meshwave_decoder.js'));
+  const wasm = decoderModule.replace(/\.js$/, '.wasm');
+  if (existsSync(wasm)) cpSync(wasm, path.join(dir, 'meshwave_decoder.wasm'));
   return dir;
+}
+
+// The decoder module under Node: its wasm read from beside it (the
+// module's loader fetches it only in a browser).
+export async function loadDecoderModule(modulePath) {
+  const { default: createMeshwave } = await import(pathToFileURL(path.resolve(modulePath)).href);
+  const wasm = path.resolve(modulePath).replace(/\.js$/, '.wasm');
+  return createMeshwave(existsSync(wasm) ? { wasmBinary: readFileSync(wasm) } : {});
 }
 
 export class Server {

@@ -35,9 +35,9 @@ import { execFileSync } from 'node:child_process';
 import { existsSync, mkdirSync, readFileSync, rmSync } from 'node:fs';
 import path from 'node:path';
 import { setTimeout as sleep } from 'node:timers/promises';
-import { fileURLToPath, pathToFileURL } from 'node:url';
+import { fileURLToPath } from 'node:url';
 import { parseArgs } from 'node:util';
-import { Server, ingest, launchChromium, skip, tempDir, viewerDir, checks } from './harness.mjs';
+import { Server, ingest, launchChromium, loadDecoderModule, skip, tempDir, viewerDir, checks } from './harness.mjs';
 import { decodeServerMessage } from '../../web/viewer/ws_protocol.js';
 
 const { values: opt } = parseArgs({ options: {
@@ -61,8 +61,7 @@ const PRECINCTS = ['--precinct-size', '64', '--split-bytes', '4'];
 // a seventh of the rest.
 const BUDGET_KIB = 3, REFINE_KIB = 1, ORDER = 'quality';
 const protoDir = fileURLToPath(new URL('../../proto/', import.meta.url));
-const { default: createMeshwave } = await import(pathToFileURL(path.resolve(opt.decoder)).href);
-const mw = await createMeshwave();
+const mw = await loadDecoderModule(opt.decoder);
 
 mkdirSync(opt.artefacts, { recursive: true });
 const work = tempDir('meshwave-viewer-region-test-');

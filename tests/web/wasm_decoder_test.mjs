@@ -13,16 +13,15 @@
 // part before its dependency, each throw an Error carrying the decoder's
 // message.
 import { existsSync, readFileSync } from 'node:fs';
-import { join, resolve } from 'node:path';
-import { pathToFileURL } from 'node:url';
+import { join } from 'node:path';
+import { loadDecoderModule } from '../browser/harness.mjs';
 
 const [modulePath, ...dirs] = process.argv.slice(2);
 if (!modulePath || dirs.length === 0) {
   console.error('usage: node wasm_decoder_test.mjs MODULE.js CASE_DIR...');
   process.exit(2);
 }
-const { default: createMeshwave } = await import(pathToFileURL(resolve(modulePath)).href);
-const mw = await createMeshwave();
+const mw = await loadDecoderModule(modulePath);
 
 let failures = 0;
 let checked = 0;
