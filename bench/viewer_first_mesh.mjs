@@ -1,10 +1,15 @@
-// Time to first mesh in the browser viewer on loopback: headless Chromium
-// (as tests/browser) opens /viewer/ from a meshwave-server serving MESH with
-// the real WebAssembly decoder, clicks Stream, and reads the page's own
-// "first mesh after" readout: from the click to the frame after the first
-// decoded mesh was handed to three.js (WebSocket connect, StreamStart,
-// packets, decode, geometry upload, one SwiftShader frame). Each run is a
-// fresh page (module and wasm from the HTTP cache, as a reload would be).
+// Time to the first drawn mesh in the browser viewer on loopback: headless
+// Chromium (as tests/browser) opens /viewer/?mesh=ID from a meshwave-server
+// serving MESH with the real WebAssembly decoder; the address names the
+// mesh, so the page streams it on opening. The page's own readout gives two
+// times to the frame after the first decoded mesh went to three.js: from
+// navigation (performance.now(): the page, its modules, the decoder module,
+// the WebSocket, the packets, the decode, the geometry upload and one
+// SwiftShader frame) and from the stream's start.
+//   warm: a fresh page in one browser profile, after one first visit of 3 s
+//     (the files from the HTTP cache, revalidated; compiled code from the
+//     caches that visit filled);
+//   cold: a fresh browser profile each run (nothing cached).
 //
 // node viewer_first_mesh.mjs SERVER CLI DECODER_JS MESH NODE_MODULES RUNS BUDGETS...
 import path from 'node:path';
@@ -24,35 +29,71 @@ const catalog = path.join(work, 'catalog');
 const id = ingest(serverBin, catalog, mesh);
 const server = await Server.start(serverBin, catalog,
   viewerDir(path.join(root, 'web/viewer'), decoder, path.join(work, 'viewer')), work);
-const browser = await launchChromium(modules);
 const median = (xs) => [...xs].sort((a, b) => a - b)[Math.floor(xs.length / 2)];
-try {
-  console.log(`mesh ${path.basename(mesh)} (${id}), ${runs} runs per budget, loopback, unpaced`);
-  console.log('| budget | first mesh (median) | min | max | bytes | packets |');
-  console.log('|---|---|---|---|---|---|');
-  for (const budget of budgets) {
-    const times = [];
-    let bytes = 0, packets = 0;
-    for (let i = 0; i < runs + 1; ++i) {  // the first run warms the cache
-      const page = await browser.context.newPage();
-      await page.goto(`${server.url}/viewer/?mesh=${id}&order=quality&rate=0&budget=${budget === 'all' ? '' : budget}`);
-      await page.waitForSelector('body[data-state="ready"]');
-      await page.click('#stream');
-      await page.waitForSelector('body[data-state="done"]');
-      await page.waitForFunction(() => document.getElementById('r-first').dataset.value);
-      const r = await page.evaluate(() => ({
-        ms: Number(document.getElementById('r-first').dataset.value),
+
+// One page load; the page's readouts once its stream is done.
+// linger: milliseconds the page stays open after its stream (a visit's
+// length, in which the browser caches what it compiled).
+async function load(context, budget, linger = 0) {
+  const page = await context.newPage();
+  try {
+    await page.goto(`${server.url}/viewer/?mesh=${id}&order=quality&rate=0&budget=` +
+                    (budget === 'all' ? '' : budget));
+    await page.waitForSelector('body[data-state="done"], body[data-state="error"]');
+    await page.waitForTimeout(linger);
+    await page.waitForFunction(() => document.getElementById('r-first').dataset.value ||
+                                     document.body.dataset.state === 'error');
+    return await page.evaluate(() => {
+      const first = document.getElementById('r-first').dataset;
+      if (document.body.dataset.state === 'error') {
+        throw new Error(document.getElementById('error').textContent);
+      }
+      return {
+        navigation: Number(first.fromNavigation), stream: Number(first.value),
         bytes: Number(document.getElementById('r-bytes').dataset.value),
-        packets: Number(document.getElementById('r-packets').textContent) }));
-      if (i > 0) times.push(r.ms);
-      ({ bytes, packets } = r);
-      await page.close();
+        packets: Number(document.getElementById('r-packets').textContent),
+      };
+    });
+  } finally {
+    await page.close();
+  }
+}
+
+function row(cache, budget, results) {
+  const nav = results.map((r) => r.navigation), stream = results.map((r) => r.stream);
+  const { bytes, packets } = results.at(-1);
+  console.log(`| ${cache} | ${budget === 'all' ? 'whole stream' : budget + ' KiB'} | ` +
+              `${median(nav).toFixed(1)} ms | ${Math.min(...nav).toFixed(1)} | ` +
+              `${Math.max(...nav).toFixed(1)} | ${median(stream).toFixed(1)} ms | ${bytes} | ${packets} |`);
+}
+
+try {
+  console.log(`mesh ${path.basename(mesh)} (${id}), ${runs} runs each, loopback, unpaced`);
+  console.log('| cache | budget | first mesh from navigation (median) | min | max | ' +
+              'from the stream\'s start (median) | bytes | packets |');
+  console.log('|---|---|---|---|---|---|---|---|');
+  for (const budget of budgets) {
+    const warm = await launchChromium(modules);
+    try {
+      await load(warm.context, budget, 3000);  // a first visit of 3 s fills the caches
+      const results = [];
+      for (let i = 0; i < runs; ++i) results.push(await load(warm.context, budget));
+      row('warm', budget, results);
+    } finally {
+      await warm.close();
     }
-    console.log(`| ${budget === 'all' ? 'whole stream' : budget + ' KiB'} | ${median(times).toFixed(1)} ms | ` +
-                `${Math.min(...times).toFixed(1)} | ${Math.max(...times).toFixed(1)} | ${bytes} | ${packets} |`);
+    const results = [];
+    for (let i = 0; i < runs; ++i) {
+      const cold = await launchChromium(modules);
+      try {
+        results.push(await load(cold.context, budget));
+      } finally {
+        await cold.close();
+      }
+    }
+    row('cold', budget, results);
   }
 } finally {
-  await browser.close();
   await server.stop();
   rmSync(work, { recursive: true, force: true });
 }

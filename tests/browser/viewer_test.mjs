@@ -11,6 +11,8 @@
 //  4. Error colours against the complete stream: a 6 KiB prefix shows them.
 //  5. The whole stream ends in the input's own mesh (the original layer):
 //     the viewer draws the input's vertex and face counts.
+//  6. An address naming a mesh (/viewer/?mesh=ID&budget=…) streams it on
+//     opening, without a click: the same readouts as 1.
 // Screenshots are kept in the artefacts directory.
 //
 // node viewer_test.mjs --server BIN --cli BIN --decoder meshwave_decoder.js
@@ -173,6 +175,30 @@ try {
     const first_ms = await page.evaluate(() => Number(document.getElementById('r-first').dataset.value));
     assert.ok(first_ms > 0, 'time to first mesh shown');
     assert.deepEqual(errors, [], 'console errors');
+    await page.close();
+  });
+
+  await test('an address naming a mesh streams it on opening', async () => {
+    const errors = [];
+    const page = await browser.context.newPage();
+    page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
+    page.on('pageerror', (e) => errors.push(`uncaught: ${e.message}`));
+    // No click: the stream starts while the page's modules still load.
+    await page.goto(`${server.url}/viewer/?mesh=${id}&order=${ORDER}&budget=${BUDGET / 1024}&rate=0`);
+    await page.waitForSelector('body[data-state="done"], body[data-state="error"]');
+    checkReadouts(await readouts(page), await serverNumbers(BUDGET), 'opened at ?mesh=');
+    assert.equal(await page.inputValue('#mesh'), id, 'the mesh is the one picked');
+    const first = await page.evaluate(() => document.getElementById('r-first').dataset);
+    assert.ok(Number(first.fromNavigation) >= Number(first.value) && Number(first.value) > 0,
+              `first mesh times: ${JSON.stringify(first)}`);
+    const cmp = await comparePngs(await shot(page, 'viewer_opened_at_mesh.png'),
+                                  await shot(page, 'viewer_opened_at_mesh.png'));
+    assert.ok(cmp.drawn > cmp.total * 0.02, 'the mesh is drawn (over 2 % of the view)');
+    // A mesh the catalog does not hold: the server's refusal, in words.
+    await page.goto(`${server.url}/viewer/?mesh=000000000000`);
+    await page.waitForSelector('body[data-state="error"]');
+    assert.match((await readouts(page)).error, /refused|not found|no mesh/i);
+    assert.deepEqual(errors.filter((e) => !/WebSocket|404/.test(e)), [], 'console errors');
     await page.close();
   });
 

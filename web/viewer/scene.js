@@ -10,7 +10,10 @@ export class MeshView {
   // Throws an Error when the browser has no WebGL.
   constructor(container) {
     this.container = container;
-    this.renderer = new THREE.WebGLRenderer({ antialias: true });
+    this.renderer = createRenderer();
+    // No synchronous wait for each shader's compile log: the GPU process
+    // compiles while the page goes on.
+    this.renderer.debug.checkShaderErrors = false;
     this.renderer.setPixelRatio(window.devicePixelRatio);
     container.appendChild(this.renderer.domElement);
     this.scene = new THREE.Scene();
@@ -32,6 +35,19 @@ export class MeshView {
     this.mesh = null;
     new ResizeObserver(() => this.resize()).observe(container);
     this.resize();
+    this.compileMaterials();
+  }
+
+  // The material of an uncoloured mesh, as setMesh makes it. Compiled here
+  // (the GPU process compiles while the decoder loads) and reused by three.js
+  // for the first mesh, whose frame then draws without compiling.
+  compileMaterials() {
+    const probe = new THREE.Mesh(new THREE.BufferGeometry(), meshMaterial(null, null));
+    this.scene.add(probe);  // with the scene's lights, which the program depends on
+    this.renderer.compile(this.scene, this.camera);
+    this.scene.remove(probe);
+    probe.geometry.dispose();
+    probe.material.dispose();
   }
 
   resize() {
@@ -50,12 +66,9 @@ export class MeshView {
   setMesh(positions, faces, colors, fitCamera, texture = null) {
     const geometry = texture ? cornerGeometry(positions, faces, colors, texture.uvs)
       : indexedGeometry(positions, faces, colors);
-    geometry.computeVertexNormals();
-    const material = new THREE.MeshStandardMaterial({
-      color: colors || texture?.image ? 0xffffff : 0xb8b8c8, vertexColors: !!colors,
-      flatShading: true, roughness: 0.8, side: THREE.DoubleSide,
-      map: texture?.image ? this.textureOf(texture.image) : null,
-    });
+    // Flat shading takes the normals from the faces in the shader: the
+    // geometry carries none.
+    const material = meshMaterial(colors, texture?.image ? this.textureOf(texture.image) : null);
     if (this.mesh) {
       this.scene.remove(this.mesh);
       this.mesh.geometry.dispose();
@@ -110,14 +123,37 @@ export class MeshView {
              width: pixels(width), height: pixels(height) };
   }
 
+  // Nothing is drawn before the first mesh: with a software renderer an
+  // empty frame costs as much as a full one.
   draw() {
-    if (this.pending) return;
+    if (this.pending || !this.mesh) return;
     this.pending = true;
     requestAnimationFrame(() => {
       this.pending = false;
       this.renderer.render(this.scene, this.camera);
     });
   }
+}
+
+// A WebGL renderer, multisampled unless WebGL runs in software (SwiftShader,
+// llvmpipe: a browser without a GPU), where 4x multisampling makes every
+// frame several times slower.
+function createRenderer() {
+  try {
+    return new THREE.WebGLRenderer({ antialias: true, failIfMajorPerformanceCaveat: true });
+  } catch {
+    return new THREE.WebGLRenderer({ antialias: false });
+  }
+}
+
+// Lambert (diffuse) shading, flat per face: what a mesh preview needs, and
+// a shader a software renderer compiles several times faster than the
+// physically based one.
+function meshMaterial(colors, map) {
+  return new THREE.MeshLambertMaterial({
+    color: colors || map ? 0xffffff : 0xb8b8c8, vertexColors: !!colors,
+    flatShading: true, side: THREE.DoubleSide, map,
+  });
 }
 
 function indexedGeometry(positions, faces, colors) {

@@ -17,8 +17,10 @@ export class StreamSession {
   //   takes them),
   //   onProgress(stats) after every message, onDone(stats) when a
   //   selection is complete, onError(message) once, then nothing more.
+  // mw may be the promise of the module: the socket opens and the request
+  // goes out meanwhile, and the messages wait for it, in order.
   constructor(mw, wsUrl, { onMesh, onProgress, onDone, onError }) {
-    this.mw = mw;
+    this.mw = null;
     this.callbacks = { onMesh, onProgress, onDone, onError };
     this.decoder = null;
     // packets: Packet messages (units: a whole packet or a part); parts:
@@ -32,12 +34,20 @@ export class StreamSession {
     this.socket = new WebSocket(wsUrl);
     this.socket.binaryType = 'arraybuffer';
     this.opened = new Promise((resolve) => { this.socket.onopen = resolve; });
-    this.socket.onmessage = (e) => this.onMessage(e.data);
-    this.socket.onclose = (e) => {
+    this.received = Promise.resolve(mw).then(
+      (module) => { this.mw = module; },
+      (e) => this.fail(e.message));
+    this.socket.onmessage = (e) => this.after(() => this.onMessage(e.data));
+    this.socket.onclose = (e) => this.after(() => {
       if (this.closing) return;
       this.fail(`the connection to the server closed (code ${e.code}${e.reason ? ', ' + e.reason : ''})` +
                 ` after ${this.stats.packets} packets`);
-    };
+    });
+  }
+
+  // Runs `handle` after the messages before it (and the module).
+  after(handle) {
+    this.received = this.received.then(handle).catch((e) => this.fail(e.message));
   }
 
   // budget: container bytes (header included) or null for the whole order;
