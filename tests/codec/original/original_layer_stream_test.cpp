@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <numeric>
 #include <random>
@@ -13,12 +14,14 @@
 #include "codec/stream/stream_test_util.h"
 #include "meshwave/container.h"
 #include "meshwave/encoder.h"
+#include "meshwave/mesh_io.h"
 #include "meshwave/progression.h"
 #include "meshwave/progressive_decoder.h"
 #include "meshwave/region.h"
 #include "meshwave/region_order.h"
 #include "stream/packet_index.h"
 #include "stream/stream_format.h"
+#include "test_data.h"
 
 namespace meshwave {
 namespace {
@@ -46,7 +49,8 @@ TriMesh AwkwardOriginal(const SemiRegularMesh& sr) {
   std::shuffle(new_of_old.begin(), new_of_old.end(), std::mt19937(7));
   TriMesh out;
   out.positions.resize(n + 1);
-  for (size_t v = 0; v < n; ++v) out.positions[new_of_old[v]] = level.positions[v];
+  for (size_t v = 0; v < n; ++v)
+    out.positions[new_of_old[v]] = level.positions[v];
   out.positions[n] = Vec3(0.1, 0.2, 0.3);  // in no face
   for (const Face& f : level.faces) {
     out.faces.push_back({new_of_old[f[0]], new_of_old[f[1]], new_of_old[f[2]]});
@@ -104,6 +108,66 @@ TEST(OriginalLayerStreamTest, CompleteDecodeIsTheOriginalWithinThePrecision) {
   }
 }
 
+// The layer on a real mesh: a complete decode gives back its own faces
+// over its own vertex ids and every coordinate within half the finest step
+// the precision names (diagonal x 2^-16). The remesh before the layer is a
+// stand-in (the layer depends on it only for its number of refinement
+// planes, from the remesh's PSNR): a remesh of each shared mesh would cost
+// minutes, and the CLI test runs the whole pipeline on a sample.
+void ExpectLayerGivesBack(const std::filesystem::path& file) {
+  SCOPED_TRACE(file.filename().string());
+  Result<TriMesh> original = ReadMesh(file);
+  ASSERT_TRUE(original.ok()) << original.status().ToString();
+  VertexAttributes attributes;
+  attributes.original = &*original;
+  attributes.original_remesh_psnr_db = 75;  // a default remesh's order
+  const EncodeOptions options;
+  auto stream = EncodeMesh(testing::BumpySphere(2), options, attributes);
+  ASSERT_TRUE(stream.ok()) << stream.status().ToString();
+  const StreamHeader& h = stream->header;
+  ASSERT_TRUE(h.original.has_value());
+  auto d = testing::DecoderOf(*stream);
+  for (uint32_t id : PacketOrder(h, Progression::kQuality)) {
+    ASSERT_TRUE(d->AddPacket(id, stream->packets[id]).ok()) << id;
+  }
+  ASSERT_TRUE(d->OriginalReady());
+  const TriMesh mesh = d->OriginalMesh();
+  ASSERT_EQ(mesh.positions.size(), original->positions.size());
+  EXPECT_EQ(FaceSet(mesh.faces), FaceSet(original->faces));
+  Vec3 low = original->positions[0], high = low;
+  for (const Vec3& p : original->positions) {
+    low = low.cwiseMin(p);
+    high = high.cwiseMax(p);
+  }
+  const double diagonal = (high - low).norm();
+  EXPECT_LE(h.original->step,
+            diagonal * std::ldexp(1.0, -options.precision) * (1 + 1e-9));
+  double worst = 0;
+  for (size_t v = 0; v < mesh.positions.size(); ++v) {
+    worst = std::max(
+        worst,
+        (mesh.positions[v] - original->positions[v]).cwiseAbs().maxCoeff());
+  }
+  EXPECT_LE(worst, h.original->step / 2 * (1 + 1e-9))
+      << original->positions.size() << " vertices";
+}
+
+// The shipped samples, the textured and coloured ones' geometry included
+// (their streams carry the attributes on the remesh and leave the layer out
+// by default).
+TEST(OriginalLayerStreamTest, EverySampleComesBackWhole) {
+  for (const char* name : {"elephant.off", "holes.off", "textured/die.obj",
+                           "textured/hue_ball.ply"}) {
+    ExpectLayerGivesBack(testing::SampleMesh(name));
+  }
+}
+
+TEST(OriginalLayerStreamTest, EverySharedMeshComesBackWhole) {
+  MESHWAVE_REQUIRE_SHARED_MESH();
+  for (const std::filesystem::path& file : testing::AllSharedMeshes())
+    ExpectLayerGivesBack(file);
+}
+
 TEST(OriginalLayerStreamTest, LastInEveryOrderAndNothingBeforeItMoves) {
   const Streams& s = TestStreams();
   const StreamHeader& h = s.layered.header;
@@ -113,19 +177,23 @@ TEST(OriginalLayerStreamTest, LastInEveryOrderAndNothingBeforeItMoves) {
   const size_t first = s.plain.packets.size();
   ASSERT_EQ(s.layered.packets.size(), first + static_cast<size_t>(parts));
   // The remesh's packets are the same bytes.
-  for (size_t id = 0; id < first; ++id) ASSERT_EQ(s.layered.packets[id], s.plain.packets[id]) << id;
-  for (Progression p : {Progression::kQuality, Progression::kResolution, Progression::kRd}) {
+  for (size_t id = 0; id < first; ++id)
+    ASSERT_EQ(s.layered.packets[id], s.plain.packets[id]) << id;
+  for (Progression p :
+       {Progression::kQuality, Progression::kResolution, Progression::kRd}) {
     SCOPED_TRACE(ProgressionName(p));
     const std::vector<uint32_t> order = PacketOrder(h, p);
     const std::vector<uint32_t> before(order.begin(), order.end() - parts);
     EXPECT_EQ(before, PacketOrder(s.plain.header, p));
     for (int part = 0; part < parts; ++part) {
-      EXPECT_EQ(order[before.size() + static_cast<size_t>(part)], first + static_cast<size_t>(part));
+      EXPECT_EQ(order[before.size() + static_cast<size_t>(part)],
+                first + static_cast<size_t>(part));
     }
     // A coarser mesh leaves the layer out.
     const std::vector<uint32_t> coarse = PacketOrder(h, p, layout.levels() - 1);
-    EXPECT_TRUE(std::none_of(coarse.begin(), coarse.end(),
-                             [&](uint32_t id) { return layout.IsOriginal(id); }));
+    EXPECT_TRUE(std::none_of(coarse.begin(), coarse.end(), [&](uint32_t id) {
+      return layout.IsOriginal(id);
+    }));
   }
   // The region order: once each, last.
   auto precincts = StreamPrecincts::Create(h);
@@ -142,7 +210,8 @@ TEST(OriginalLayerStreamTest, LastInEveryOrderAndNothingBeforeItMoves) {
   const auto units = RegionOrder(h, *precincts, lengths, region, d->held());
   ASSERT_GE(units.size(), static_cast<size_t>(parts));
   for (int part = 0; part < parts; ++part) {
-    const StreamUnit& u = units[units.size() - static_cast<size_t>(parts - part)];
+    const StreamUnit& u =
+        units[units.size() - static_cast<size_t>(parts - part)];
     EXPECT_EQ(u.id, first + static_cast<size_t>(part));
     EXPECT_TRUE(u.whole());
   }
@@ -160,7 +229,8 @@ TEST(OriginalLayerStreamTest, EachPositionsPacketBringsTheMeshCloser) {
   EXPECT_TRUE(d->OriginalMesh().positions.empty());
   // Positions before the connectivity: refused, nothing changed.
   const auto coarse = static_cast<uint32_t>(layout.OriginalId(1));
-  EXPECT_EQ(d->AddPacket(coarse, s.layered.packets[coarse]).code(), StatusCode::kInvalidArgument);
+  EXPECT_EQ(d->AddPacket(coarse, s.layered.packets[coarse]).code(),
+            StatusCode::kInvalidArgument);
   ASSERT_TRUE(d->AddPacket(coarse - 1, s.layered.packets[coarse - 1]).ok());
   EXPECT_FALSE(d->OriginalReady());
   double previous = std::numeric_limits<double>::infinity();
@@ -182,7 +252,8 @@ TEST(OriginalLayerStreamTest, RefusesALayerItsVersionOrItsFieldsCannotHold) {
   const Streams& s = TestStreams();
   StreamHeader h = s.layered.header;
   h.format_version = 9;
-  EXPECT_NE(ValidateStreamHeader(h).message().find("original layer"), std::string::npos);
+  EXPECT_NE(ValidateStreamHeader(h).message().find("original layer"),
+            std::string::npos);
   // A version-9 stream without the layer still reads.
   StreamHeader v9 = s.plain.header;
   v9.format_version = 9;
@@ -192,23 +263,31 @@ TEST(OriginalLayerStreamTest, RefusesALayerItsVersionOrItsFieldsCannotHold) {
     change(*bad.original);
     const Status status = ValidateStreamHeader(bad);
     EXPECT_EQ(status.code(), StatusCode::kParseError) << words;
-    EXPECT_NE(status.message().find(words), std::string::npos) << status.message();
+    EXPECT_NE(status.message().find(words), std::string::npos)
+        << status.message();
   };
   refused([](StreamHeader::Original& o) { o.vertex_count = 0; }, "0 vertices");
-  refused([](StreamHeader::Original& o) { o.step = -1; }, "finite positive step");
-  refused([](StreamHeader::Original& o) { o.origin.pop_back(); }, "3 finite origin");
-  refused([](StreamHeader::Original& o) { o.refinement_planes = 9; }, "refinement planes");
-  refused([](StreamHeader::Original& o) { o.extent = 1u << 31; }, "grid extent");
+  refused([](StreamHeader::Original& o) { o.step = -1; },
+          "finite positive step");
+  refused([](StreamHeader::Original& o) { o.origin.pop_back(); },
+          "3 finite origin");
+  refused([](StreamHeader::Original& o) { o.refinement_planes = 9; },
+          "refinement planes");
+  refused([](StreamHeader::Original& o) { o.extent = 1u << 31; },
+          "grid extent");
   // More faces than a decoder accepts: refused before anything is built.
   DecoderOptions small;
   small.max_faces = s.layered.header.faces;
   ASSERT_GT(s.layered.header.original->face_count, 0u);
   StreamHeader many = s.layered.header;
   many.original->face_count = s.layered.header.faces + 1;
-  EXPECT_EQ(ProgressiveDecoder::Create(many, small).status().code(), StatusCode::kUnsupported);
+  EXPECT_EQ(ProgressiveDecoder::Create(many, small).status().code(),
+            StatusCode::kUnsupported);
   StreamHeader crowded = s.layered.header;
-  crowded.original->vertex_count = static_cast<uint32_t>(s.layered.header.faces + 1);
-  EXPECT_EQ(ProgressiveDecoder::Create(crowded, small).status().code(), StatusCode::kUnsupported);
+  crowded.original->vertex_count =
+      static_cast<uint32_t>(s.layered.header.faces + 1);
+  EXPECT_EQ(ProgressiveDecoder::Create(crowded, small).status().code(),
+            StatusCode::kUnsupported);
   EXPECT_TRUE(ProgressiveDecoder::Create(s.layered.header, small).ok());
 }
 
