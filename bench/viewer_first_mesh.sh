@@ -1,15 +1,16 @@
 #!/usr/bin/env bash
-# Time to first mesh in the browser viewer (headless Chromium, loopback):
+# Time to the first drawn mesh in the browser viewer (headless Chromium,
+# loopback), from navigation to /viewer/?mesh=ID, warm and cold:
 # bench/viewer_first_mesh.mjs, with the npm packages of web/package-lock.json.
 #
 # Usage: bench/viewer_first_mesh.sh [BUILD_DIR]     (default: build)
 #   Needs BUILD_DIR/server/meshwave-server, BUILD_DIR/tools/meshwave/meshwave
 #   and the WebAssembly decoder module (DECODER_JS, default
-#   BUILD_DIR/viewer/meshwave_decoder.js, there when the build was configured
-#   with -DMESHWAVE_DECODER_JS); /usr/bin/chromium. Builds nothing.
+#   BUILD_DIR/viewer/meshwave_decoder.js, with its .wasm beside it);
+#   /usr/bin/chromium. Builds nothing.
 # Environment:
 #   MESH=FILE     default data/elephant.off (remeshed at ingest)
-#   RUNS=9        runs per budget (medians reported)
+#   RUNS=9        runs per budget and cache state (medians reported)
 #   BUDGETS="6 all"  budgets in KiB, "all" for the whole stream
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
