@@ -39,6 +39,7 @@ class Decoder {
   hasColors() { return false; }
   colors() { return new Float32Array(0); }
   hasTexture() { return false; }
+  originalReady() { return false; }
   level() { return 0; }
   detailLevels() { return 0; }
   levels() { return 0; }

@@ -13,6 +13,8 @@
 //     the viewer draws the input's vertex and face counts.
 //  6. An address naming a mesh (/viewer/?mesh=ID&budget=…) streams it on
 //     opening, without a click: the same readouts as 1.
+//  7. A decoder module that cannot load (its wasm missing): the page says
+//     so in words.
 // Screenshots are kept in the artefacts directory.
 //
 // node viewer_test.mjs --server BIN --cli BIN --decoder meshwave_decoder.js
@@ -199,6 +201,17 @@ try {
     await page.waitForSelector('body[data-state="error"]');
     assert.match((await readouts(page)).error, /refused|not found|no mesh/i);
     assert.deepEqual(errors.filter((e) => !/WebSocket|404/.test(e)), [], 'console errors');
+    await page.close();
+  });
+
+  await test('a decoder that cannot load: the page says so', async () => {
+    const page = await browser.context.newPage();
+    // The decoder's worker fetches the wasm: it is not found.
+    await page.route(/meshwave_decoder\.wasm$/, (route) => route.fulfill({ status: 404, body: 'gone' }));
+    await page.goto(`${server.url}/viewer/?mesh=${id}&budget=6`);
+    await page.waitForSelector('body[data-state="error"]');
+    assert.match((await readouts(page)).error, /WebAssembly decoder .* could not be loaded/);
+    assert.ok(await page.isDisabled('#stream'), 'nothing to stream with');
     await page.close();
   });
 

@@ -1,28 +1,31 @@
-// One mesh streamed over GET /v1/ws into the WebAssembly decoder: sends
-// `start` and `refine` (a refine may name a view or region: the server
-// then sends units, whole packets or one precinct's part of a split packet,
-// region first), feeds every unit to the decoder as it arrives,
-// and reports the decoded mesh at most once per animation frame (the
-// decoder copies the whole mesh out, so a burst of small packets is shown
-// as one refinement per frame). Any failure — a refused packet, a
-// malformed message, a closed socket — stops the session and is reported
-// once; the last mesh reported stays the last good one. No DOM here.
+// One mesh streamed over GET /v1/ws into the WebAssembly decoder, which
+// runs on a worker (decoder_client.js): sends `start` and `refine` (a
+// refine may name a view or region: the server then sends units, whole
+// packets or one precinct's part of a split packet, region first), hands
+// every unit to the decoder as it arrives, and reports the decoded mesh at
+// most once per animation frame (a burst of small packets is shown as one
+// refinement per frame). Any failure — a refused packet, a malformed
+// message, a closed socket — stops the session and is reported once; the
+// last mesh reported stays the last good one. No DOM here.
+import { DecoderClient } from './decoder_client.js';
 import { decodeServerMessage, encodeRefine, encodeStart } from './ws_protocol.js';
 
 export class StreamSession {
-  // mw: the decoder module (createMeshwave()). Callbacks:
-  //   onMesh({positions, faces, colors, texture, level, levels, psnr})
-  //   after new packets (colors: linear RGB per vertex, or null without a
-  //   colour channel; texture: {uvs, image} or null, as MeshView.setMesh
-  //   takes them),
+  // decoder: a DecoderClient of its own (a fresh one when not given).
+  // Callbacks:
+  //   onMesh({positions, faces, colors, texture, level, levels, psnr,
+  //   original}) after new packets (colors: linear RGB per vertex, or null
+  //   without a colour channel; texture: {uvs, image} or null, as
+  //   MeshView.setMesh takes them; original: the input's own mesh),
   //   onProgress(stats) after every message, onDone(stats) when a
   //   selection is complete, onError(message) once, then nothing more.
-  // mw may be the promise of the module: the socket opens and the request
-  // goes out meanwhile, and the messages wait for it, in order.
-  constructor(mw, wsUrl, { onMesh, onProgress, onDone, onError }) {
-    this.mw = null;
+  constructor(decoder, wsUrl, { onMesh, onProgress, onDone, onError }) {
     this.callbacks = { onMesh, onProgress, onDone, onError };
-    this.decoder = null;
+    this.decoder = decoder ?? new DecoderClient();
+    this.decoder.onState = (state) => this.onState(state);
+    this.decoder.onRefused = (what, message) => this.fail(`${what} was refused: ${message}`);
+    this.decoder.onFailed = (message) => this.fail(message);
+    this.hasHeader = false;
     // packets: Packet messages (units: a whole packet or a part); parts:
     // those that were one precinct's part of a split packet.
     this.stats = { bytes: 0, packets: 0, parts: 0, level: null, levels: null, psnr: null,
@@ -30,24 +33,17 @@ export class StreamSession {
     this.textureLevel = null;  // the level being decoded or shown
     this.textureBitmap = null;
     this.failed = false;
-    this.dirty = false;
+    this.dirty = false;       // a mesh is to be reported
+    this.meshing = false;     // a mesh request is out
     this.socket = new WebSocket(wsUrl);
     this.socket.binaryType = 'arraybuffer';
     this.opened = new Promise((resolve) => { this.socket.onopen = resolve; });
-    this.received = Promise.resolve(mw).then(
-      (module) => { this.mw = module; },
-      (e) => this.fail(e.message));
-    this.socket.onmessage = (e) => this.after(() => this.onMessage(e.data));
-    this.socket.onclose = (e) => this.after(() => {
+    this.socket.onmessage = (e) => this.onMessage(e.data);
+    this.socket.onclose = (e) => {
       if (this.closing) return;
       this.fail(`the connection to the server closed (code ${e.code}${e.reason ? ', ' + e.reason : ''})` +
                 ` after ${this.stats.packets} packets`);
-    });
-  }
-
-  // Runs `handle` after the messages before it (and the module).
-  after(handle) {
-    this.received = this.received.then(handle).catch((e) => this.fail(e.message));
+    };
   }
 
   // budget: container bytes (header included) or null for the whole order;
@@ -61,7 +57,7 @@ export class StreamSession {
   // extraBytes more payload bytes; options {view} or {region} (ws_protocol.js)
   // to refine that first from now on; none: as the last request did.
   refine(extraBytes, options = {}) {
-    if (this.failed || !this.decoder) return;
+    if (this.failed || !this.hasHeader) return;
     this.stats.streaming = true;
     this.send(encodeRefine(extraBytes, options));
   }
@@ -69,8 +65,8 @@ export class StreamSession {
   close() {
     this.closing = true;
     this.socket.close(1000);
-    if (this.decoder) this.decoder.delete();
-    this.decoder = null;
+    this.decoder.onFailed = () => {};
+    this.decoder.terminate();
   }
 
   send(bytes) {
@@ -91,40 +87,38 @@ export class StreamSession {
       return this.fail(`the server sent a malformed message: ${e.message}`);
     }
     switch (m.kind) {
-      case 'start':
-        try {
-          this.decoder = new this.mw.Decoder(m.header);
-        } catch (e) {
-          return this.fail(`the stream header was refused: ${e.message}`);
-        }
-        this.stats.bytes += m.header.length;
-        this.updateLevel();
+      case 'start': {
+        const bytes = m.header.length;  // the header's buffer goes to the worker
+        this.decoder.open(m.header, () => { this.stats.bytes += bytes; });
+        this.hasHeader = true;
         this.scheduleMesh();  // the base mesh, drawn even when no packet fits the budget
         break;
+      }
       case 'selection':
         break;
-      case 'packet':
-        if (!this.decoder) return this.fail('a packet before the stream header');
-        try {
-          if (m.part === null) this.decoder.addPacket(m.id, m.payload);
-          else this.decoder.addPacketPart(m.id, m.part, m.payload);
-        } catch (e) {
-          const what = m.part === null ? `packet ${m.id}` : `part ${m.part} of packet ${m.id}`;
-          return this.fail(`${what} (cursor ${m.cursor}) was refused: ${e.message}`);
-        }
-        this.stats.bytes += m.payload.length;
-        this.stats.packets += 1;
-        if (m.part !== null) this.stats.parts += 1;
-        this.updateLevel();
-        this.loadTexture();
+      case 'packet': {
+        if (!this.hasHeader) return this.fail('a packet before the stream header');
+        const what = m.part === null ? `packet ${m.id}` : `part ${m.part} of packet ${m.id}`;
+        const bytes = m.payload.length;  // its buffer goes to the worker
+        this.decoder.add(m.id, m.part, m.payload, `${what} (cursor ${m.cursor})`, () => {
+          this.stats.bytes += bytes;
+          this.stats.packets += 1;
+          if (m.part !== null) this.stats.parts += 1;
+        });
         this.scheduleMesh();
         break;
+      }
       case 'done':
-        this.stats.streaming = false;
-        this.stats.complete = m.complete;
-        this.emitMesh();  // the final state now, not a frame later
-        this.callbacks.onDone(this.stats);
-        break;
+        // Reported once the decoder has taken every packet before it.
+        this.decoder.sync().then(() => {
+          if (this.failed) return;
+          this.stats.streaming = false;
+          this.stats.complete = m.complete;
+          this.emitMesh();  // the final state now, not a frame later
+          this.callbacks.onDone(this.stats);
+          this.callbacks.onProgress(this.stats);
+        }, (e) => this.fail(e.message));
+        return;
       case 'error':
         this.stats.streaming = false;
         return this.fail(`the server refused the request (${m.codeName}): ${m.message}`);
@@ -132,22 +126,21 @@ export class StreamSession {
     this.callbacks.onProgress(this.stats);
   }
 
-  updateLevel() {
-    // The level drawn: one past the finest that received detail (its
-    // subdivision smooths the surface; more levels would add faces, not
-    // detail), as `meshwave decode` writes it.
-    this.stats.levels = this.decoder.levels();
-    this.stats.level = Math.min(this.stats.levels, this.decoder.detailLevels() + 1);
-    this.stats.psnr = this.decoder.estimatedPsnr();
+  // The decoder's state after a header or packet: level, PSNR, and a
+  // texture level newly held.
+  onState(state) {
+    if (this.failed) return;
+    this.stats.levels = state.levels;
+    this.stats.level = state.level;
+    this.stats.psnr = state.psnr;
+    if (state.texture) this.loadTexture(state.texture);
+    this.callbacks.onProgress(this.stats);
   }
 
   // The base colour map's best level held, decoded by the browser
   // (createImageBitmap, off the main thread); it replaces the one shown
   // when decoded, unless a finer level arrived meanwhile.
-  loadTexture() {
-    if (!this.decoder.hasTexture()) return;
-    const image = this.decoder.textureImage(0);
-    if (!image || image.level === this.textureLevel) return;
+  loadTexture(image) {
     this.textureLevel = image.level;
     createImageBitmap(new Blob([image.bytes], { type: image.mimeType }),
       { imageOrientation: 'none', premultiplyAlpha: 'none' })
@@ -169,32 +162,29 @@ export class StreamSession {
     requestAnimationFrame(() => this.emitMesh());
   }
 
+  // Asks the decoder for the mesh it holds now (one request at a time: a
+  // change meanwhile asks again when it is answered) and reports it, also
+  // after a failure (what was accepted before it is the last good mesh).
   emitMesh() {
-    if (!this.dirty || !this.decoder) return;
+    if (!this.dirty || !this.hasHeader) return;
+    if (this.meshing) return;
     this.dirty = false;
-    const level = this.stats.level;
-    if (this.decoder.originalReady() && !this.decoder.hasColors() && !this.decoder.hasTexture()) {
-      // The stream's last layer: the user's own mesh (docs/FORMAT.md 2.5).
-      const original = this.decoder.originalMesh();
+    this.meshing = true;
+    this.decoder.mesh().then((mesh) => {
+      this.meshing = false;
       this.callbacks.onMesh({
-        positions: original.positions, faces: original.faces, colors: null, texture: null,
-        level, levels: this.stats.levels, psnr: this.stats.psnr, original: true,
+        positions: mesh.positions, faces: mesh.faces, colors: mesh.colors,
+        texture: mesh.uvs ? { uvs: mesh.uvs, image: this.textureBitmap ?? null } : null,
+        level: mesh.level, levels: mesh.levels, psnr: mesh.psnr, original: mesh.original,
       });
-      return;
-    }
-    this.callbacks.onMesh({
-      positions: this.decoder.positions(level), faces: this.decoder.faces(level),
-      colors: this.decoder.hasColors() ? this.decoder.colors(level) : null,
-      texture: this.decoder.hasTexture()
-        ? { uvs: this.decoder.textureCoordinates(level), image: this.textureBitmap ?? null } : null,
-      level,
-      levels: this.stats.levels, psnr: this.stats.psnr,
-    });
+      if (this.dirty) this.emitMesh();
+    }, () => { this.meshing = false; });
   }
 
   fail(message) {
     if (this.failed) return;
     // Packets accepted before the failure are part of the last good mesh.
+    this.dirty = true;
     this.emitMesh();
     this.failed = true;
     this.stats.streaming = false;
@@ -205,10 +195,11 @@ export class StreamSession {
 }
 
 // The complete stream of a mesh in a decoder of its own (for the error
-// colours): resolves to the decoder, rejects with a readable Error.
-export function fetchComplete(mw, wsUrl, meshId, order) {
+// colours): resolves to its DecoderClient (mesh(level) gives its positions
+// at a level), rejects with a readable Error.
+export function fetchComplete(wsUrl, meshId, order) {
   return new Promise((resolve, reject) => {
-    const s = new StreamSession(mw, wsUrl, {
+    const s = new StreamSession(null, wsUrl, {
       onMesh() {}, onProgress() {},
       onDone: () => { s.closing = true; s.socket.close(1000); resolve(s.decoder); },
       onError: (message) => reject(new Error(message)),

@@ -7,6 +7,7 @@
 // An address that names a mesh (/viewer/?mesh=ID, with ?order=, ?budget=
 // in KiB and ?rate= if wanted) streams it on opening, while the page's
 // other parts load.
+import { DecoderClient } from './decoder_client.js';
 import { StreamSession, fetchComplete } from './stream_session.js';
 import { errorColours } from './error_colours.js';
 
@@ -18,11 +19,11 @@ const KiB = 1024;
 const SETTLE_MS = 400;
 const wsUrl = `${location.protocol === 'https:' ? 'wss' : 'ws'}://${location.host}/v1/ws`;
 
-let mw = null;        // the decoder module
+let spare = null;     // a decoder worker started ahead of the next stream
 let view = null;      // MeshView, null without WebGL
 let session = null;   // the current StreamSession
 let lastMesh = null;  // what is drawn: {positions, faces, level}
-let reference = null; // {meshId, order, decoder} of the complete stream
+let reference = null; // {meshId, order, decoder, positions: level -> Float32Array} of the complete stream
 let streamStarted = 0, firstMeshShown = false;
 let settleTimer = 0;      // the pending "refine where I look"
 let viewWanted = false;   // the camera stopped while a request ran
@@ -66,8 +67,20 @@ function draw(fitCamera) {
   let colours = attributes ? lastMesh.colors : null;
   let texture = attributes ? lastMesh.texture : null;
   if ($('errors').checked && reference?.decoder) {
-    colours = errorColours(positions, reference.decoder.positions(lastMesh.level));
-    texture = null;
+    const level = lastMesh.level;
+    const complete = reference.positions.get(level);
+    if (complete) {
+      colours = errorColours(positions, complete);
+      texture = null;
+    } else {
+      // The complete stream's positions at this level, from its decoder's
+      // worker: drawn again when they are here.
+      const wanted = reference;
+      wanted.decoder.mesh(level).then((mesh) => {
+        wanted.positions.set(level, mesh.positions);
+        if (reference === wanted) draw(false);
+      }, (e) => showError(`error colours unavailable: ${e.message}`));
+    }
   }
   view.setMesh(positions, faces, colours, fitCamera || !firstMeshShown, texture);
   if (!firstMeshShown) {
@@ -94,7 +107,7 @@ function onMesh(mesh) {
 // meshId: the picked mesh, or the one the address names (?mesh=ID), which
 // streams while the catalog and the decoder still load (decoder: the
 // module, or the promise of it).
-function startStream(meshId = $('mesh').value, decoder = mw) {
+function startStream(meshId = $('mesh').value) {
   if (!meshId) return showError('Pick a mesh first (the catalog is empty?).');
   if (session) session.close();
   clearError();
@@ -114,11 +127,12 @@ function startStream(meshId = $('mesh').value, decoder = mw) {
   setState('streaming');
   status(`streaming ${$('mesh').selectedOptions[0]?.textContent ?? meshId} …`);
   $('refine').disabled = true;
-  const s = new StreamSession(decoder, wsUrl, {
+  const s = new StreamSession(takeDecoder(), wsUrl, {
     onMesh,
     onProgress: showStats,
     onDone(stats) {
       if (s !== session) return;
+      spare ??= new DecoderClient();  // ready for the next stream
       status(stats.complete ? 'complete: the whole stream is here' : 'done; refine for more');
       $('refine').disabled = stats.complete;
       setState('done');
@@ -185,11 +199,12 @@ function onCameraEnd() {
 async function ensureReference() {
   const meshId = $('mesh').value, order = $('order').value;
   if (reference && reference.meshId === meshId) return draw(false);
-  reference = { meshId, order, decoder: null };
+  reference?.decoder?.terminate();
+  reference = { meshId, order, decoder: null, positions: new Map() };
   status('fetching the complete stream for the error colours …');
   try {
-    const decoder = await fetchComplete(mw, wsUrl, meshId, order);
-    if (reference.meshId !== meshId) return decoder.delete();
+    const decoder = await fetchComplete(wsUrl, meshId, order);
+    if (reference.meshId !== meshId) return decoder.terminate();
     reference.decoder = decoder;
     status('error colours: grey = as the complete stream, red ≥ 0.5 % of the diagonal away');
     draw(false);
@@ -211,14 +226,13 @@ async function loadCatalog() {
   if (!select.options.length) status('the catalog is empty: `meshwave-server ingest` fills it');
 }
 
-async function loadDecoder() {
-  try {
-    const { default: createMeshwave } = await import('./meshwave_decoder.js');
-    return await createMeshwave();
-  } catch (e) {
-    throw new Error('the WebAssembly decoder (meshwave_decoder.js) could not be loaded; the ' +
-                    `server's viewer directory must hold it: ${e.message}`);
-  }
+// The decoder worker started at page load (its module compiles and
+// instantiates while the rest of the page loads), then a fresh one per
+// stream.
+function takeDecoder() {
+  const decoder = spare ?? new DecoderClient();
+  spare = null;
+  return decoder;
 }
 
 // ?order=, ?budget=, ?rate= fill the form; ?mesh=ID picks the mesh once
@@ -254,12 +268,13 @@ async function main() {
   // Everything the first mesh waits for starts now, side by side: the
   // decoder module, the catalog, three.js and, when the address names a
   // mesh, its stream (whose messages wait for the decoder, not the rest).
-  const decoderReady = loadDecoder();
+  spare = new DecoderClient();
+  const decoderReady = spare.ready;
   const catalogReady = loadCatalog();
   const viewReady = createView();
-  if (query.has('mesh')) startStream(query.get('mesh'), decoderReady);
+  if (query.has('mesh')) startStream(query.get('mesh'));
   try {
-    [mw] = await Promise.all([decoderReady, catalogReady]);
+    await Promise.all([decoderReady, catalogReady]);
   } catch (e) {
     showError(e.message);
     setState('error');
