@@ -115,6 +115,35 @@ TEST_P(RegionFetchTest, RegionsAndViewsContinueFromTheStateAndEndInTheFullMesh) 
   EXPECT_EQ(testing::ReadBytes(again_ply), testing::ReadBytes(full_ply));
 }
 
+// `fetch --view V --screen-error PX`: the units that bring the view within
+// PX pixels, a fraction of the stream; refining the same view at the same
+// tolerance brings nothing more, a finer tolerance brings more.
+TEST_P(RegionFetchTest, AScreenErrorFetchStopsWhenTheViewIsWithinIt) {
+  const auto work = *dir_ / (GetParam() + "_screen");
+  std::filesystem::create_directories(work);
+  const std::string state = (work / "state.mwv").string();
+  const std::string view = "-3,0,0,1,0,0,40,640,480";
+  auto run = [](const std::vector<std::string>& args) {
+    const auto r = RunCli(args);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    proto::FetchReport report;
+    EXPECT_TRUE(google::protobuf::util::JsonStringToMessage(r.out, &report).ok()) << r.out;
+    return report;
+  };
+  const proto::FetchReport first =
+      run({"fetch", Url(), "--view", view, "--screen-error", "2", "--budget", "1GiB", "--out",
+           (work / "a.ply").string(), "--state", state, "--json"});
+  EXPECT_GT(first.packets(), 0u);
+  EXPECT_LT(first.bytes(), bytes_ / 2);
+  const proto::FetchReport same =
+      run({"refine", state, "--view", view, "--screen-error", "2", "--more", "1GiB", "--json"});
+  EXPECT_EQ(same.packets_received(), 0u) << same.bytes() << " against " << first.bytes();
+  const proto::FetchReport finer =
+      run({"refine", state, "--view", view, "--screen-error", "0.25", "--more", "1GiB", "--json"});
+  EXPECT_GT(finer.bytes(), first.bytes());
+  EXPECT_FALSE(finer.complete());
+}
+
 TEST_P(RegionFetchTest, RefusesABadRegionAndPsnrWithARegion) {
   const auto work = *dir_ / (GetParam() + "_bad");
   std::filesystem::create_directories(work);

@@ -136,7 +136,7 @@ TEST_F(ServerRegionTest, HttpSequenceOfRegionsAndOrdersSendsEveryUnitOnceAndEnds
       {"view=" + View() + "&budget=" + Share(0.05), true, false},
       {"order=rd&budget=" + Share(0.05), true, false},
       {"region=" + Sphere() + "&budget=" + Share(0.1), true, false},
-      {"view=" + View() + "&screen_error=1.5&budget=1", false, false},  // nothing fits
+      {"view=" + View() + "&screen_error=0.1&budget=1", false, false},  // nothing fits
       {"order=resolution&max_level=1", true, true},
       {"region=" + Sphere(), true, true}};
   for (const Step& step : steps) {
@@ -182,6 +182,35 @@ TEST_F(ServerRegionTest, HttpRegionIsFarCloserThanTheRdOrderAtEqualBytes) {
   const double rd_error = RegionError(by_rd.decoder().Positions());
   const double region_error = RegionError(by_region.decoder().Positions());
   EXPECT_LT(region_error, 0.5 * rd_error) << "rd " << rd_error << ", region " << region_error;
+}
+
+// A view with a screen-space error: the units that bring what the camera
+// sees within the tolerance, then complete; asked again, nothing; without
+// the tolerance, the same view brings the rest.
+TEST_F(ServerRegionTest, HttpScreenErrorStopsWhenTheViewIsWithinIt) {
+  RegionReceiver rx(*header_);
+  const HttpReply first = Stream("view=" + View() + "&screen_error=2&held=" + rx.Held());
+  ASSERT_EQ(first.status, 200u) << first.body;
+  ASSERT_TRUE(rx.ReceiveBody(first.body).ok());
+  EXPECT_EQ(first.Header("x-meshwave-complete"), "true");
+  EXPECT_GT(rx.units(), 0u);
+  EXPECT_FALSE(rx.AllHeld());
+  EXPECT_LT(first.body.size(), payload_ / 2);
+  const HttpReply again = Stream("view=" + View() + "&screen_error=2&held=" + rx.Held());
+  ASSERT_EQ(again.status, 200u) << again.body;
+  EXPECT_EQ(again.body, "");
+  EXPECT_EQ(again.Header("x-meshwave-complete"), "true");
+  // A tighter tolerance asks for more.
+  const size_t at_two = rx.units();
+  const HttpReply finer = Stream("view=" + View() + "&screen_error=0.25&held=" + rx.Held());
+  ASSERT_EQ(finer.status, 200u) << finer.body;
+  ASSERT_TRUE(rx.ReceiveBody(finer.body).ok());
+  EXPECT_GT(rx.units(), at_two);
+  const HttpReply rest = Stream("view=" + View() + "&held=" + rx.Held());
+  ASSERT_EQ(rest.status, 200u) << rest.body;
+  ASSERT_TRUE(rx.ReceiveBody(rest.body).ok());
+  EXPECT_TRUE(rx.AllHeld());
+  EXPECT_EQ(rx.decoder().Positions(), *full_);
 }
 
 TEST_F(ServerRegionTest, HttpRefusesBadRegionsAndHeldSets) {

@@ -21,6 +21,7 @@ void AddCatalogCommand(CLI::App& app, int& exit_code);
 void AddAnalyzeCommand(CLI::App& app, int& exit_code);
 void AddRenderCommand(CLI::App& app, int& exit_code);
 void AddRegionCommand(CLI::App& app, int& exit_code);
+void AddViewCommand(CLI::App& app, int& exit_code);
 
 }  // namespace meshwave::cli
 

@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
   meshwave::cli::AddDecodeCommand(app, exit_code);
   meshwave::cli::AddRdCommand(app, exit_code);
   meshwave::cli::AddRegionCommand(app, exit_code);
+  meshwave::cli::AddViewCommand(app, exit_code);
   meshwave::cli::AddFetchCommand(app, exit_code);
   meshwave::cli::AddRefineCommand(app, exit_code);
   meshwave::cli::AddCatalogCommand(app, exit_code);

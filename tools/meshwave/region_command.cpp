@@ -18,6 +18,7 @@
 
 #include "cli_util.h"
 #include "commands.h"
+#include "complete_stream.h"
 #include "meshwave/container.h"
 #include "meshwave/progression.h"
 #include "meshwave/progressive_decoder.h"
@@ -35,21 +36,10 @@ struct RegionArgs {
   int seeds = 3;
 };
 
-struct Stream {
-  ParsedContainer container;
-  std::vector<std::string_view> payload;  // by id
-  std::unique_ptr<StreamPrecincts> precincts;
-  std::unique_ptr<HeldUnits> units;  // none held: for PacketParts
-  std::vector<std::vector<uint32_t>> part_lengths;
-  std::vector<Vec3> full;
-  double diagonal = 0;
-};
+using Stream = CompleteStream;
 
-uint64_t UnitBytes(const Stream& s, const StreamUnit& u) {
-  return u.whole() ? s.payload[u.id].size() : s.part_lengths[u.id][u.part];
-}
-
-double RegionPsnr(const Stream& s, const std::vector<Vec3>& got, const SphereRegion& r) {
+double RegionPsnr(const Stream& s, const std::vector<Vec3>& got,
+                  const SphereRegion& r) {
   double sse = 0;
   size_t n = 0;
   for (size_t v = 0; v < s.full.size(); ++v) {
@@ -58,7 +48,9 @@ double RegionPsnr(const Stream& s, const std::vector<Vec3>& got, const SphereReg
     ++n;
   }
   if (n == 0) return std::nan("");
-  return sse == 0 ? INFINITY : 20 * std::log10(s.diagonal / std::sqrt(sse / static_cast<double>(n)));
+  return sse == 0 ? INFINITY
+                  : 20 * std::log10(s.diagonal /
+                                    std::sqrt(sse / static_cast<double>(n)));
 }
 
 // The region PSNR after the first `count` units of `order`.
@@ -66,34 +58,25 @@ Result<double> PsnrAfter(const Stream& s, ProgressiveDecoder& d,
                          const std::vector<StreamUnit>& order, size_t count,
                          const SphereRegion& r) {
   d.Reset();
-  for (size_t k = 0; k < count; ++k) {
-    const StreamUnit& u = order[k];
-    Status st;
-    if (u.whole()) {
-      st = d.AddPacket(u.id, s.payload[u.id]);
-    } else {
-      MW_ASSIGN_OR_RETURN(std::vector<std::string_view> parts,
-                          PacketParts(*s.units, u.id, s.payload[u.id]));
-      st = d.AddPacketPart(u.id, u.part, parts[u.part]);
-    }
-    MW_RETURN_IF_ERROR(st);
-  }
+  for (size_t k = 0; k < count; ++k) MW_RETURN_IF_ERROR(s.Send(d, order[k]));
   return RegionPsnr(s, d.Positions(), r);
 }
 
 // Payload bytes of the first `count` units.
-uint64_t BytesOf(const Stream& s, const std::vector<StreamUnit>& order, size_t count) {
+uint64_t BytesOf(const Stream& s, const std::vector<StreamUnit>& order,
+                 size_t count) {
   uint64_t bytes = 0;
-  for (size_t k = 0; k < count; ++k) bytes += UnitBytes(s, order[k]);
+  for (size_t k = 0; k < count; ++k) bytes += s.UnitBytes(order[k]);
   return bytes;
 }
 
 // The longest prefix within `budget` payload bytes.
-size_t PrefixWithin(const Stream& s, const std::vector<StreamUnit>& order, uint64_t budget) {
+size_t PrefixWithin(const Stream& s, const std::vector<StreamUnit>& order,
+                    uint64_t budget) {
   uint64_t bytes = 0;
   size_t k = 0;
   for (; k < order.size(); ++k) {
-    bytes += UnitBytes(s, order[k]);
+    bytes += s.UnitBytes(order[k]);
     if (bytes > budget) break;
   }
   return k;
@@ -102,7 +85,8 @@ size_t PrefixWithin(const Stream& s, const std::vector<StreamUnit>& order, uint6
 // The shortest prefix after which the region's vertices are exactly the
 // complete stream's (bisection: once exact, a longer prefix stays exact).
 Result<size_t> PrefixExact(const Stream& s, ProgressiveDecoder& d,
-                           const std::vector<StreamUnit>& order, const SphereRegion& r) {
+                           const std::vector<StreamUnit>& order,
+                           const SphereRegion& r) {
   size_t lo = 0, hi = order.size();
   while (lo < hi) {
     const size_t mid = (lo + hi) / 2;
@@ -116,42 +100,13 @@ Result<size_t> PrefixExact(const Stream& s, ProgressiveDecoder& d,
   return lo;
 }
 
-Result<Stream> Load(const std::string& path, std::string& bytes) {
-  MW_ASSIGN_OR_RETURN(bytes, ReadFileBytes(path));
-  Stream s;
-  MW_ASSIGN_OR_RETURN(s.container, ParseContainer(bytes));
-  const StreamHeader& h = s.container.header;
-  if (s.container.ids.size() != h.packets.length.size()) {
-    return InvalidArgument(path + ": holds " + std::to_string(s.container.ids.size()) + " of " +
-                           std::to_string(h.packets.length.size()) +
-                           " packets; region-rd needs the complete stream");
-  }
-  s.payload.resize(h.packets.length.size());
-  for (size_t i = 0; i < s.container.ids.size(); ++i) {
-    s.payload[s.container.ids[i]] = s.container.payloads[i];
-  }
-  MW_ASSIGN_OR_RETURN(StreamPrecincts precincts, StreamPrecincts::Create(h));
-  s.precincts = std::make_unique<StreamPrecincts>(std::move(precincts));
-  s.units = std::make_unique<HeldUnits>(h, s.precincts->parents());
-  for (uint32_t id = 0; id < s.payload.size(); ++id) {
-    MW_ASSIGN_OR_RETURN(std::vector<uint32_t> lengths, PartLengths(*s.units, id, s.payload[id]));
-    s.part_lengths.push_back(std::move(lengths));
-  }
-  MW_ASSIGN_OR_RETURN(auto decoder, ProgressiveDecoder::Create(h));
-  for (uint32_t id = 0; id < s.payload.size(); ++id) {
-    MW_RETURN_IF_ERROR(decoder->AddPacket(id, s.payload[id]));
-  }
-  s.full = decoder->Positions();
-  s.diagonal = HeaderDiagonal(h);
-  return s;
-}
-
 // Spheres around the finest vertices farthest along a few fixed directions
 // (deterministic), each holding `share` of the finest vertices.
-std::vector<SphereRegion> AutoRegions(const Stream& s, double share, int seeds) {
-  static const Vec3 kDirections[] = {Vec3(0.31, 0.85, 0.42), Vec3(-0.77, 0.12, 0.63),
-                                     Vec3(0.2, -0.6, -0.77), Vec3(0.9, -0.3, 0.3),
-                                     Vec3(-0.4, -0.5, 0.77)};
+std::vector<SphereRegion> AutoRegions(const Stream& s, double share,
+                                      int seeds) {
+  static const Vec3 kDirections[] = {
+      Vec3(0.31, 0.85, 0.42), Vec3(-0.77, 0.12, 0.63), Vec3(0.2, -0.6, -0.77),
+      Vec3(0.9, -0.3, 0.3), Vec3(-0.4, -0.5, 0.77)};
   std::vector<SphereRegion> out;
   for (int k = 0; k < seeds && k < 5; ++k) {
     const Vec3 d = kDirections[k].normalized();
@@ -162,9 +117,11 @@ std::vector<SphereRegion> AutoRegions(const Stream& s, double share, int seeds) 
     std::vector<double> distance;
     distance.reserve(s.full.size());
     for (const Vec3& p : s.full) distance.push_back((p - s.full[best]).norm());
-    const size_t nth = std::min(distance.size() - 1,
-                                static_cast<size_t>(share * static_cast<double>(distance.size())));
-    std::nth_element(distance.begin(), distance.begin() + static_cast<std::ptrdiff_t>(nth),
+    const size_t nth = std::min(
+        distance.size() - 1,
+        static_cast<size_t>(share * static_cast<double>(distance.size())));
+    std::nth_element(distance.begin(),
+                     distance.begin() + static_cast<std::ptrdiff_t>(nth),
                      distance.end());
     out.push_back({s.full[best], distance[nth]});
   }
@@ -172,9 +129,10 @@ std::vector<SphereRegion> AutoRegions(const Stream& s, double share, int seeds) 
 }
 
 Status Run(const RegionArgs& args) {
-  std::string bytes;
-  MW_ASSIGN_OR_RETURN(Stream s, Load(args.file, bytes));
-  const StreamHeader& h = s.container.header;
+  MW_ASSIGN_OR_RETURN(std::unique_ptr<Stream> loaded,
+                      LoadCompleteStream(args.file, "region-rd"));
+  const Stream& s = *loaded;
+  const StreamHeader& h = s.header();
   struct Case {
     std::string label;
     SphereRegion sphere;
@@ -193,7 +151,8 @@ Status Run(const RegionArgs& args) {
       } catch (...) {
         return InvalidArgument("--shares: \"" + item + "\" is not a number");
       }
-      if (!(share > 0 && share < 1)) return InvalidArgument("--shares: each in (0, 1)");
+      if (!(share > 0 && share < 1))
+        return InvalidArgument("--shares: each in (0, 1)");
       int k = 0;
       for (const SphereRegion& r : AutoRegions(s, share, args.seeds)) {
         char label[32];
@@ -205,39 +164,50 @@ Status Run(const RegionArgs& args) {
   uint64_t total = 0;
   for (std::string_view p : s.payload) total += p.size();
   std::vector<StreamUnit> rd;
-  for (uint32_t id : PacketOrder(h, Progression::kRd)) rd.push_back({id, StreamUnit::kWholePacket});
+  for (uint32_t id : PacketOrder(h, Progression::kRd))
+    rd.push_back({id, StreamUnit::kWholePacket});
   MW_ASSIGN_OR_RETURN(auto decoder, ProgressiveDecoder::Create(h));
-  std::printf("%s: %zu finest vertices, %llu payload bytes; region PSNR (dB, vertices in the "
-              "sphere against the complete stream's mesh) rd / region order\n",
-              args.file.c_str(), s.full.size(), static_cast<unsigned long long>(total));
-  std::printf("%-10s %8s %15s %15s %15s   %s\n", "region", "vertices", "at 10 %", "at 25 %",
-              "at 50 %", "bytes until the region is exact: rd / region (ratio)");
+  std::printf(
+      "%s: %zu finest vertices, %llu payload bytes; region PSNR (dB, vertices "
+      "in the "
+      "sphere against the complete stream's mesh) rd / region order\n",
+      args.file.c_str(), s.full.size(), static_cast<unsigned long long>(total));
+  std::printf("%-10s %8s %15s %15s %15s   %s\n", "region", "vertices",
+              "at 10 %", "at 25 %", "at 50 %",
+              "bytes until the region is exact: rd / region (ratio)");
   for (const Case& c : cases) {
     const HeldUnits none(h, s.precincts->parents());
     const Region region{c.sphere, std::nullopt};
     const std::vector<StreamUnit> by_region =
         RegionOrder(h, *s.precincts, s.part_lengths, region, none);
     size_t inside = 0;
-    for (const Vec3& p : s.full) inside += (p - c.sphere.centre).norm() <= c.sphere.radius;
+    for (const Vec3& p : s.full)
+      inside += (p - c.sphere.centre).norm() <= c.sphere.radius;
     std::string cells;
     for (double share : {0.10, 0.25, 0.50}) {
-      const auto budget = static_cast<uint64_t>(share * static_cast<double>(total));
-      MW_ASSIGN_OR_RETURN(double a,
-                          PsnrAfter(s, *decoder, rd, PrefixWithin(s, rd, budget), c.sphere));
-      MW_ASSIGN_OR_RETURN(double b, PsnrAfter(s, *decoder, by_region,
-                                              PrefixWithin(s, by_region, budget), c.sphere));
+      const auto budget =
+          static_cast<uint64_t>(share * static_cast<double>(total));
+      MW_ASSIGN_OR_RETURN(
+          double a,
+          PsnrAfter(s, *decoder, rd, PrefixWithin(s, rd, budget), c.sphere));
+      MW_ASSIGN_OR_RETURN(
+          double b, PsnrAfter(s, *decoder, by_region,
+                              PrefixWithin(s, by_region, budget), c.sphere));
       char cell[40];
       std::snprintf(cell, sizeof cell, " %6.2f / %6.2f", a, b);
       cells += cell;
     }
-    MW_ASSIGN_OR_RETURN(size_t rd_count, PrefixExact(s, *decoder, rd, c.sphere));
-    MW_ASSIGN_OR_RETURN(size_t region_count, PrefixExact(s, *decoder, by_region, c.sphere));
+    MW_ASSIGN_OR_RETURN(size_t rd_count,
+                        PrefixExact(s, *decoder, rd, c.sphere));
+    MW_ASSIGN_OR_RETURN(size_t region_count,
+                        PrefixExact(s, *decoder, by_region, c.sphere));
     const uint64_t rd_bytes = BytesOf(s, rd, rd_count);
     const uint64_t region_bytes = BytesOf(s, by_region, region_count);
-    std::printf("%-10s %8zu%s   %llu / %llu (%.2f)\n", c.label.c_str(), inside, cells.c_str(),
-                static_cast<unsigned long long>(rd_bytes),
+    std::printf("%-10s %8zu%s   %llu / %llu (%.2f)\n", c.label.c_str(), inside,
+                cells.c_str(), static_cast<unsigned long long>(rd_bytes),
                 static_cast<unsigned long long>(region_bytes),
-                rd_bytes > 0 ? static_cast<double>(region_bytes) / static_cast<double>(rd_bytes)
+                rd_bytes > 0 ? static_cast<double>(region_bytes) /
+                                   static_cast<double>(rd_bytes)
                              : 0.0);
   }
   return Status::Ok();
@@ -247,19 +217,27 @@ Status Run(const RegionArgs& args) {
 
 void AddRegionCommand(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<RegionArgs>();
-  CLI::App* cmd = app.add_subcommand(
-      "region-rd",
-      "How much sooner the region order refines a region than the uniform rd order, on a "
-      "complete .mwv stream: the region's PSNR at 10, 25 and 50 % of the payload bytes in "
-      "both orders, and the bytes each needs before the region is exactly the complete "
-      "stream's");
-  cmd->add_option("stream", args->file, "A complete .mwv stream (meshwave encode)")->required();
-  cmd->add_option("--region", args->region, "A sphere x,y,z,r (default: spheres chosen by --shares)");
+  CLI::App* cmd =
+      app.add_subcommand("region-rd",
+                         "How much sooner the region order refines a region "
+                         "than the uniform rd order, on a "
+                         "complete .mwv stream: the region's PSNR at 10, 25 "
+                         "and 50 % of the payload bytes in "
+                         "both orders, and the bytes each needs before the "
+                         "region is exactly the complete "
+                         "stream's");
+  cmd->add_option("stream", args->file,
+                  "A complete .mwv stream (meshwave encode)")
+      ->required();
+  cmd->add_option("--region", args->region,
+                  "A sphere x,y,z,r (default: spheres chosen by --shares)");
   cmd->add_option("--shares", args->shares,
-                  "Comma-separated shares of the finest vertices each automatic sphere holds")
+                  "Comma-separated shares of the finest vertices each "
+                  "automatic sphere holds")
       ->capture_default_str();
-  cmd->add_option("--seeds", args->seeds, "Automatic spheres per share (around the vertices "
-                                          "farthest along fixed directions)")
+  cmd->add_option("--seeds", args->seeds,
+                  "Automatic spheres per share (around the vertices "
+                  "farthest along fixed directions)")
       ->check(CLI::Range(1, 5))
       ->capture_default_str();
   cmd->callback([args, &exit_code] {

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace meshwave {
@@ -21,7 +22,8 @@ double RegionWeight(const Region& region, const Vec3& centre, double radius) {
   if (distance <= radius) return 1;
   const double half = v.fov_degrees * std::numbers::pi / 360;
   const double tan_half = std::tan(half);
-  const double aspect = static_cast<double>(v.width) / static_cast<double>(v.height);
+  const double aspect =
+      static_cast<double>(v.width) / static_cast<double>(v.height);
   // The cone through the screen's corners, widened by the ball's angular
   // radius.
   const double cone = std::atan(tan_half * std::sqrt(1 + aspect * aspect));
@@ -30,6 +32,15 @@ double RegionWeight(const Region& region, const Vec3& centre, double radius) {
   const double angular_radius = std::asin(std::min(1.0, radius / distance));
   if (angle - angular_radius > cone) return 0;
   return std::min(1.0, radius / (distance * tan_half));
+}
+
+double PixelsPerUnit(const ViewRegion& view, const Vec3& centre,
+                     double radius) {
+  const double depth = (centre - view.eye).dot(view.direction.normalized()) -
+                       std::max(radius, 0.0);
+  if (!(depth > 0)) return std::numeric_limits<double>::infinity();
+  const double tan_half = std::tan(view.fov_degrees * std::numbers::pi / 360);
+  return 0.5 * static_cast<double>(view.height) / (depth * tan_half);
 }
 
 }  // namespace meshwave

@@ -1,28 +1,118 @@
 #include "meshwave/region_order.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <queue>
 #include <utility>
 #include <variant>
 
+#include "meshwave/packet_parts.h"
 #include "meshwave/semiregular.h"
 #include "semiregular/base_face_of.h"
 #include "stream/decoder_setup.h"
 #include "stream/packet_index.h"
-#include "meshwave/packet_parts.h"
 #include "stream/precinct_partition.h"
 #include "stream/stream_format.h"
 
 namespace meshwave {
+namespace {
+
+// A screen-space error request (a view with Region::screen_error_px): a
+// unit is needed when the error its precinct may still carry before it,
+// projected at the precinct's nearest depth, exceeds the tolerance
+// somewhere the view sees. The error bound of a subband holding its
+// bitplanes above b: every coefficient not yet significant is below
+// 2^(b+1) quantiser steps, and is reconstructed as 0 (Said and Pearlman's
+// bound for bitplane coding, "A new, fast, and efficient image codec
+// based on set partitioning in hierarchical trees", 1996); only the
+// normal component where the stream codes in local frames, as a sliding
+// of the surface along itself does not move what is drawn. The base
+// refinement's before plane b: half of its grid, 2^(b+1) steps, per axis.
+struct ScreenErrorBounds {
+  bool active = false;
+  double tolerance = 0;
+  const StreamHeader* header = nullptr;
+  std::vector<std::vector<double>>
+      pixels;  // per subband, per precinct; 0 outside the view
+  std::vector<double> subband_pixels;  // per subband, the largest
+
+  static ScreenErrorBounds Of(const StreamHeader& header,
+                              const StreamPrecincts& precincts,
+                              const Region& region, int levels) {
+    ScreenErrorBounds out;
+    const auto* view = std::get_if<ViewRegion>(&region.shape);
+    if (view == nullptr || !region.screen_error_px) return out;
+    out.active = true;
+    out.tolerance = *region.screen_error_px;
+    out.header = &header;
+    for (int j = 0; j < levels; ++j) {
+      std::vector<double> row;
+      double largest = 0;
+      for (uint32_t p = 0; p < precincts.count(j); ++p) {
+        const double w = RegionWeight(region, precincts.centre(j, p),
+                                      precincts.radius(j, p));
+        const double px = w > 0 ? PixelsPerUnit(*view, precincts.centre(j, p),
+                                                precincts.radius(j, p))
+                                : 0;
+        row.push_back(px);
+        largest = std::max(largest, px);
+      }
+      out.pixels.push_back(std::move(row));
+      out.subband_pixels.push_back(largest);
+    }
+    return out;
+  }
+
+  // The error bound of subband j before its bitplane b arrives.
+  double ErrorBefore(int j, int b) const {
+    const int components = header->transform.local_frames ? 1 : 3;
+    double sum = 0;
+    for (int c = 0; c < components; ++c) {
+      const StreamHeader::Quantizer& q = header->quantizer(j, c);
+      const double e = std::ldexp(q.step, std::min(b, q.top_bitplane) + 1);
+      sum += e * e;
+    }
+    return std::sqrt(sum);
+  }
+  // A vertex carries the errors of every coarser level (interpolated) and
+  // of its own: the tolerance is split, half to the finest subband, a
+  // quarter to the next, and so on, the base the rest.
+  double Share(int j) const {
+    return std::ldexp(tolerance, j - static_cast<int>(subband_pixels.size()));
+  }
+  bool Exceeds(double error, double px, double tol) const {
+    return px > 0 && error * px > tol;
+  }
+  bool PartNeeded(int j, int b, uint32_t p) const {
+    return Exceeds(ErrorBefore(j, b), pixels[static_cast<size_t>(j)][p],
+                   Share(j));
+  }
+  bool PacketNeeded(int j, int b) const {
+    return Exceeds(ErrorBefore(j, b), subband_pixels[static_cast<size_t>(j)],
+                   Share(j));
+  }
+  // The base moves every vertex: judged where the view sees most detail
+  // (a stream without subbands: always needed).
+  bool BaseNeeded(int plane) const {
+    if (subband_pixels.empty()) return true;
+    const double px =
+        *std::max_element(subband_pixels.begin(), subband_pixels.end());
+    return Exceeds(std::sqrt(3.0) * std::ldexp(header->base.step, plane), px,
+                   Share(-1));
+  }
+};
+
+}  // namespace
 
 Result<StreamPrecincts> StreamPrecincts::Create(const StreamHeader& header) {
   DecodedBase base;
   std::shared_ptr<const SemiRegularHierarchy> hierarchy;
-  MW_RETURN_IF_ERROR(SetUpHierarchy(header, kMaxBaseVertices, base, hierarchy).status());
+  MW_RETURN_IF_ERROR(
+      SetUpHierarchy(header, kMaxBaseVertices, base, hierarchy).status());
   const SemiRegularHierarchy& h = *hierarchy;
-  const PrecinctPartition partition =
-      PartitionIntoPrecincts(h, base.grid, header.packets.precinct_coefficients);
+  const PrecinctPartition partition = PartitionIntoPrecincts(
+      h, base.grid, header.packets.precinct_coefficients);
   const auto& faces = h.faces(0);
   StreamPrecincts out;
   for (int j = 0; j < h.levels(); ++j) {
@@ -30,7 +120,8 @@ Result<StreamPrecincts> StreamPrecincts::Create(const StreamHeader& header) {
     const uint32_t count = partition.count(j);
     std::vector<double> held(faces.size(), 0);
     AddCoefficientsPerBaseFace(h, j, held);
-    const double total = std::max<double>(1, static_cast<double>(h.subband_size(j)));
+    const double total =
+        std::max<double>(1, static_cast<double>(h.subband_size(j)));
     for (uint32_t p = 0; p < count; ++p) {
       s.parent.push_back(j == 0 ? 0 : partition.Parent(j, p));
       Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
@@ -61,10 +152,12 @@ PrecinctParents StreamPrecincts::parents() const {
   return out;
 }
 
-Result<std::vector<std::string_view>> PacketParts(const HeldUnits& units, uint32_t id,
+Result<std::vector<std::string_view>> PacketParts(const HeldUnits& units,
+                                                  uint32_t id,
                                                   std::string_view payload) {
   const uint32_t count = units.PartCount(id);
-  if (count == 0) return ParseError("packet " + std::to_string(id) + " is not split");
+  if (count == 0)
+    return ParseError("packet " + std::to_string(id) + " is not split");
   return SplitPacketParts(payload, count);
 }
 
@@ -73,17 +166,21 @@ Result<std::vector<uint32_t>> PartLengths(const HeldUnits& units, uint32_t id,
   const uint32_t count = units.PartCount(id);
   std::vector<uint32_t> out;
   if (count == 0) return out;
-  MW_ASSIGN_OR_RETURN(std::vector<std::string_view> parts, SplitPacketParts(payload, count));
-  for (std::string_view part : parts) out.push_back(static_cast<uint32_t>(part.size()));
+  MW_ASSIGN_OR_RETURN(std::vector<std::string_view> parts,
+                      SplitPacketParts(payload, count));
+  for (std::string_view part : parts)
+    out.push_back(static_cast<uint32_t>(part.size()));
   return out;
 }
 
-std::vector<StreamUnit> RegionOrder(const StreamHeader& header, const StreamPrecincts& precincts,
-                                    std::span<const std::vector<uint32_t>> part_lengths,
-                                    const Region& region, const HeldUnits& held, int max_level) {
+std::vector<StreamUnit> RegionOrder(
+    const StreamHeader& header, const StreamPrecincts& precincts,
+    std::span<const std::vector<uint32_t>> part_lengths, const Region& region,
+    const HeldUnits& held, int max_level) {
   const PacketLayout layout(header);
   const uint32_t n = static_cast<uint32_t>(layout.count());
-  const DistortionEstimates estimates = ReadDistortionIndex(header, PacketChains(header));
+  const DistortionEstimates estimates =
+      ReadDistortionIndex(header, PacketChains(header));
   const int levels = std::min(layout.levels(), precincts.levels());
   const int used = (max_level < 0 || max_level > levels) ? levels : max_level;
   // Weights of every precinct, and per subband their share-weighted sum;
@@ -97,7 +194,8 @@ std::vector<StreamUnit> RegionOrder(const StreamHeader& header, const StreamPrec
   std::vector<char> subband_inside(static_cast<size_t>(levels), 0);
   for (int j = 0; j < levels; ++j) {
     for (uint32_t p = 0; p < precincts.count(j); ++p) {
-      const double w = RegionWeight(region, precincts.centre(j, p), precincts.radius(j, p));
+      const double w =
+          RegionWeight(region, precincts.centre(j, p), precincts.radius(j, p));
       weight[static_cast<size_t>(j)].push_back(w);
       subband_weight[static_cast<size_t>(j)] += precincts.share(j, p) * w;
       subband_inside[static_cast<size_t>(j)] |= inside(w) ? 1 : 0;
@@ -117,7 +215,8 @@ std::vector<StreamUnit> RegionOrder(const StreamHeader& header, const StreamPrec
       // one where the uniform orders send it (its mesh level within
       // max_level), ranked with the region's units by its value.
       const int m = layout.TextureMap(id);
-      const int level = layout.levels() - (layout.TextureLevels(m) - 1 - layout.Bitplane(id));
+      const int level =
+          layout.levels() - (layout.TextureLevels(m) - 1 - layout.Bitplane(id));
       if (std::max(level, 0) > used) continue;
       wanted[id] = 1;
       units.push_back({id, StreamUnit::kWholePacket});
@@ -128,13 +227,19 @@ std::vector<StreamUnit> RegionOrder(const StreamHeader& header, const StreamPrec
     if (layout.IsChannel(id) || j >= used || (j >= 0 && j >= levels)) continue;
     wanted[id] = 1;
     const uint32_t parts = held.PartCount(id);
-    if (parts == 0 || id >= part_lengths.size() || part_lengths[id].size() != parts) {
+    if (parts == 0 || id >= part_lengths.size() ||
+        part_lengths[id].size() != parts) {
       units.push_back({id, StreamUnit::kWholePacket});
     } else {
       for (uint32_t p = 0; p < parts; ++p) units.push_back({id, p});
     }
   }
   const size_t count = units.size();
+  const ScreenErrorBounds screen =
+      ScreenErrorBounds::Of(header, precincts, region, levels);
+  std::vector<char> needed(count,
+                           1);  // by the screen-space error, when one is asked
+  std::vector<std::vector<uint32_t>> needs_of(count);
   std::vector<double> gain(count, 0), cost(count, 0);
   std::vector<char> in_region(count, 0);  // before every other unit
   std::vector<uint32_t> pending(count, 0);
@@ -144,7 +249,8 @@ std::vector<StreamUnit> RegionOrder(const StreamHeader& header, const StreamPrec
     // precinct's part (or the parent precinct's), else all of them.
     std::vector<uint32_t> out;
     const uint32_t first = first_unit[id];
-    const uint32_t last = id + 1 < n ? first_unit[id + 1] : static_cast<uint32_t>(count);
+    const uint32_t last =
+        id + 1 < n ? first_unit[id + 1] : static_cast<uint32_t>(count);
     if (last - first <= 1 || of.whole()) {
       for (uint32_t k = first; k < last; ++k) out.push_back(k);
     } else {
@@ -155,7 +261,8 @@ std::vector<StreamUnit> RegionOrder(const StreamHeader& header, const StreamPrec
   };
   for (uint32_t k = 0; k < count; ++k) {
     const StreamUnit& u = units[k];
-    const uint32_t bytes = u.whole() ? header.packets.length[u.id] : part_lengths[u.id][u.part];
+    const uint32_t bytes =
+        u.whole() ? header.packets.length[u.id] : part_lengths[u.id][u.part];
     double reduction = estimates.reduction[u.id];
     const int j = layout.Subband(u.id);
     const int b = layout.Bitplane(u.id);
@@ -168,15 +275,20 @@ std::vector<StreamUnit> RegionOrder(const StreamHeader& header, const StreamPrec
     } else if (j < 0) {
       w = levels > 0 ? subband_weight[0] : 1;
       in_region[k] = levels == 0 || subband_inside[0];
+      if (screen.active) needed[k] = screen.BaseNeeded(b);
     } else if (u.whole()) {
       w = subband_weight[static_cast<size_t>(j)];
       in_region[k] = subband_inside[static_cast<size_t>(j)];
+      if (screen.active) needed[k] = screen.PacketNeeded(j, b);
     } else {
       uint64_t total = 0;
       for (uint32_t l : part_lengths[u.id]) total += l;
-      reduction *= total > 0 ? static_cast<double>(bytes) / static_cast<double>(total) : 0;
+      reduction *= total > 0
+                       ? static_cast<double>(bytes) / static_cast<double>(total)
+                       : 0;
       w = weight[static_cast<size_t>(j)][u.part];
       in_region[k] = inside(w);
+      if (screen.active) needed[k] = screen.PartNeeded(j, b, u.part);
     }
     // An untrusted header may give negative or NaN reductions: worth 0.
     // Each unit's record or message costs a few bytes more; a unit of no
@@ -192,7 +304,8 @@ std::vector<StreamUnit> RegionOrder(const StreamHeader& header, const StreamPrec
       needs.push_back({layout.BaseId(b + 1), -1});
     } else {
       needs.push_back({layout.Id(j, b + 1), j});
-      if (header.coder == StreamCoder::k3xC && j > 0) needs.push_back({layout.Id(j - 1, b), j - 1});
+      if (header.coder == StreamCoder::k3xC && j > 0)
+        needs.push_back({layout.Id(j - 1, b), j - 1});
     }
     for (auto [id, jj] : needs) {
       if (id < 0 || !wanted[static_cast<uint32_t>(id)]) continue;
@@ -201,7 +314,15 @@ std::vector<StreamUnit> RegionOrder(const StreamHeader& header, const StreamPrec
         if (held.Has(units[d])) continue;
         ++pending[k];
         dependants[d].push_back(k);
+        needs_of[k].push_back(d);
       }
+    }
+  }
+  // What a needed unit needs is needed too (dependencies have lower
+  // indices: one pass from the end). Whatever is not needed is not sent.
+  for (uint32_t k = static_cast<uint32_t>(count); k-- > 0;) {
+    if (needed[k]) {
+      for (uint32_t d : needs_of[k]) needed[d] = 1;
     }
   }
   // A unit's value: the best gain per byte of a chain of units starting
@@ -211,7 +332,9 @@ std::vector<StreamUnit> RegionOrder(const StreamHeader& header, const StreamPrec
   // have higher indices (they need lower packet ids): one pass from the
   // end.
   auto ratio = [](double g, double c) {
-    return c > 0 ? g / c : (g > 0 || c == 0 ? std::numeric_limits<double>::infinity() : 0.0);
+    return c > 0 ? g / c
+                 : (g > 0 || c == 0 ? std::numeric_limits<double>::infinity()
+                                    : 0.0);
   };
   std::vector<double> chain_gain(gain), chain_cost(cost), value(count, 0);
   for (uint32_t k = static_cast<uint32_t>(count); k-- > 0;) {
@@ -231,9 +354,10 @@ std::vector<StreamUnit> RegionOrder(const StreamHeader& header, const StreamPrec
     if (in_region[a] != in_region[b]) return in_region[a] < in_region[b];
     return value[a] < value[b] || (value[a] == value[b] && a > b);
   };
-  std::priority_queue<uint32_t, std::vector<uint32_t>, decltype(less)> ready(less);
+  std::priority_queue<uint32_t, std::vector<uint32_t>, decltype(less)> ready(
+      less);
   for (uint32_t k = 0; k < count; ++k) {
-    if (!held.Has(units[k]) && pending[k] == 0) ready.push(k);
+    if (needed[k] && !held.Has(units[k]) && pending[k] == 0) ready.push(k);
   }
   std::vector<StreamUnit> order;
   while (!ready.empty()) {
@@ -241,13 +365,17 @@ std::vector<StreamUnit> RegionOrder(const StreamHeader& header, const StreamPrec
     ready.pop();
     order.push_back(units[k]);
     for (uint32_t d : dependants[k]) {
-      if (--pending[d] == 0) ready.push(d);
+      if (--pending[d] == 0 && needed[d]) ready.push(d);
     }
   }
+  // The original layer refines past the remesh, which a screen-space error
+  // is measured against: a view with one never asks for it.
+  if (screen.active) return order;
   std::vector<uint32_t> original;
   AppendOriginalLayer(layout, used, original);
   for (uint32_t id : original) {
-    if (!held.Has({id, StreamUnit::kWholePacket})) order.push_back({id, StreamUnit::kWholePacket});
+    if (!held.Has({id, StreamUnit::kWholePacket}))
+      order.push_back({id, StreamUnit::kWholePacket});
   }
   return order;
 }

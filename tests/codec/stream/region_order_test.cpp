@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <optional>
 #include <random>
 #include <set>
@@ -15,9 +16,9 @@
 #include <vector>
 
 #include "codec/stream/precinct_stream_testonly.h"
+#include "meshwave/packet_parts.h"
 #include "meshwave/progression.h"
 #include "meshwave/progressive_decoder.h"
-#include "meshwave/packet_parts.h"
 
 namespace meshwave {
 namespace {
@@ -58,7 +59,8 @@ const RegionFixture& RegionStream() {
 // Sends `u` to the decoder (a part cut from its packet's payload).
 Status SendUnit(const RegionFixture& f, ProgressiveDecoder& d, StreamUnit u) {
   if (u.whole()) return d.AddPacket(u.id, f.s->packets[u.id]);
-  auto parts = SplitPacketParts(f.s->packets[u.id], d.PartCount(u.id));  // the format's rule
+  auto parts = SplitPacketParts(f.s->packets[u.id],
+                                d.PartCount(u.id));  // the format's rule
   if (!parts.ok()) return parts.status();
   return d.AddPacketPart(u.id, u.part, (*parts)[u.part]);
 }
@@ -66,7 +68,8 @@ Status SendUnit(const RegionFixture& f, ProgressiveDecoder& d, StreamUnit u) {
 // A sphere around the finest vertex nearest `direction`, holding about
 // `share` of the finest vertices (the sphere's vertices are what "in the
 // region" means below).
-Region SphereHolding(const std::vector<Vec3>& mesh, const Vec3& direction, double share) {
+Region SphereHolding(const std::vector<Vec3>& mesh, const Vec3& direction,
+                     double share) {
   size_t nearest = 0;
   for (size_t v = 0; v < mesh.size(); ++v) {
     if (mesh[v].dot(direction) > mesh[nearest].dot(direction)) nearest = v;
@@ -74,11 +77,13 @@ Region SphereHolding(const std::vector<Vec3>& mesh, const Vec3& direction, doubl
   std::vector<double> distance;
   for (const Vec3& p : mesh) distance.push_back((p - mesh[nearest]).norm());
   std::sort(distance.begin(), distance.end());
-  const double radius = distance[static_cast<size_t>(share * static_cast<double>(mesh.size()))];
+  const double radius =
+      distance[static_cast<size_t>(share * static_cast<double>(mesh.size()))];
   return Region{SphereRegion{mesh[nearest], radius}, std::nullopt};
 }
 
-double RegionPsnr(const std::vector<Vec3>& got, const std::vector<Vec3>& want, const Region& r) {
+double RegionPsnr(const std::vector<Vec3>& got, const std::vector<Vec3>& want,
+                  const Region& r) {
   const auto& sphere = std::get<SphereRegion>(r.shape);
   double sse = 0;
   size_t n = 0;
@@ -87,12 +92,15 @@ double RegionPsnr(const std::vector<Vec3>& got, const std::vector<Vec3>& want, c
     sse += (got[v] - want[v]).squaredNorm();
     ++n;
   }
-  return sse == 0 ? 999 : 20 * std::log10(2.0 / std::sqrt(sse / static_cast<double>(n)));
+  return sse == 0
+             ? 999
+             : 20 * std::log10(2.0 / std::sqrt(sse / static_cast<double>(n)));
 }
 
 TEST(RegionOrderTest, EveryUnitOnceEachAfterWhatItNeedsEndingInTheFullDecode) {
   const RegionFixture& f = RegionStream();
-  const Region region = SphereHolding(f.full, Vec3(1, 0.3, 0.2).normalized(), 0.1);
+  const Region region =
+      SphereHolding(f.full, Vec3(1, 0.3, 0.2).normalized(), 0.1);
   HeldUnits held(f.s->header, f.precincts.parents());
   const std::vector<StreamUnit> order =
       RegionOrder(f.s->header, f.precincts, f.part_lengths, region, held);
@@ -112,7 +120,9 @@ TEST(RegionOrderTest, EveryUnitOnceEachAfterWhatItNeedsEndingInTheFullDecode) {
   EXPECT_EQ(d->packets_decoded(), f.s->packets.size());
   EXPECT_EQ(d->Positions(), f.full);
   // Nothing is left to send.
-  EXPECT_TRUE(RegionOrder(f.s->header, f.precincts, f.part_lengths, region, held).empty());
+  EXPECT_TRUE(
+      RegionOrder(f.s->header, f.precincts, f.part_lengths, region, held)
+          .empty());
 }
 
 // At the same bytes, the region's vertices (a sphere holding 5 % of them)
@@ -120,7 +130,8 @@ TEST(RegionOrderTest, EveryUnitOnceEachAfterWhatItNeedsEndingInTheFullDecode) {
 // uniform rd order.
 TEST(RegionOrderTest, TheRegionIsRefinedFirst) {
   const RegionFixture& f = RegionStream();
-  const Region region = SphereHolding(f.full, Vec3(-0.2, 1, 0.4).normalized(), 0.05);
+  const Region region =
+      SphereHolding(f.full, Vec3(-0.2, 1, 0.4).normalized(), 0.05);
   const HeldUnits none(f.s->header, f.precincts.parents());
   const std::vector<StreamUnit> order =
       RegionOrder(f.s->header, f.precincts, f.part_lengths, region, none);
@@ -129,19 +140,23 @@ TEST(RegionOrderTest, TheRegionIsRefinedFirst) {
   // (Measured: 81.2 against 73.8 dB at 30 %, 95.5 against 79.1 at 50 %,
   // exact against 85.1 at 70 %.)
   for (double share : {0.3, 0.5, 0.7}) {
-    const uint64_t budget = static_cast<uint64_t>(share * static_cast<double>(total));
+    const uint64_t budget =
+        static_cast<uint64_t>(share * static_cast<double>(total));
     auto by_region = DecoderOf(*f.s);
     for (const StreamUnit& u : order) {
-      const uint64_t bytes = u.whole() ? f.s->packets[u.id].size() : f.part_lengths[u.id][u.part];
+      const uint64_t bytes =
+          u.whole() ? f.s->packets[u.id].size() : f.part_lengths[u.id][u.part];
       if (by_region->payload_bytes_decoded() + bytes > budget) break;
       ASSERT_TRUE(SendUnit(f, *by_region, u).ok());
     }
     auto by_rd = DecoderOf(*f.s);
     for (uint32_t id : PacketOrder(f.s->header, Progression::kRd)) {
-      if (by_rd->payload_bytes_decoded() + f.s->packets[id].size() > budget) break;
+      if (by_rd->payload_bytes_decoded() + f.s->packets[id].size() > budget)
+        break;
       ASSERT_TRUE(by_rd->AddPacket(id, f.s->packets[id]).ok());
     }
-    const double region_psnr = RegionPsnr(by_region->Positions(), f.full, region);
+    const double region_psnr =
+        RegionPsnr(by_region->Positions(), f.full, region);
     const double rd_psnr = RegionPsnr(by_rd->Positions(), f.full, region);
     EXPECT_GT(region_psnr, rd_psnr + 5) << "at " << share << " of the bytes";
   }
@@ -156,16 +171,19 @@ TEST(RegionOrderTest, ANewRegionContinuesFromWhatIsHeld) {
   HeldUnits held(f.s->header, f.precincts.parents());
   auto d = DecoderOf(*f.s);
   std::set<std::pair<uint32_t, uint32_t>> seen;
-  const std::vector<StreamUnit> first = RegionOrder(f.s->header, f.precincts, f.part_lengths, a, held);
+  const std::vector<StreamUnit> first =
+      RegionOrder(f.s->header, f.precincts, f.part_lengths, a, held);
   for (size_t k = 0; k < first.size() / 3; ++k) {
     ASSERT_TRUE(seen.insert({first[k].id, first[k].part}).second);
     ASSERT_TRUE(SendUnit(f, *d, first[k]).ok());
     held.Add(first[k]);
   }
-  const std::vector<StreamUnit> second = RegionOrder(f.s->header, f.precincts, f.part_lengths, b, held);
+  const std::vector<StreamUnit> second =
+      RegionOrder(f.s->header, f.precincts, f.part_lengths, b, held);
   for (const StreamUnit& u : second) {
     ASSERT_FALSE(held.Has(u));
-    ASSERT_TRUE(seen.insert({u.id, u.part}).second) << "sent again: " << u.id << "/" << u.part;
+    ASSERT_TRUE(seen.insert({u.id, u.part}).second)
+        << "sent again: " << u.id << "/" << u.part;
     ASSERT_TRUE(SendUnit(f, *d, u).ok()) << u.id << "/" << u.part;
     held.Add(u);
   }
@@ -180,7 +198,8 @@ TEST(RegionOrderTest, AViewSendsWhatTheCameraSeesFirst) {
   // Far off, narrow, aimed at the side of the sphere: its cone takes in
   // the near side of that point and misses the rest.
   const std::optional<Region> region =
-      Region{ViewRegion{Vec3(6, 0, 6), Vec3(-5.3, 0.7, -6), 4, 800, 600}, std::nullopt};
+      Region{ViewRegion{Vec3(6, 0, 6), Vec3(-5.3, 0.7, -6), 4, 800, 600},
+             std::nullopt};
   const HeldUnits none(f.s->header, f.precincts.parents());
   const std::vector<StreamUnit> order =
       RegionOrder(f.s->header, f.precincts, f.part_lengths, *region, none);
@@ -192,12 +211,15 @@ TEST(RegionOrderTest, AViewSendsWhatTheCameraSeesFirst) {
     ASSERT_TRUE(SendUnit(f, *d, u).ok());
     if (u.whole()) continue;
     // Parts of the finest subband (the coarser ones' precincts are large).
-    if (static_cast<int>(f.precincts.count(finest)) != static_cast<int>(d->PartCount(u.id))) continue;
+    if (static_cast<int>(f.precincts.count(finest)) !=
+        static_cast<int>(d->PartCount(u.id)))
+      continue;
     const double w = RegionWeight(*region, f.precincts.centre(finest, u.part),
                                   f.precincts.radius(finest, u.part));
     if (w > 0) {
       ++seen;
-      EXPECT_FALSE(unseen_started) << "a part the camera sees after one it does not";
+      EXPECT_FALSE(unseen_started)
+          << "a part the camera sees after one it does not";
     } else {
       ++unseen;
       unseen_started = true;
@@ -223,14 +245,17 @@ TEST(RegionOrderTest, StreamPrecinctsGiveTheDecodersRules) {
     for (uint32_t id = 0; id < n; ++id) {
       ASSERT_EQ(held.PartCount(id), d->PartCount(id));
       ASSERT_EQ(held.Has({id, StreamUnit::kWholePacket}), d->HasPacket(id));
-      ASSERT_EQ(held.Ready({id, StreamUnit::kWholePacket}), !d->HasPacket(id) && d->DependenciesMet(id))
+      ASSERT_EQ(held.Ready({id, StreamUnit::kWholePacket}),
+                !d->HasPacket(id) && d->DependenciesMet(id))
           << id;
       for (uint32_t p = 0; p < d->PartCount(id); ++p) {
         ASSERT_EQ(held.Has({id, p}), d->HasPart(id, p));
-        ASSERT_EQ(held.Ready({id, p}), !d->HasPart(id, p) && d->PartDependenciesMet(id, p));
+        ASSERT_EQ(held.Ready({id, p}),
+                  !d->HasPart(id, p) && d->PartDependenciesMet(id, p));
         if (held.Ready({id, p})) ready.push_back({id, p});
       }
-      if (held.Ready({id, StreamUnit::kWholePacket})) ready.push_back({id, StreamUnit::kWholePacket});
+      if (held.Ready({id, StreamUnit::kWholePacket}))
+        ready.push_back({id, StreamUnit::kWholePacket});
     }
     ASSERT_FALSE(ready.empty());
     const StreamUnit u = ready[rng() % ready.size()];
@@ -266,6 +291,95 @@ TEST(RegionOrderTest, PrecinctsLieWhereTheirFacesAre) {
     }
   }
   EXPECT_GE(p.count(2), 15u);
+}
+
+// The largest distance along the complete mesh's normals between `got` and
+// the complete mesh over the vertices `camera` sees, in pixels at each
+// vertex's depth (as `meshwave view-rd` measures it).
+double ScreenError(const ViewRegion& camera, const std::vector<Vec3>& full,
+                   const std::vector<Vec3>& got) {
+  const Vec3 forward = camera.direction.normalized();
+  const Vec3 right = forward.cross(Vec3::UnitY()).normalized();
+  const Vec3 up = right.cross(forward);
+  const double tan_half = std::tan(camera.fov_degrees * std::numbers::pi / 360);
+  double worst = 0;
+  for (size_t v = 0; v < full.size(); ++v) {
+    const Vec3 d = full[v] - camera.eye;
+    const double z = d.dot(forward);
+    if (z <= 0) continue;
+    const double px = 0.5 * camera.height / (z * tan_half);
+    if (std::abs(d.dot(right)) * px > 0.5 * camera.width ||
+        std::abs(d.dot(up)) * px > 0.5 * camera.height) {
+      continue;
+    }
+    // The test mesh is a bumped unit sphere: its normal is nearly radial.
+    worst = std::max(
+        worst, std::abs((got[v] - full[v]).dot(full[v].normalized())) * px);
+  }
+  return worst;
+}
+
+std::vector<StreamUnit> SendAll(const RegionFixture& f, ProgressiveDecoder& d,
+                                const std::vector<StreamUnit>& units) {
+  for (const StreamUnit& u : units)
+    EXPECT_TRUE(SendUnit(f, d, u).ok()) << u.id << "/" << u.part;
+  return units;
+}
+
+// A view with a screen-space error: what it brings shows the mesh within
+// that many pixels, it stops well before the whole stream, a tighter
+// tolerance asks for more, and asking again asks for nothing.
+TEST(RegionOrderTest, AScreenErrorStopsWhereTheViewIsWithinIt) {
+  const RegionFixture& f = RegionStream();
+  const ViewRegion camera{Vec3(0.5, 0.8, 4), Vec3(-0.5, -0.8, -4), 45, 1280,
+                          720};
+  uint64_t total = 0;
+  for (const std::string& p : f.s->packets) total += p.size();
+  uint64_t previous = 0;
+  for (double px : {4.0, 1.0, 0.5}) {
+    auto d = DecoderOf(*f.s);
+    const Region region{camera, px};
+    const std::vector<StreamUnit> order =
+        SendAll(f, *d,
+                RegionOrder(f.s->header, f.precincts, f.part_lengths, region,
+                            d->held()));
+    std::set<std::pair<uint32_t, uint32_t>> seen;
+    for (const StreamUnit& u : order)
+      ASSERT_TRUE(seen.insert({u.id, u.part}).second);
+    EXPECT_LE(ScreenError(camera, f.full, d->Positions()), px) << px << " px";
+    EXPECT_LT(d->payload_bytes_decoded(), total / 2) << px << " px";
+    EXPECT_GT(d->payload_bytes_decoded(), previous) << px << " px";
+    previous = d->payload_bytes_decoded();
+    EXPECT_TRUE(
+        RegionOrder(f.s->header, f.precincts, f.part_lengths, region, d->held())
+            .empty());
+  }
+  // Without a screen-space error the same view ends in the whole stream.
+  auto whole = DecoderOf(*f.s);
+  SendAll(f, *whole,
+          RegionOrder(f.s->header, f.precincts, f.part_lengths,
+                      Region{camera, std::nullopt}, whole->held()));
+  EXPECT_EQ(whole->Positions(), f.full);
+}
+
+// Nearer is finer: a camera twice as far needs fewer bytes for the same
+// tolerance; one that looks away needs nothing.
+TEST(RegionOrderTest, AScreenErrorAsksLessFarAwayAndNothingOutOfSight) {
+  const RegionFixture& f = RegionStream();
+  auto bytes_for = [&](const ViewRegion& camera) {
+    auto d = DecoderOf(*f.s);
+    SendAll(f, *d,
+            RegionOrder(f.s->header, f.precincts, f.part_lengths,
+                        Region{camera, 1.0}, d->held()));
+    return d->payload_bytes_decoded();
+  };
+  const uint64_t near =
+      bytes_for({Vec3(0, 0, 3), Vec3(0, 0, -1), 45, 1280, 720});
+  const uint64_t far =
+      bytes_for({Vec3(0, 0, 6), Vec3(0, 0, -1), 45, 1280, 720});
+  EXPECT_LT(far, near);
+  EXPECT_GT(far, 0u);
+  EXPECT_EQ(bytes_for({Vec3(0, 0, 3), Vec3(0, 0, 1), 45, 1280, 720}), 0u);
 }
 
 }  // namespace

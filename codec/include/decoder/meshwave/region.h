@@ -55,6 +55,13 @@ struct Region {
 // distance d), capped at 1.
 double RegionWeight(const Region& region, const Vec3& centre, double radius);
 
+// How many pixels a length of 1 spans on the view's screen at the ball's
+// nearest depth along the view direction: (height / 2) / (depth tan(fov /
+// 2)). +infinity when the ball reaches the plane of the eye (a part that
+// close needs every detail). What a screen-space error request
+// (Region::screen_error_px) scales each part's error bound by.
+double PixelsPerUnit(const ViewRegion& view, const Vec3& centre, double radius);
+
 }  // namespace meshwave
 
 #endif  // MESHWAVE_REGION_H_

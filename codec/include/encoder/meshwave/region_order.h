@@ -72,6 +72,15 @@ Result<std::vector<uint32_t>> PartLengths(const HeldUnits& units, uint32_t id,
 // level before. Units of subbands at or above
 // `max_level` (>= 0) are left out, as PacketOrder leaves them out.
 // part_lengths[id]: PartLengths of every packet.
+//
+// A view with a screen-space error (Region::screen_error_px) stops where
+// the view needs nothing more: only the units whose precinct's error
+// bound before them, in pixels at the precinct's nearest depth, exceeds
+// the subband's share of the tolerance where the view sees it (half to the
+// finest subband, a quarter to the next, ..., the base refinement the
+// rest), with what they need; never the original layer (the tolerance is
+// measured against the remesh). Texture levels are sent as above.
+// `meshwave view-rd` measures what such a request brings.
 std::vector<StreamUnit> RegionOrder(const StreamHeader& header, const StreamPrecincts& precincts,
                                     std::span<const std::vector<uint32_t>> part_lengths,
                                     const Region& region, const HeldUnits& held,
