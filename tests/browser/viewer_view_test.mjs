@@ -10,7 +10,8 @@
 //  2. An address with ?screen_error=2&view_budget=2: that refine first,
 //     then the camera turned, panned and zoomed onto one corner with the
 //     mouse and left to rest: a refine with the new view and the same
-//     tolerance and budget, bringing units.
+//     tolerance and budget, bringing units; then "refine +N KiB", which
+//     names that view again without the tolerance.
 // In both, every refine's units are exactly those GET /stream answers for
 // the same view, screen_error, budget and the units held when it was sent
 // (the held bitmap computed here from the header), in the same order and
@@ -317,6 +318,18 @@ try {
     console.log(`  the last refine's request without screen_error: ${without.length} units ` +
                 `(${without.map(unitName).join(',') === moved.got.map(unitName).join(',')
                   ? 'the same: the server does not use the tolerance' : 'not the same'})`);
+
+    // "refine +N KiB" after it: that view again without the tolerance (within
+    // it, the view would bring nothing more), N KiB of what it sees first.
+    const sent = log.client.length;
+    await page.click('#refine');
+    await waitViewRefines(page, refines);
+    assert.equal(log.client.length, sent + 1);
+    const manual = refineFields(log.client.at(-1).text);
+    console.log(`  refine +N KiB: ${log.client.at(-1).text}`);
+    assert.deepEqual(manual, { extraBytes: 4 * 1024, view: moved.fields.view, screenError: null });
+    assert.ok(packetsOf(log.server.slice(log.client.at(-1).at)).length > 0, 'refine +N KiB brings units');
+    checkEachUnitOnce(packetsOf(log.server));
     assert.deepEqual(errors, [], 'console errors');
     await page.close();
   });
