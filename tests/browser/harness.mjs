@@ -37,6 +37,23 @@ export function checks() {
   };
 }
 
+// Packet messages ({id, part}: part null for a whole packet) of one
+// session: throws when a unit arrives twice, a part of a packet that came
+// whole, or a packet after a part of it.
+export function checkEachUnitOnce(packets) {
+  const whole = new Set(), part = new Set();
+  for (const p of packets) {
+    const key = `${p.id}.${p.part}`;
+    if (part.has(key) || whole.has(p.id)) throw new Error(`unit ${key} arrived twice (or after its packet)`);
+    if (p.part === null) {
+      if ([...part].some((k) => k.startsWith(`${p.id}.`))) throw new Error(`packet ${p.id} after a part of it`);
+      whole.add(p.id);
+    } else {
+      part.add(key);
+    }
+  }
+}
+
 export function tempDir(prefix) { return mkdtempSync(path.join(tmpdir(), prefix)); }
 
 // `meshwave-server ingest` of one mesh file (more ingest options in

@@ -53,6 +53,9 @@ async function openViewer(meshId, budgetKiB, errors) {
   await page.selectOption('#order', 'quality');
   await page.fill('#budget', String(budgetKiB));
   await page.fill('#rate', '0');
+  // No pixel tolerance: nothing but the budget (and the refines asked for)
+  // is streamed; the camera does not move here.
+  await page.fill('#screen-error', '');
   return page;
 }
 

@@ -4,9 +4,10 @@
 // WebSocket routing) recording every message both ways. The mesh is
 // streamed at a small budget, then the camera is turned, panned and zoomed
 // close to one corner with the mouse, as a user would, and left to rest:
-//  1. the page sends a refine with a view (the slider's bytes; the camera in
-//     the mesh's coordinates, seeing a part of it, not all), and units that
-//     are parts of split packets arrive;
+//  1. the page sends a refine with a view (the slider's bytes, the pixel
+//     tolerance left empty: viewer_view_test.mjs has the tolerance; the
+//     camera in the mesh's coordinates, seeing a part of it, not all), and
+//     units that are parts of split packets arrive;
 //  2. no unit arrives twice in the session (nor a part of a packet that came
 //     whole, nor the packet after a part);
 //  3. the units received, decoded here with the same module: the vertices
@@ -37,7 +38,8 @@ import path from 'node:path';
 import { setTimeout as sleep } from 'node:timers/promises';
 import { fileURLToPath } from 'node:url';
 import { parseArgs } from 'node:util';
-import { Server, ingest, launchChromium, loadDecoderModule, skip, tempDir, viewerDir, checks } from './harness.mjs';
+import { Server, checkEachUnitOnce, ingest, launchChromium, loadDecoderModule, skip, tempDir, viewerDir,
+  checks } from './harness.mjs';
 import { decodeServerMessage } from '../../web/viewer/ws_protocol.js';
 
 const { values: opt } = parseArgs({ options: {
@@ -103,6 +105,7 @@ async function openViewer(consoleErrors) {
   await page.fill('#budget', String(BUDGET_KIB));
   await page.fill('#rate', '0');
   await page.fill('#refine-kib', String(REFINE_KIB));
+  await page.fill('#screen-error', '');  // view refines of N KiB
   return { page, log };
 }
 
@@ -230,20 +233,7 @@ try {
     assert.ok(parts.length > 0, 'units that are parts of split packets arrived');
 
     // 2. Each unit once.
-    const checkOnce = (packets) => {
-      const whole = new Set(), part = new Set();
-      for (const p of packets) {
-        const key = `${p.id}.${p.part}`;
-        assert.ok(!part.has(key) && !whole.has(p.id), `unit ${key} arrived twice (or after its packet)`);
-        if (p.part === null) {
-          assert.ok(![...part].some((k) => k.startsWith(`${p.id}.`)), `packet ${p.id} after a part of it`);
-          whole.add(p.id);
-        } else {
-          part.add(key);
-        }
-      }
-    };
-    checkOnce(packetsOf(log.server));
+    checkEachUnitOnce(packetsOf(log.server));
 
     // 3. What the view sees was refined, the rest much less.
     const header = log.server[0].header;
@@ -286,7 +276,7 @@ try {
       'refine +N KiB sends no view');
     const more = packetsOf(log.server.slice(manual.at));
     assert.ok(more.length > 0, 'the manual refine brings units');
-    checkOnce(packetsOf(log.server));
+    checkEachUnitOnce(packetsOf(log.server));
     // Unticked, a camera move asks for nothing.
     await page.uncheck('#follow-view');
     await page.mouse.move(cx, cy);

@@ -126,6 +126,10 @@ async function openViewer(consoleErrors) {
   await page.fill('#budget', String(BUDGET / 1024));
   await page.fill('#rate', '0');
   await page.fill('#refine-kib', String(REFINE_KIB));
+  // No pixel tolerance: no view refine after the stream (the camera does
+  // not move here), so the readouts are the budget's and the refines'
+  // alone. The view refines are viewer_view_test.mjs's.
+  await page.fill('#screen-error', '');
   return page;
 }
 
@@ -186,7 +190,10 @@ try {
     page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
     page.on('pageerror', (e) => errors.push(`uncaught: ${e.message}`));
     // No click: the stream starts while the page's modules still load.
-    await page.goto(`${server.url}/viewer/?mesh=${id}&order=${ORDER}&budget=${BUDGET / 1024}&rate=0`);
+    // No tolerance (screen_error empty): the budget's readouts, with no
+    // view refine after them.
+    await page.goto(`${server.url}/viewer/?mesh=${id}&order=${ORDER}&budget=${BUDGET / 1024}` +
+                    '&rate=0&screen_error=');
     await page.waitForSelector('body[data-state="done"], body[data-state="error"]');
     checkReadouts(await readouts(page), await serverNumbers(BUDGET), 'opened at ?mesh=');
     assert.equal(await page.inputValue('#mesh'), id, 'the mesh is the one picked');

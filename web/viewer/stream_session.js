@@ -33,6 +33,11 @@ export class StreamSession {
     this.textureLevel = null;  // the level being decoded or shown
     this.textureBitmap = null;
     this.failed = false;
+    // Per request awaiting its `done`: whether its `complete` speaks of the
+    // whole stream. A refine with a tolerance may end `complete` when its
+    // view is within it (nothing more for that request), which says nothing
+    // of the rest.
+    this.completeMeansStream = [];
     this.dirty = false;       // a mesh is to be reported
     this.meshing = false;     // a mesh request is out
     this.socket = new WebSocket(wsUrl);
@@ -51,14 +56,17 @@ export class StreamSession {
   async start({ meshId, order, budget, rate }) {
     await this.opened;
     this.stats.streaming = true;
+    this.completeMeansStream.push(true);
     this.send(encodeStart({ meshId, order, budget, rate }));
   }
 
-  // extraBytes more payload bytes; options {view} or {region} (ws_protocol.js)
+  // extraBytes more payload bytes; options {view} (with screenError, pixels:
+  // only what the view needs to be within it) or {region} (ws_protocol.js)
   // to refine that first from now on; none: as the last request did.
   refine(extraBytes, options = {}) {
     if (this.failed || !this.hasHeader) return;
     this.stats.streaming = true;
+    this.completeMeansStream.push(options.screenError === undefined || options.screenError === null);
     this.send(encodeRefine(extraBytes, options));
   }
 
@@ -108,17 +116,19 @@ export class StreamSession {
         this.scheduleMesh();
         break;
       }
-      case 'done':
+      case 'done': {
+        const meansStream = this.completeMeansStream.shift() ?? true;
         // Reported once the decoder has taken every packet before it.
         this.decoder.sync().then(() => {
           if (this.failed) return;
           this.stats.streaming = false;
-          this.stats.complete = m.complete;
+          if (meansStream) this.stats.complete = m.complete;
           this.emitMesh();  // the final state now, not a frame later
           this.callbacks.onDone(this.stats);
           this.callbacks.onProgress(this.stats);
         }, (e) => this.fail(e.message));
         return;
+      }
       case 'error':
         this.stats.streaming = false;
         return this.fail(`the server refused the request (${m.codeName}): ${m.message}`);

@@ -1,12 +1,15 @@
 // The viewer page: the catalog (GET /v1/meshes), a mesh streamed over
 // GET /v1/ws with the order, budget and pace chosen, every refinement drawn
-// as it arrives, readouts, "refine +N KiB", "refine where I look" (when the
-// camera stops, a refine of N KiB with the camera as its view: the server
-// sends what that view sees first), optional error colours against the
-// complete stream. Errors are shown in words; the last good mesh stays.
+// as it arrives, readouts, "refine +N KiB", "refine where I look" (once the
+// stream is done and whenever the camera stops, a refine with the camera as
+// its view and a pixel tolerance: the server sends what that view needs to
+// be within it on screen, and stops; with no tolerance, N KiB of what the
+// view sees first), optional error colours against the complete stream.
+// Errors are shown in words; the last good mesh stays.
 // An address that names a mesh (/viewer/?mesh=ID, with ?order=, ?budget=
-// in KiB and ?rate= if wanted) streams it on opening, while the page's
-// other parts load.
+// in KiB, ?rate=, ?screen_error= in pixels (empty: none) and ?view_budget=
+// in KiB if wanted) streams it on opening, while the page's other parts
+// load.
 import { DecoderClient } from './decoder_client.js';
 import { StreamSession, fetchComplete } from './stream_session.js';
 import { errorColours } from './error_colours.js';
@@ -17,6 +20,11 @@ const KiB = 1024;
 // drag ends with a release, but a wheel zoom is a train of steps, each with
 // its own 'end' (about 100 ms apart when scrolled by hand).
 const SETTLE_MS = 400;
+// The most one view refine with a tolerance may bring: the tolerance is
+// what ends it; this only bounds a tolerance too fine for the link.
+const VIEW_BUDGET_KIB = 4096;
+// The server's largest screen (and so largest useful tolerance), in pixels.
+const MAX_SCREEN_PIXELS = 16384;
 const wsUrl = `${location.protocol === 'https:' ? 'wss' : 'ws'}://${location.host}/v1/ws`;
 
 let spare = null;     // a decoder worker started ahead of the next stream
@@ -26,8 +34,10 @@ let lastMesh = null;  // what is drawn: {positions, faces, level}
 let reference = null; // {meshId, order, decoder, positions: level -> Float32Array} of the complete stream
 let streamStarted = 0, firstMeshShown = false;
 let settleTimer = 0;      // the pending "refine where I look"
-let viewWanted = false;   // the camera stopped while a request ran
+let viewWanted = false;   // a view refine is owed: after the running request, or the first mesh
 let viewRefines = 0;      // refines with a view sent (body[data-view-refines])
+let viewBudget = VIEW_BUDGET_KIB * KiB;  // ?view_budget= changes it
+let toleranceView = null; // the view of the last request, when it had a tolerance
 
 function setState(state) { document.body.dataset.state = state; }
 
@@ -83,6 +93,8 @@ function draw(fitCamera) {
     }
   }
   view.setMesh(positions, faces, colours, fitCamera || !firstMeshShown, texture);
+  // A view refine waited for a mesh to look at.
+  if (viewWanted && session && !session.stats.streaming) refineWhereLooking();
   if (!firstMeshShown) {
     firstMeshShown = true;
     // After the frame that shows it: from the stream's start, and from the
@@ -114,7 +126,9 @@ function startStream(meshId = $('mesh').value) {
   lastMesh = null;
   firstMeshShown = false;
   clearTimeout(settleTimer);
-  viewWanted = false;
+  // With a tolerance, the view is refined to it as soon as the stream is done.
+  viewWanted = $('follow-view').checked && screenError() !== null;
+  toleranceView = null;
   $('r-first').textContent = '–';
   const budgetKiB = parseFloat($('budget').value);
   const rateKiB = parseFloat($('rate').value);
@@ -153,8 +167,17 @@ function startStream(meshId = $('mesh').value) {
 
 function refineBytes() { return Math.round(parseFloat($('refine-kib').value) * KiB); }
 
+// The pixel tolerance of view refines, or null (empty): they bring
+// +N KiB instead.
+function screenError() {
+  const px = parseFloat($('screen-error').value);
+  return px > 0 ? Math.min(px, MAX_SCREEN_PIXELS) : null;
+}
+
 // Without a view: the server continues the last region asked for, or the
-// order.
+// order. After a view refine with a tolerance, continuing it would bring
+// nothing once the view is within it: the view is named again without one,
+// N KiB more of what it sees first.
 function refine() {
   const extra = refineBytes();
   if (!session || !(extra > 0)) return;
@@ -163,27 +186,47 @@ function refine() {
   $('refine').disabled = true;
   setState('streaming');
   status(`refining by ${kib(extra)} …`);
-  session.refine(extra);
+  session.refine(extra, toleranceView ? { view: toleranceView } : {});
+  toleranceView = null;
 }
 
-// "refine where I look": the camera has rested SETTLE_MS. A request still
-// running (the stream, a refine) is left to finish, and the camera as it
-// then is asked for after its `done`; nothing once the stream is complete.
+// "refine where I look": the camera has rested SETTLE_MS, or the stream
+// is done with a tolerance set. A request still running (the stream, a
+// refine) is left to finish, and the camera as it then is asked for after
+// its `done`, as it is once a first mesh is in the view; nothing once the
+// stream is complete. With a tolerance the server sends what the view needs
+// to be within it (up to viewBudget), else N KiB of what it sees first.
 function refineWhereLooking() {
   viewWanted = false;
-  if (!$('follow-view').checked || !view || !session?.decoder || session.failed) return;
+  if (!$('follow-view').checked || !session?.decoder || session.failed) return;
   if (session.stats.streaming) {
     viewWanted = true;
     return;
   }
-  const extra = refineBytes();
-  const camera = view.viewRegion();
-  if (session.stats.complete || !(extra > 0) || !camera) return;
+  if (session.stats.complete) return;
+  const camera = view?.viewRegion();
+  if (!camera) {
+    viewWanted = true;  // draw() asks again with the first mesh in the view
+    return;
+  }
+  const px = screenError();
+  const extra = px === null ? refineBytes() : viewBudget;
+  if (!(extra > 0)) return;
   $('refine').disabled = true;
   setState('streaming');
-  status(`refining where you look by ${kib(extra)} …`);
+  status(px === null ? `refining where you look by ${kib(extra)} …`
+                     : `refining where you look to within ${px} px …`);
+  showViewRefine(px, extra);
+  session.refine(extra, px === null ? { view: camera } : { view: camera, screenError: px });
+  toleranceView = px === null ? null : camera;
+}
+
+// body[data-view-refines] counts them, body[data-screen-error] is the last
+// one's tolerance ('' for one of N KiB).
+function showViewRefine(px, extra) {
   document.body.dataset.viewRefines = ++viewRefines;
-  session.refine(extra, { view: camera });
+  document.body.dataset.screenError = px ?? '';
+  $('r-view').textContent = `${viewRefines}, the last ${px === null ? `+${kib(extra)}` : `to ${px} px`}`;
 }
 
 function onCameraStart() {
@@ -235,10 +278,14 @@ function takeDecoder() {
   return decoder;
 }
 
-// ?order=, ?budget=, ?rate= fill the form; ?mesh=ID picks the mesh once
+// ?order=, ?budget=, ?rate=, ?screen_error= fill the form, ?view_budget=
+// (KiB) bounds view refines with a tolerance; ?mesh=ID picks the mesh once
 // the catalog is here (and streams it at once: main()).
 function prefillFromUrl(query) {
   for (const key of ['order', 'budget', 'rate']) if (query.has(key)) $(key).value = query.get(key);
+  if (query.has('screen_error')) $('screen-error').value = query.get('screen_error');
+  const budgetKiB = parseFloat(query.get('view_budget'));
+  if (budgetKiB > 0) viewBudget = Math.round(budgetKiB * KiB);
 }
 
 async function createView() {
@@ -259,9 +306,12 @@ async function main() {
   $('refine-kib').oninput = () => { $('refine-label').textContent = $('refine-kib').value; };
   $('errors').onchange = () => ($('errors').checked && lastMesh ? ensureReference() : draw(false));
   $('attributes').onchange = () => draw(false);
+  // Ticked, or a new tolerance: the view as it is now, refined to it.
   $('follow-view').onchange = () => {
     if (!$('follow-view').checked) onCameraStart();
+    else if (screenError() !== null) refineWhereLooking();
   };
+  $('screen-error').onchange = () => { if (screenError() !== null) refineWhereLooking(); };
   $('stream').disabled = true;
   const query = new URLSearchParams(location.search);
   prefillFromUrl(query);
