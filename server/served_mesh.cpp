@@ -70,4 +70,19 @@ Result<const UnitTable*> ServedMesh::units() const {
   return units_.get();
 }
 
+Result<const StreamScreenErrors*> ServedMesh::screen_errors() const {
+  MW_ASSIGN_OR_RETURN(const UnitTable* table, units());
+  std::call_once(screen_errors_once_, [this, table] {
+    auto measured = StreamScreenErrors::Measure(header_, payloads_, table->precincts());
+    if (measured.ok()) {
+      screen_errors_ = std::make_unique<const StreamScreenErrors>(*std::move(measured));
+    } else {
+      screen_errors_status_ =
+          ParseError("mesh " + entry_.id + ": " + measured.status().message());
+    }
+  });
+  if (!screen_errors_) return screen_errors_status_;
+  return screen_errors_.get();
+}
+
 }  // namespace meshwave::server

@@ -15,6 +15,7 @@
 #include "catalog.h"
 #include "mapped_file.h"
 #include "meshwave/progression.h"
+#include "meshwave/screen_errors.h"
 #include "meshwave/status.h"
 #include "meshwave/stream_header.h"
 #include "unit_table.h"
@@ -53,6 +54,11 @@ class ServedMesh {
   // The precincts and units region requests need, built on the first call
   // (thread-safe; tens of milliseconds for a large mesh) and kept.
   Result<const UnitTable*> units() const;
+  // What views with a screen-space error judge units by
+  // (meshwave/screen_errors.h), measured on the first call (thread-safe; the
+  // stream decoded once per bitplane, a few hundred milliseconds for a large
+  // mesh) and kept.
+  Result<const StreamScreenErrors*> screen_errors() const;
 
   // Set once the mesh leaves the MeshCache (deleted, or evicted as least
   // recently used): responses planned from it are no longer served from
@@ -74,6 +80,9 @@ class ServedMesh {
   mutable std::once_flag units_once_;
   mutable std::unique_ptr<const UnitTable> units_;
   mutable Status units_status_;
+  mutable std::once_flag screen_errors_once_;
+  mutable std::unique_ptr<const StreamScreenErrors> screen_errors_;
+  mutable Status screen_errors_status_;
 };
 
 }  // namespace meshwave::server

@@ -2,6 +2,8 @@
 
 #include <string>
 
+#include "meshwave/screen_errors.h"
+
 namespace meshwave::server {
 namespace {
 
@@ -29,9 +31,16 @@ std::vector<StreamUnit> UniformUnits(const ServedMesh& mesh, const HeldUnits& he
 Result<UnitPlan> PlanUnits(const ServedMesh& mesh, const UnitTable& table, const HeldUnits& held,
                            const UnitRequest& request) {
   MW_RETURN_IF_ERROR(mesh.CheckLevelLimit(request.max_level));
+  // A screen-space error is judged by the stream's measured errors; a
+  // stream they cannot be measured on (it would not decode either) by the
+  // quantisers' bound.
+  const StreamScreenErrors* measured = nullptr;
+  if (request.region && request.region->screen_error_px) {
+    if (auto m = mesh.screen_errors(); m.ok()) measured = *m;
+  }
   const std::vector<StreamUnit> lacking =
       request.region ? RegionOrder(mesh.header(), table.precincts(), table.part_lengths(),
-                                   *request.region, held, request.max_level)
+                                   *request.region, held, request.max_level, measured)
                      : UniformUnits(mesh, held, request.order, request.max_level);
   UnitPlan plan;
   for (const StreamUnit& u : lacking) {

@@ -7,6 +7,7 @@
 
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 
@@ -30,6 +31,7 @@ TEST(ViewRdCliTest, EveryPathIsWithinItsToleranceAfterItsViewRequests) {
   std::istringstream lines(r.out);
   std::string line;
   int rows = 0;
+  std::map<std::string, double> bytes;  // "path@tolerance"
   while (std::getline(lines, line)) {
     char path[16] = {};
     int cameras = 0;
@@ -40,13 +42,18 @@ TEST(ViewRdCliTest, EveryPathIsWithinItsToleranceAfterItsViewRequests) {
     }
     ++rows;
     EXPECT_EQ(cameras, std::string(path) == "orbit" ? 4 : 5) << line;
-    EXPECT_GT(view_bytes, 0) << line;
+    bytes[std::string(path) + "@" + std::to_string(static_cast<int>(tolerance))] = view_bytes;
     EXPECT_LE(worst, tolerance) << line;
     if (rd_bytes > 0) {
       EXPECT_NEAR(ratio, view_bytes / rd_bytes, 0.01) << line;
     }
   }
   EXPECT_EQ(rows, 4) << r.out;
+  // A finer tolerance asks for more; the zoom's nearest camera sees detail
+  // the base mesh does not have.
+  EXPECT_GE(bytes["orbit@1"], bytes["orbit@4"]) << r.out;
+  EXPECT_GE(bytes["zoom@1"], bytes["zoom@4"]) << r.out;
+  EXPECT_GT(bytes["zoom@4"], 0) << r.out;
 }
 
 TEST(ViewRdCliTest, AnIncompleteStreamOrBadTolerancesAreClearErrors) {

@@ -4,7 +4,9 @@
 // what `meshwave fetch --view ... --screen-error N` and the viewer
 // receive, each camera continuing from what the ones before brought) and
 // in the uniform rd order (the shortest prefix that serves every camera
-// of the path).
+// of the path). Units are judged by the stream's measured errors
+// (meshwave/screen_errors.h), as the server judges them; `--bound` judges
+// them by the quantisers' bound instead.
 //
 // The error a camera shows: over the finest vertices inside its frustum,
 // the largest distance along the complete mesh's vertex normal between
@@ -26,6 +28,7 @@
 #include "complete_stream.h"
 #include "meshwave/progression.h"
 #include "meshwave/region.h"
+#include "meshwave/screen_errors.h"
 
 namespace meshwave::cli {
 namespace {
@@ -36,6 +39,7 @@ struct ViewArgs {
   uint32_t width = 1280, height = 720;
   double fov = 45;
   int orbit_cameras = 8;
+  bool bound = false;
 };
 
 struct CameraPath {
@@ -157,13 +161,15 @@ struct ViewResult {
 };
 Result<ViewResult> ViewOrderAlong(const CompleteStream& s,
                                   const std::vector<Vec3>& normals,
-                                  const CameraPath& path, double tolerance) {
+                                  const CameraPath& path, double tolerance,
+                                  const StreamScreenErrors* measured) {
   MW_ASSIGN_OR_RETURN(auto d, ProgressiveDecoder::Create(s.header()));
   ViewResult out;
   for (const ViewRegion& camera : path.cameras) {
     const Region region{camera, tolerance};
-    for (const StreamUnit& u : RegionOrder(s.header(), *s.precincts,
-                                           s.part_lengths, region, d->held())) {
+    for (const StreamUnit& u :
+         RegionOrder(s.header(), *s.precincts, s.part_lengths, region,
+                     d->held(), -1, measured)) {
       MW_RETURN_IF_ERROR(s.Send(*d, u));
       out.bytes += s.UnitBytes(u);
     }
@@ -211,6 +217,9 @@ Status Run(const ViewArgs& args) {
   MW_ASSIGN_OR_RETURN(std::vector<double> tolerances,
                       ParseTolerances(args.tolerances));
   const std::vector<Vec3> normals = VertexNormals(s.full, s.faces);
+  MW_ASSIGN_OR_RETURN(
+      StreamScreenErrors measured,
+      StreamScreenErrors::Measure(s.header(), s.payload, *s.precincts));
   uint64_t total = 0;
   for (std::string_view p : s.payload) total += p.size();
   std::printf(
@@ -224,7 +233,8 @@ Status Run(const ViewArgs& args) {
     MW_ASSIGN_OR_RETURN(auto rd, RdBytes(s, normals, path.cameras, tolerances));
     for (size_t t = 0; t < tolerances.size(); ++t) {
       MW_ASSIGN_OR_RETURN(ViewResult view,
-                          ViewOrderAlong(s, normals, path, tolerances[t]));
+                          ViewOrderAlong(s, normals, path, tolerances[t],
+                                         args.bound ? nullptr : &measured));
       uint64_t rd_bytes = 0;
       for (const auto& camera : rd) rd_bytes = std::max(rd_bytes, camera[t]);
       std::printf(
@@ -270,6 +280,10 @@ void AddViewCommand(CLI::App& app, int& exit_code) {
                   "Cameras on the orbit")
       ->check(CLI::Range(1, 360))
       ->capture_default_str();
+  cmd->add_flag("--bound", args->bound,
+                "Judge units by the quantiser's bound on what they hold, as a "
+                "server without measured errors does, instead of by the "
+                "stream's measured errors");
   cmd->callback([args, &exit_code] {
     if (Status s = Run(*args); !s.ok()) exit_code = Fail("view-rd", s);
   });

@@ -8,6 +8,7 @@
 #include <variant>
 
 #include "meshwave/packet_parts.h"
+#include "meshwave/screen_errors.h"
 #include "meshwave/semiregular.h"
 #include "semiregular/base_face_of.h"
 #include "stream/decoder_setup.h"
@@ -29,17 +30,27 @@ namespace {
 // normal component where the stream codes in local frames, as a sliding
 // of the surface along itself does not move what is drawn. The base
 // refinement's before plane b: half of its grid, 2^(b+1) steps, per axis.
+// With the stream's measured errors (meshwave/screen_errors.h) the error
+// before a unit is measured, not bounded.
 struct ScreenErrorBounds {
   bool active = false;
   double tolerance = 0;
   const StreamHeader* header = nullptr;
-  std::vector<std::vector<double>>
-      pixels;  // per subband, per precinct; 0 outside the view
+  // By measured errors: per subband and precinct, the rd prefix and the
+  // lowest bitplane needed; for packets that travel whole, of all.
+  const StreamScreenErrors* measured = nullptr;
+  std::vector<std::vector<int>> need_rank, need_plane;  // [j][p]
+  int whole_rank = 0, whole_plane = 0;
+  // Per subband, per precinct: pixels per unit length (0 outside the view).
+  std::vector<std::vector<double>> pixels;
   std::vector<double> subband_pixels;  // per subband, the largest
 
-  static ScreenErrorBounds Of(const StreamHeader& header,
-                              const StreamPrecincts& precincts,
-                              const Region& region, int levels) {
+  static ScreenErrorBounds Of(
+      const StreamHeader& header, const PacketLayout& layout,
+      const StreamPrecincts& precincts,
+      std::span<const std::vector<uint32_t>> part_lengths,
+      const HeldUnits& held, const Region& region, int levels,
+      const StreamScreenErrors* measured) {
     ScreenErrorBounds out;
     const auto* view = std::get_if<ViewRegion>(&region.shape);
     if (view == nullptr || !region.screen_error_px) return out;
@@ -61,7 +72,94 @@ struct ScreenErrorBounds {
       out.pixels.push_back(std::move(row));
       out.subband_pixels.push_back(largest);
     }
+    if (measured && levels > 0 && measured->levels() == levels &&
+        measured->finest_precincts() == precincts.count(levels - 1)) {
+      out.Allocate(*measured, header, layout, part_lengths, held);
+    }
     return out;
+  }
+
+  // With measured errors, each finest precinct the view sees takes the
+  // cheaper of two schedules that bring its error, in pixels, within the
+  // tolerance for good: the shortest prefix of the rd order, or the
+  // fewest bitplanes of every subband and the base refinement. A unit is
+  // needed when the schedule of some finest precinct below its own
+  // precinct holds it (a packet that travels whole: of any).
+  void Allocate(const StreamScreenErrors& m, const StreamHeader& h,
+                const PacketLayout& layout,
+                std::span<const std::vector<uint32_t>> part_lengths,
+                const HeldUnits& held) {
+    const int levels = m.levels();
+    const int finest = levels - 1;
+    need_rank.assign(static_cast<size_t>(levels), {});
+    need_plane.assign(static_cast<size_t>(levels), {});
+    for (int j = 0; j < levels; ++j) {
+      const size_t n = pixels[static_cast<size_t>(j)].size();
+      need_rank[static_cast<size_t>(j)].assign(n, 0);
+      need_plane[static_cast<size_t>(j)].assign(n, std::numeric_limits<int>::max());
+    }
+    whole_plane = std::numeric_limits<int>::max();
+    // What packet id costs finest precinct q: its part of q's precinct, or
+    // the packet; nothing once held.
+    auto cost = [&](uint32_t id, uint32_t q) -> double {
+      const int j = layout.Subband(id);
+      const uint32_t p = j >= 0 ? m.Ancestor(j, q) : 0;
+      const bool split = j >= 0 && id < part_lengths.size() && p < part_lengths[id].size();
+      if (held.Has({id, StreamUnit::kWholePacket}) || (split && held.Has({id, p}))) return 0;
+      return split ? part_lengths[id][p] : h.packets.length[id];
+    };
+    std::vector<uint32_t> geometry;  // every packet either schedule holds
+    for (uint32_t id = 0; id < h.packets.length.size(); ++id) {
+      if (m.Rank(id) >= 0) geometry.push_back(id);
+    }
+    for (uint32_t q = 0; q < m.finest_precincts(); ++q) {
+      const double px = pixels[static_cast<size_t>(finest)][q];
+      if (!(px > 0)) continue;
+      // Errors do not increase along either sequence: bisections.
+      int k = 0;
+      for (int hi = m.steps(); k < hi;) {
+        const int mid = (k + hi) / 2;
+        if (m.Error(mid, q) * px <= tolerance) {
+          hi = mid;
+        } else {
+          k = mid + 1;
+        }
+      }
+      int b = m.planes();  // the largest plane within the tolerance
+      for (int lo = 0; lo < b;) {
+        const int mid = (lo + b + 1) / 2;
+        if (m.PlaneError(mid, q) * px <= tolerance) {
+          lo = mid;
+        } else {
+          b = mid - 1;
+        }
+      }
+      double by_rank = 0, by_plane = 0;
+      for (uint32_t id : geometry) {
+        if (m.Rank(id) < k) by_rank += cost(id, q);
+        if (layout.Bitplane(id) >= b) by_plane += cost(id, q);
+      }
+      for (int j = 0; j < levels; ++j) {
+        const uint32_t p = m.Ancestor(j, q);
+        if (by_rank <= by_plane) {
+          int& n = need_rank[static_cast<size_t>(j)][p];
+          n = std::max(n, k);
+        } else {
+          int& n = need_plane[static_cast<size_t>(j)][p];
+          n = std::min(n, b);
+        }
+      }
+      if (by_rank <= by_plane) {
+        whole_rank = std::max(whole_rank, k);
+      } else {
+        whole_plane = std::min(whole_plane, b);
+      }
+    }
+    measured = &m;
+  }
+  bool Holds(uint32_t id, int b, int rank, int plane) const {
+    const int r = measured->Rank(id);
+    return r >= 0 && (r < rank || b >= plane);
   }
 
   // The error bound of subband j before its bitplane b arrives.
@@ -77,25 +175,33 @@ struct ScreenErrorBounds {
   }
   // A vertex carries the errors of every coarser level (interpolated) and
   // of its own: the tolerance is split, half to the finest subband, a
-  // quarter to the next, and so on, the base the rest.
+  // quarter to the next, and so on, the base the rest. A measured error
+  // holds them all: the whole tolerance.
   double Share(int j) const {
     return std::ldexp(tolerance, j - static_cast<int>(subband_pixels.size()));
   }
   bool Exceeds(double error, double px, double tol) const {
     return px > 0 && error * px > tol;
   }
-  bool PartNeeded(int j, int b, uint32_t p) const {
+  // The packet `id` (of subband j, bitplane b), part p, or whole.
+  bool PartNeeded(uint32_t id, int j, int b, uint32_t p) const {
+    if (measured) {
+      return Holds(id, b, need_rank[static_cast<size_t>(j)][p],
+                   need_plane[static_cast<size_t>(j)][p]);
+    }
     return Exceeds(ErrorBefore(j, b), pixels[static_cast<size_t>(j)][p],
                    Share(j));
   }
-  bool PacketNeeded(int j, int b) const {
+  bool PacketNeeded(uint32_t id, int j, int b) const {
+    if (measured) return Holds(id, b, whole_rank, whole_plane);
     return Exceeds(ErrorBefore(j, b), subband_pixels[static_cast<size_t>(j)],
                    Share(j));
   }
   // The base moves every vertex: judged where the view sees most detail
   // (a stream without subbands: always needed).
-  bool BaseNeeded(int plane) const {
+  bool BaseNeeded(uint32_t id, int plane) const {
     if (subband_pixels.empty()) return true;
+    if (measured) return PacketNeeded(id, 0, plane);
     const double px =
         *std::max_element(subband_pixels.begin(), subband_pixels.end());
     return Exceeds(std::sqrt(3.0) * std::ldexp(header->base.step, plane), px,
@@ -176,7 +282,7 @@ Result<std::vector<uint32_t>> PartLengths(const HeldUnits& units, uint32_t id,
 std::vector<StreamUnit> RegionOrder(
     const StreamHeader& header, const StreamPrecincts& precincts,
     std::span<const std::vector<uint32_t>> part_lengths, const Region& region,
-    const HeldUnits& held, int max_level) {
+    const HeldUnits& held, int max_level, const StreamScreenErrors* measured) {
   const PacketLayout layout(header);
   const uint32_t n = static_cast<uint32_t>(layout.count());
   const DistortionEstimates estimates =
@@ -236,9 +342,10 @@ std::vector<StreamUnit> RegionOrder(
   }
   const size_t count = units.size();
   const ScreenErrorBounds screen =
-      ScreenErrorBounds::Of(header, precincts, region, levels);
-  std::vector<char> needed(count,
-                           1);  // by the screen-space error, when one is asked
+      ScreenErrorBounds::Of(header, layout, precincts, part_lengths, held,
+                            region, levels, measured);
+  // By the screen-space error, when one is asked.
+  std::vector<char> needed(count, 1);
   std::vector<std::vector<uint32_t>> needs_of(count);
   std::vector<double> gain(count, 0), cost(count, 0);
   std::vector<char> in_region(count, 0);  // before every other unit
@@ -275,11 +382,11 @@ std::vector<StreamUnit> RegionOrder(
     } else if (j < 0) {
       w = levels > 0 ? subband_weight[0] : 1;
       in_region[k] = levels == 0 || subband_inside[0];
-      if (screen.active) needed[k] = screen.BaseNeeded(b);
+      if (screen.active) needed[k] = screen.BaseNeeded(u.id, b);
     } else if (u.whole()) {
       w = subband_weight[static_cast<size_t>(j)];
       in_region[k] = subband_inside[static_cast<size_t>(j)];
-      if (screen.active) needed[k] = screen.PacketNeeded(j, b);
+      if (screen.active) needed[k] = screen.PacketNeeded(u.id, j, b);
     } else {
       uint64_t total = 0;
       for (uint32_t l : part_lengths[u.id]) total += l;
@@ -288,7 +395,7 @@ std::vector<StreamUnit> RegionOrder(
                        : 0;
       w = weight[static_cast<size_t>(j)][u.part];
       in_region[k] = inside(w);
-      if (screen.active) needed[k] = screen.PartNeeded(j, b, u.part);
+      if (screen.active) needed[k] = screen.PartNeeded(u.id, j, b, u.part);
     }
     // An untrusted header may give negative or NaN reductions: worth 0.
     // Each unit's record or message costs a few bytes more; a unit of no

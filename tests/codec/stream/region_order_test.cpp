@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "codec/stream/precinct_stream_testonly.h"
+#include "codec/stream/screen_error_testonly.h"
 #include "meshwave/packet_parts.h"
 #include "meshwave/progression.h"
 #include "meshwave/progressive_decoder.h"
@@ -24,6 +25,7 @@ namespace meshwave {
 namespace {
 
 using testing::DecoderOf;
+using testing::ScreenError;
 
 using testing::Precincted;
 
@@ -291,32 +293,6 @@ TEST(RegionOrderTest, PrecinctsLieWhereTheirFacesAre) {
     }
   }
   EXPECT_GE(p.count(2), 15u);
-}
-
-// The largest distance along the complete mesh's normals between `got` and
-// the complete mesh over the vertices `camera` sees, in pixels at each
-// vertex's depth (as `meshwave view-rd` measures it).
-double ScreenError(const ViewRegion& camera, const std::vector<Vec3>& full,
-                   const std::vector<Vec3>& got) {
-  const Vec3 forward = camera.direction.normalized();
-  const Vec3 right = forward.cross(Vec3::UnitY()).normalized();
-  const Vec3 up = right.cross(forward);
-  const double tan_half = std::tan(camera.fov_degrees * std::numbers::pi / 360);
-  double worst = 0;
-  for (size_t v = 0; v < full.size(); ++v) {
-    const Vec3 d = full[v] - camera.eye;
-    const double z = d.dot(forward);
-    if (z <= 0) continue;
-    const double px = 0.5 * camera.height / (z * tan_half);
-    if (std::abs(d.dot(right)) * px > 0.5 * camera.width ||
-        std::abs(d.dot(up)) * px > 0.5 * camera.height) {
-      continue;
-    }
-    // The test mesh is a bumped unit sphere: its normal is nearly radial.
-    worst = std::max(
-        worst, std::abs((got[v] - full[v]).dot(full[v].normalized())) * px);
-  }
-  return worst;
 }
 
 std::vector<StreamUnit> SendAll(const RegionFixture& f, ProgressiveDecoder& d,

@@ -19,6 +19,8 @@
 
 namespace meshwave {
 
+class StreamScreenErrors;
+
 // Where a stream's precincts lie: per subband, each precinct's parent
 // precinct, the ball around its base faces (the decoded base mesh, so a
 // little off the final surface) and its share of the subband's
@@ -30,7 +32,9 @@ class StreamPrecincts {
   static Result<StreamPrecincts> Create(const StreamHeader& header);
 
   int levels() const { return static_cast<int>(subbands_.size()); }
-  uint32_t count(int j) const { return static_cast<uint32_t>(at(j).parent.size()); }
+  uint32_t count(int j) const {
+    return static_cast<uint32_t>(at(j).parent.size());
+  }
   uint32_t parent(int j, uint32_t p) const { return at(j).parent[p]; }
   const Vec3& centre(int j, uint32_t p) const { return at(j).centre[p]; }
   double radius(int j, uint32_t p) const { return at(j).radius[p]; }
@@ -52,7 +56,8 @@ class StreamPrecincts {
 // The parts of split packet `id`, as views into its payload (docs/FORMAT.md
 // 2.2); ParseError for a packet that is not split or a table that does not
 // parse.
-Result<std::vector<std::string_view>> PacketParts(const HeldUnits& units, uint32_t id,
+Result<std::vector<std::string_view>> PacketParts(const HeldUnits& units,
+                                                  uint32_t id,
                                                   std::string_view payload);
 // The lengths of split packet `id`'s parts, from its payload (empty for a
 // packet that is not split); ParseError for a table that does not parse.
@@ -80,11 +85,17 @@ Result<std::vector<uint32_t>> PartLengths(const HeldUnits& units, uint32_t id,
 // finest subband, a quarter to the next, ..., the base refinement the
 // rest), with what they need; never the original layer (the tolerance is
 // measured against the remesh). Texture levels are sent as above.
-// `meshwave view-rd` measures what such a request brings.
-std::vector<StreamUnit> RegionOrder(const StreamHeader& header, const StreamPrecincts& precincts,
-                                    std::span<const std::vector<uint32_t>> part_lengths,
-                                    const Region& region, const HeldUnits& held,
-                                    int max_level = -1);
+// With `measured` (meshwave/screen_errors.h, of the same stream), a unit of
+// subband j, bitplane b, precinct p is needed instead when the measured
+// error of the state before it (every plane above b) times its precinct's
+// pixels per unit exceeds the whole tolerance: measured errors hold every
+// level's share, so no split. `meshwave view-rd` measures what such
+// requests bring.
+std::vector<StreamUnit> RegionOrder(
+    const StreamHeader& header, const StreamPrecincts& precincts,
+    std::span<const std::vector<uint32_t>> part_lengths, const Region& region,
+    const HeldUnits& held, int max_level = -1,
+    const StreamScreenErrors* measured = nullptr);
 
 }  // namespace meshwave
 

@@ -1,0 +1,154 @@
+#include "meshwave/screen_errors.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include "meshwave/progression.h"
+#include "meshwave/progressive_decoder.h"
+#include "meshwave/semiregular.h"
+#include "semiregular/base_face_of.h"
+#include "stream/decoder_setup.h"
+#include "stream/packet_index.h"
+#include "stream/precinct_partition.h"
+#include "stream/stream_format.h"
+
+namespace meshwave {
+namespace {
+
+std::vector<Vec3> VertexNormals(const std::vector<Vec3>& positions,
+                                const std::vector<Face>& faces) {
+  std::vector<Vec3> normals(positions.size(), Vec3::Zero());
+  for (const Face& f : faces) {
+    const Vec3 n = (positions[f[1]] - positions[f[0]]).cross(positions[f[2]] - positions[f[0]]);
+    for (uint32_t v : f) normals[v] += n;  // area-weighted
+  }
+  for (Vec3& n : normals) {
+    const double length = n.norm();
+    n = length > 0 ? Vec3(n / length) : Vec3::Zero();
+  }
+  return normals;
+}
+
+// The base face of every finest vertex: a base vertex's first face, the
+// vertex that splits edge k of M^j the base face of coefficient k of d^j.
+std::vector<uint32_t> VertexBaseFaces(const SemiRegularHierarchy& h) {
+  std::vector<uint32_t> out(h.vertex_count(h.levels()), 0);
+  const auto& base = h.faces(0);
+  for (uint32_t f = static_cast<uint32_t>(base.size()); f-- > 0;) {
+    for (uint32_t v : base[f]) out[v] = f;
+  }
+  for (int j = 0; j < h.levels(); ++j) {
+    const uint32_t first = h.vertex_count(j);
+    for (uint32_t k = 0; k < h.subband_size(j); ++k) out[first + k] = BaseFaceOf(h, j, k);
+  }
+  return out;
+}
+
+Status Add(ProgressiveDecoder& d, std::span<const std::string_view> payloads, int id) {
+  if (id < 0) return Status::Ok();
+  return d.AddPacket(static_cast<uint32_t>(id), payloads[static_cast<size_t>(id)]);
+}
+
+}  // namespace
+
+Result<StreamScreenErrors> StreamScreenErrors::Measure(const StreamHeader& header,
+                                                       std::span<const std::string_view> payloads,
+                                                       const StreamPrecincts& precincts) {
+  const PacketLayout layout(header);
+  if (payloads.size() != static_cast<size_t>(layout.count())) {
+    return InvalidArgument("screen errors: " + std::to_string(payloads.size()) +
+                           " payloads for " + std::to_string(layout.count()) + " packets");
+  }
+  StreamScreenErrors out;
+  const int levels = std::min(layout.levels(), precincts.levels());
+  if (levels == 0) return out;
+  DecodedBase base;
+  std::shared_ptr<const SemiRegularHierarchy> hierarchy;
+  MW_RETURN_IF_ERROR(SetUpHierarchy(header, kMaxBaseVertices, base, hierarchy).status());
+  const SemiRegularHierarchy& h = *hierarchy;
+  const PrecinctPartition partition =
+      PartitionIntoPrecincts(h, base.grid, header.packets.precinct_coefficients);
+  const int finest = levels - 1;
+  out.finest_count_ = precincts.count(finest);
+  out.ancestor_.resize(static_cast<size_t>(levels));
+  for (uint32_t q = 0; q < out.finest_count_; ++q) {
+    uint32_t p = q;
+    for (int j = finest; j >= 0; --j) {
+      out.ancestor_[static_cast<size_t>(j)].push_back(p);
+      if (j > 0) p = precincts.parent(j, p);
+    }
+  }
+  const std::vector<uint32_t> face_precinct = partition.FacePrecincts(finest);
+  std::vector<uint32_t> precinct_of_vertex;
+  for (uint32_t f : VertexBaseFaces(h)) precinct_of_vertex.push_back(face_precinct[f]);
+
+  // The complete remesh and its normals; the rd order of its packets.
+  std::vector<uint32_t> order;
+  for (uint32_t id : PacketOrder(header, Progression::kRd)) {
+    if (layout.IsChannel(id) || layout.IsTexture(id) || layout.IsOriginal(id)) continue;
+    order.push_back(id);
+  }
+  MW_ASSIGN_OR_RETURN(auto d, ProgressiveDecoder::Create(header));
+  for (uint32_t id : order) MW_RETURN_IF_ERROR(Add(*d, payloads, static_cast<int>(id)));
+  const std::vector<Vec3> full = d->Positions();
+  const std::vector<Vec3> normals = VertexNormals(full, d->Faces());
+  std::vector<float> complete_along(full.size());
+  for (size_t v = 0; v < full.size(); ++v) {
+    complete_along[v] = static_cast<float>(full[v].dot(normals[v]));
+  }
+  // State by state along the order.
+  out.rank_.assign(payloads.size(), -1);
+  out.error_.assign(order.size() + 1, std::vector<float>(out.finest_count_, 0.0f));
+  d->Reset();
+  for (size_t k = 0; k <= order.size(); ++k) {
+    if (k > 0) {
+      out.rank_[order[k - 1]] = static_cast<int>(k - 1);
+      MW_RETURN_IF_ERROR(Add(*d, payloads, static_cast<int>(order[k - 1])));
+    }
+    const std::vector<Vec3> got = d->Positions();
+    std::vector<float>& row = out.error_[k];
+    for (size_t v = 0; v < got.size(); ++v) {
+      const float e = std::abs(static_cast<float>(got[v].dot(normals[v])) - complete_along[v]);
+      float& cell = row[precinct_of_vertex[v]];
+      cell = std::max(cell, e);
+    }
+  }
+  // "Or any later state": the largest from k on, so that a precinct once
+  // within a tolerance stays within it.
+  for (size_t k = order.size(); k-- > 0;) {
+    for (uint32_t q = 0; q < out.finest_count_; ++q) {
+      out.error_[k][q] = std::max(out.error_[k][q], out.error_[k + 1][q]);
+    }
+  }
+  // Bitplane by bitplane, from the header's base mesh alone.
+  int top = layout.base_planes() - 1;
+  for (int j = 0; j < layout.levels(); ++j) top = std::max(top, layout.Top(j));
+  const int states = top + 2;
+  out.plane_error_.assign(static_cast<size_t>(states),
+                          std::vector<float>(out.finest_count_, 0.0f));
+  d->Reset();
+  for (int b = states - 1; b >= 0; --b) {
+    if (b < states - 1) {
+      for (int j = 0; j < layout.levels(); ++j) {
+        MW_RETURN_IF_ERROR(Add(*d, payloads, layout.Id(j, b)));
+      }
+      MW_RETURN_IF_ERROR(Add(*d, payloads, layout.BaseId(b)));
+    }
+    const std::vector<Vec3> got = d->Positions();
+    std::vector<float>& row = out.plane_error_[static_cast<size_t>(b)];
+    for (size_t v = 0; v < got.size(); ++v) {
+      const float e = std::abs(static_cast<float>(got[v].dot(normals[v])) - complete_along[v]);
+      float& cell = row[precinct_of_vertex[v]];
+      cell = std::max(cell, e);
+    }
+  }
+  for (size_t b = 1; b < out.plane_error_.size(); ++b) {
+    for (uint32_t q = 0; q < out.finest_count_; ++q) {
+      out.plane_error_[b][q] = std::max(out.plane_error_[b][q], out.plane_error_[b - 1][q]);
+    }
+  }
+  return out;
+}
+
+}  // namespace meshwave
