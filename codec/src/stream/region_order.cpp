@@ -74,18 +74,21 @@ struct ScreenErrorBounds {
     }
     if (measured && levels > 0 && measured->levels() == levels &&
         measured->finest_precincts() == precincts.count(levels - 1)) {
-      out.Allocate(*measured, header, layout, part_lengths, held);
+      out.Allocate(*measured, *view, region, header, layout, part_lengths, held);
     }
     return out;
   }
 
-  // With measured errors, each finest precinct the view sees takes the
-  // cheaper of two schedules that bring its error, in pixels, within the
-  // tolerance for good: the shortest prefix of the rd order, or the
-  // fewest bitplanes of every subband and the base refinement. A unit is
-  // needed when the schedule of some finest precinct below its own
-  // precinct holds it (a packet that travels whole: of any).
-  void Allocate(const StreamScreenErrors& m, const StreamHeader& h,
+  // With measured errors: each cluster of the surface the view sees (a
+  // base face) asks for the shortest prefix of the rd order, and for the
+  // fewest bitplanes of every subband and the base refinement, that keep
+  // its error, in pixels at its own depth, within the tolerance for good;
+  // its neighbours ask as much (their coefficients move its border). Each
+  // finest precinct then takes the cheaper of the two for all its
+  // clusters. A unit is needed when the schedule of some finest precinct
+  // below its own precinct holds it (a packet that travels whole: of any).
+  void Allocate(const StreamScreenErrors& m, const ViewRegion& view,
+                const Region& region, const StreamHeader& h,
                 const PacketLayout& layout,
                 std::span<const std::vector<uint32_t>> part_lengths,
                 const HeldUnits& held) {
@@ -99,6 +102,46 @@ struct ScreenErrorBounds {
       need_plane[static_cast<size_t>(j)].assign(n, std::numeric_limits<int>::max());
     }
     whole_plane = std::numeric_limits<int>::max();
+    constexpr int kNone = std::numeric_limits<int>::max();
+    std::vector<int> cluster_rank(m.clusters(), 0), cluster_plane(m.clusters(), kNone);
+    for (uint32_t c = 0; c < m.clusters(); ++c) {
+      // Only where the view sees the cluster's precinct at all.
+      if (!(pixels[static_cast<size_t>(finest)][m.Precinct(c)] > 0)) continue;
+      if (!(RegionWeight(region, m.centre(c), m.radius(c)) > 0)) continue;
+      const double px = PixelsPerUnit(view, m.centre(c), m.radius(c));
+      // Errors do not increase along either sequence: bisections.
+      int k = 0;
+      for (int hi = m.steps(); k < hi;) {
+        const int mid = (k + hi) / 2;
+        if (m.Error(mid, c) * px <= tolerance) {
+          hi = mid;
+        } else {
+          k = mid + 1;
+        }
+      }
+      int b = m.planes();  // the largest plane within the tolerance
+      for (int lo = 0; lo < b;) {
+        const int mid = (lo + b + 1) / 2;
+        if (m.PlaneError(mid, c) * px <= tolerance) {
+          lo = mid;
+        } else {
+          b = mid - 1;
+        }
+      }
+      if (k == 0 && b == m.planes()) continue;  // the header's base mesh does
+      auto ask = [&](uint32_t to) {
+        cluster_rank[to] = std::max(cluster_rank[to], k);
+        cluster_plane[to] = std::min(cluster_plane[to], b);
+      };
+      ask(c);
+      for (uint32_t n : m.Neighbours(c)) ask(n);
+    }
+    std::vector<int> rank(m.finest_precincts(), 0), plane(m.finest_precincts(), kNone);
+    for (uint32_t c = 0; c < m.clusters(); ++c) {
+      const uint32_t q = m.Precinct(c);
+      rank[q] = std::max(rank[q], cluster_rank[c]);
+      plane[q] = std::min(plane[q], cluster_plane[c]);
+    }
     // What packet id costs finest precinct q: its part of q's precinct, or
     // the packet; nothing once held.
     auto cost = [&](uint32_t id, uint32_t q) -> double {
@@ -113,46 +156,27 @@ struct ScreenErrorBounds {
       if (m.Rank(id) >= 0) geometry.push_back(id);
     }
     for (uint32_t q = 0; q < m.finest_precincts(); ++q) {
-      const double px = pixels[static_cast<size_t>(finest)][q];
-      if (!(px > 0)) continue;
-      // Errors do not increase along either sequence: bisections.
-      int k = 0;
-      for (int hi = m.steps(); k < hi;) {
-        const int mid = (k + hi) / 2;
-        if (m.Error(mid, q) * px <= tolerance) {
-          hi = mid;
-        } else {
-          k = mid + 1;
-        }
-      }
-      int b = m.planes();  // the largest plane within the tolerance
-      for (int lo = 0; lo < b;) {
-        const int mid = (lo + b + 1) / 2;
-        if (m.PlaneError(mid, q) * px <= tolerance) {
-          lo = mid;
-        } else {
-          b = mid - 1;
-        }
-      }
+      if (rank[q] == 0 && plane[q] == kNone) continue;
       double by_rank = 0, by_plane = 0;
       for (uint32_t id : geometry) {
-        if (m.Rank(id) < k) by_rank += cost(id, q);
-        if (layout.Bitplane(id) >= b) by_plane += cost(id, q);
+        if (m.Rank(id) < rank[q]) by_rank += cost(id, q);
+        if (layout.Bitplane(id) >= plane[q]) by_plane += cost(id, q);
       }
+      const bool ranked = by_rank <= by_plane;
       for (int j = 0; j < levels; ++j) {
         const uint32_t p = m.Ancestor(j, q);
-        if (by_rank <= by_plane) {
+        if (ranked) {
           int& n = need_rank[static_cast<size_t>(j)][p];
-          n = std::max(n, k);
+          n = std::max(n, rank[q]);
         } else {
           int& n = need_plane[static_cast<size_t>(j)][p];
-          n = std::min(n, b);
+          n = std::min(n, plane[q]);
         }
       }
-      if (by_rank <= by_plane) {
-        whole_rank = std::max(whole_rank, k);
+      if (ranked) {
+        whole_rank = std::max(whole_rank, rank[q]);
       } else {
-        whole_plane = std::min(whole_plane, b);
+        whole_plane = std::min(whole_plane, plane[q]);
       }
     }
     measured = &m;

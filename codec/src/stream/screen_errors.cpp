@@ -79,9 +79,30 @@ Result<StreamScreenErrors> StreamScreenErrors::Measure(const StreamHeader& heade
       if (j > 0) p = precincts.parent(j, p);
     }
   }
-  const std::vector<uint32_t> face_precinct = partition.FacePrecincts(finest);
-  std::vector<uint32_t> precinct_of_vertex;
-  for (uint32_t f : VertexBaseFaces(h)) precinct_of_vertex.push_back(face_precinct[f]);
+  // Clusters: base faces; their neighbours share a vertex with them.
+  const std::vector<uint32_t> cluster_of_vertex = VertexBaseFaces(h);
+  const auto& base_faces = h.faces(0);
+  const uint32_t clusters = static_cast<uint32_t>(base_faces.size());
+  out.cluster_precinct_ = partition.FacePrecincts(finest);
+  {
+    std::vector<std::vector<uint32_t>> faces_of(h.vertex_count(0));
+    for (uint32_t f = 0; f < clusters; ++f) {
+      for (uint32_t v : base_faces[f]) faces_of[v].push_back(f);
+    }
+    out.neighbour_first_.push_back(0);
+    for (uint32_t f = 0; f < clusters; ++f) {
+      std::vector<uint32_t> ring;
+      for (uint32_t v : base_faces[f]) {
+        for (uint32_t g : faces_of[v]) {
+          if (g != f) ring.push_back(g);
+        }
+      }
+      std::sort(ring.begin(), ring.end());
+      ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+      out.neighbours_.insert(out.neighbours_.end(), ring.begin(), ring.end());
+      out.neighbour_first_.push_back(static_cast<uint32_t>(out.neighbours_.size()));
+    }
+  }
 
   // The complete remesh and its normals; the rd order of its packets.
   std::vector<uint32_t> order;
@@ -97,9 +118,22 @@ Result<StreamScreenErrors> StreamScreenErrors::Measure(const StreamHeader& heade
   for (size_t v = 0; v < full.size(); ++v) {
     complete_along[v] = static_cast<float>(full[v].dot(normals[v]));
   }
+  {
+    std::vector<Vec3> lo(clusters, Vec3::Constant(INFINITY)), hi(clusters, Vec3::Constant(-INFINITY));
+    for (size_t v = 0; v < full.size(); ++v) {
+      const uint32_t c = cluster_of_vertex[v];
+      lo[c] = lo[c].cwiseMin(full[v]);
+      hi[c] = hi[c].cwiseMax(full[v]);
+    }
+    for (uint32_t c = 0; c < clusters; ++c) {
+      const bool empty = !(lo[c].x() <= hi[c].x());
+      out.centre_.push_back(empty ? Vec3::Zero() : Vec3(0.5 * (lo[c] + hi[c])));
+      out.radius_.push_back(empty ? 0.0 : 0.5 * (hi[c] - lo[c]).norm());
+    }
+  }
   // State by state along the order.
   out.rank_.assign(payloads.size(), -1);
-  out.error_.assign(order.size() + 1, std::vector<float>(out.finest_count_, 0.0f));
+  out.error_.assign(order.size() + 1, std::vector<float>(clusters, 0.0f));
   d->Reset();
   for (size_t k = 0; k <= order.size(); ++k) {
     if (k > 0) {
@@ -110,15 +144,15 @@ Result<StreamScreenErrors> StreamScreenErrors::Measure(const StreamHeader& heade
     std::vector<float>& row = out.error_[k];
     for (size_t v = 0; v < got.size(); ++v) {
       const float e = std::abs(static_cast<float>(got[v].dot(normals[v])) - complete_along[v]);
-      float& cell = row[precinct_of_vertex[v]];
+      float& cell = row[cluster_of_vertex[v]];
       cell = std::max(cell, e);
     }
   }
   // "Or any later state": the largest from k on, so that a precinct once
   // within a tolerance stays within it.
   for (size_t k = order.size(); k-- > 0;) {
-    for (uint32_t q = 0; q < out.finest_count_; ++q) {
-      out.error_[k][q] = std::max(out.error_[k][q], out.error_[k + 1][q]);
+    for (uint32_t c = 0; c < clusters; ++c) {
+      out.error_[k][c] = std::max(out.error_[k][c], out.error_[k + 1][c]);
     }
   }
   // Bitplane by bitplane, from the header's base mesh alone.
@@ -126,7 +160,7 @@ Result<StreamScreenErrors> StreamScreenErrors::Measure(const StreamHeader& heade
   for (int j = 0; j < layout.levels(); ++j) top = std::max(top, layout.Top(j));
   const int states = top + 2;
   out.plane_error_.assign(static_cast<size_t>(states),
-                          std::vector<float>(out.finest_count_, 0.0f));
+                          std::vector<float>(clusters, 0.0f));
   d->Reset();
   for (int b = states - 1; b >= 0; --b) {
     if (b < states - 1) {
@@ -139,13 +173,13 @@ Result<StreamScreenErrors> StreamScreenErrors::Measure(const StreamHeader& heade
     std::vector<float>& row = out.plane_error_[static_cast<size_t>(b)];
     for (size_t v = 0; v < got.size(); ++v) {
       const float e = std::abs(static_cast<float>(got[v].dot(normals[v])) - complete_along[v]);
-      float& cell = row[precinct_of_vertex[v]];
+      float& cell = row[cluster_of_vertex[v]];
       cell = std::max(cell, e);
     }
   }
   for (size_t b = 1; b < out.plane_error_.size(); ++b) {
-    for (uint32_t q = 0; q < out.finest_count_; ++q) {
-      out.plane_error_[b][q] = std::max(out.plane_error_[b][q], out.plane_error_[b - 1][q]);
+    for (uint32_t c = 0; c < clusters; ++c) {
+      out.plane_error_[b][c] = std::max(out.plane_error_[b][c], out.plane_error_[b - 1][c]);
     }
   }
   return out;

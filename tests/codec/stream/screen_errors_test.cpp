@@ -64,21 +64,39 @@ TEST(ScreenErrorsTest, NothingIsLeftWithEveryPacketAndMostWithNone) {
   }
   EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), static_cast<long>(seen.size()));
   ASSERT_GT(m.errors.planes(), 2);
+  // One cluster per base face, each in its base face's finest precinct,
+  // with the faces around it as neighbours.
+  ASSERT_EQ(m.errors.clusters(), s.header.base.face_count);
   double at_none = 0;
-  for (uint32_t q = 0; q < m.errors.finest_precincts(); ++q) {
-    EXPECT_EQ(m.errors.Error(m.errors.steps(), q), 0) << q;
-    EXPECT_EQ(m.errors.PlaneError(0, q), 0) << q;
+  for (uint32_t c = 0; c < m.errors.clusters(); ++c) {
+    EXPECT_LT(m.errors.Precinct(c), m.errors.finest_precincts());
+    // An icosahedron subdivided twice: 9 or 12 faces around a face.
+    EXPECT_GE(m.errors.Neighbours(c).size(), 9u) << c;
+    EXPECT_LE(m.errors.Neighbours(c).size(), 12u) << c;
+    for (uint32_t n : m.errors.Neighbours(c)) {
+      EXPECT_NE(n, c);
+      const auto back = m.errors.Neighbours(n);
+      EXPECT_NE(std::find(back.begin(), back.end(), c), back.end()) << c << " " << n;
+    }
+    // On the bumped unit sphere.
+    EXPECT_NEAR(m.errors.centre(c).norm(), 1.0, 0.1) << c;
+    EXPECT_GT(m.errors.radius(c), 0.05) << c;
+    EXPECT_LT(m.errors.radius(c), 0.3) << c;
+    EXPECT_EQ(m.errors.Error(m.errors.steps(), c), 0) << c;
+    EXPECT_EQ(m.errors.PlaneError(0, c), 0) << c;
     for (int k = 0; k < m.errors.steps(); ++k) {
-      EXPECT_GE(m.errors.Error(k, q), m.errors.Error(k + 1, q)) << k << "/" << q;
+      EXPECT_GE(m.errors.Error(k, c), m.errors.Error(k + 1, c)) << k << "/" << c;
     }
     for (int b = 0; b < m.errors.planes(); ++b) {
-      EXPECT_LE(m.errors.PlaneError(b, q), m.errors.PlaneError(b + 1, q)) << b << "/" << q;
+      EXPECT_LE(m.errors.PlaneError(b, c), m.errors.PlaneError(b + 1, c)) << b << "/" << c;
     }
-    // Nothing but the base mesh: somewhere off in every precinct.
-    EXPECT_GT(m.errors.Error(0, q), 0) << q;
-    EXPECT_GT(m.errors.PlaneError(m.errors.planes(), q), 0) << q;
-    at_none = std::max(at_none, m.errors.Error(0, q));
-    // Ancestors as the precincts' parents give them.
+    // Nothing but the base mesh: somewhere off in every cluster.
+    EXPECT_GT(m.errors.Error(0, c), 0) << c;
+    EXPECT_GT(m.errors.PlaneError(m.errors.planes(), c), 0) << c;
+    at_none = std::max(at_none, m.errors.Error(0, c));
+  }
+  // Ancestors as the precincts' parents give them.
+  for (uint32_t q = 0; q < m.errors.finest_precincts(); ++q) {
     for (int j = finest; j > 0; --j) {
       EXPECT_EQ(m.precincts.parent(j, m.errors.Ancestor(j, q)), m.errors.Ancestor(j - 1, q));
     }

@@ -85,12 +85,14 @@ Result<std::vector<uint32_t>> PartLengths(const HeldUnits& units, uint32_t id,
 // finest subband, a quarter to the next, ..., the base refinement the
 // rest), with what they need; never the original layer (the tolerance is
 // measured against the remesh). Texture levels are sent as above.
-// With `measured` (meshwave/screen_errors.h, of the same stream), a unit of
-// subband j, bitplane b, precinct p is needed instead when the measured
-// error of the state before it (every plane above b) times its precinct's
-// pixels per unit exceeds the whole tolerance: measured errors hold every
-// level's share, so no split. `meshwave view-rd` measures what such
-// requests bring.
+// With `measured` (meshwave/screen_errors.h, of the same stream), units
+// are judged by measured errors instead: each base face the view sees asks
+// for the shortest rd prefix and for the fewest bitplanes that keep its
+// measured error, in pixels at its own depth, within the tolerance (its
+// neighbouring faces ask as much); each finest precinct takes the cheaper
+// of the two for all its faces, and a unit is needed when the schedule of
+// some finest precinct within its precinct holds it. `meshwave view-rd`
+// measures what such requests bring.
 std::vector<StreamUnit> RegionOrder(
     const StreamHeader& header, const StreamPrecincts& precincts,
     std::span<const std::vector<uint32_t>> part_lengths, const Region& region,

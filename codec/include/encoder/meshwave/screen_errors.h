@@ -2,9 +2,10 @@
 // uniform rd order and bitplane by bitplane, measured in each precinct:
 // what a view with a screen-space error (RegionOrder,
 // Region::screen_error_px) judges units by when the server has measured
-// it, instead of a bound. Each precinct stops at its own point of either
-// sequence: where the view sees it coarse, early; where it sees it large,
-// late. Measured by decoding, so the base mesh's error and what the
+// it, instead of a bound. Kept per base face, finer than the precincts, so
+// that a view judges each part of a precinct at its own depth; each
+// precinct then stops at its own point of either sequence: where the view
+// sees it coarse, early; where it sees it large, late. Measured by decoding, so the base mesh's error and what the
 // transform carries from level to level are in it.
 #ifndef MESHWAVE_SCREEN_ERRORS_H_
 #define MESHWAVE_SCREEN_ERRORS_H_
@@ -14,6 +15,7 @@
 #include <string_view>
 #include <vector>
 
+#include "meshwave/mesh.h"
 #include "meshwave/region_order.h"
 #include "meshwave/status.h"
 #include "meshwave/stream_header.h"
@@ -29,9 +31,21 @@ class StreamScreenErrors {
                                             std::span<const std::string_view> payloads,
                                             const StreamPrecincts& precincts);
 
-  // The subbands measured; errors are kept per precinct of the finest one.
+  // The subbands measured.
   int levels() const { return static_cast<int>(ancestor_.size()); }
   uint32_t finest_precincts() const { return finest_count_; }
+  // Errors are kept per cluster: the finest vertices of one base face.
+  uint32_t clusters() const { return static_cast<uint32_t>(cluster_precinct_.size()); }
+  // The ball around cluster c's vertices in the complete remesh.
+  const Vec3& centre(uint32_t c) const { return centre_[c]; }
+  double radius(uint32_t c) const { return radius_[c]; }
+  // The finest precinct cluster c lies in.
+  uint32_t Precinct(uint32_t c) const { return cluster_precinct_[c]; }
+  // The clusters whose base faces share a vertex with c's (c excluded):
+  // the vertices near c's border move with their coefficients too.
+  std::span<const uint32_t> Neighbours(uint32_t c) const {
+    return {neighbours_.data() + neighbour_first_[c], neighbours_.data() + neighbour_first_[c + 1]};
+  }
   // The remesh's packets in the rd order (PacketOrder, Progression::kRd):
   // steps() of them; state k holds the first k.
   int steps() const { return static_cast<int>(error_.size()) - 1; }
@@ -39,16 +53,16 @@ class StreamScreenErrors {
   // it); -1 for a packet not in it (texture, channel, original layer).
   int Rank(uint32_t id) const { return id < rank_.size() ? rank_[id] : -1; }
   // The largest distance, along the complete remesh's vertex normals,
-  // between it and state k or any later state, over the finest vertices in
-  // the base faces of finest precinct q (k in [0, steps()]).
-  double Error(int k, uint32_t q) const { return error_[static_cast<size_t>(k)][q]; }
+  // between it and state k or any later state, over cluster c's vertices
+  // (k in [0, steps()]).
+  double Error(int k, uint32_t c) const { return error_[static_cast<size_t>(k)][c]; }
   // The same along bitplanes: state b holds every detail packet of
   // bitplane >= b and every base refinement plane >= b (b in [0,
   // planes()]; planes(): the header's base mesh alone); the largest
   // distance in state b or any state of more planes.
   int planes() const { return static_cast<int>(plane_error_.size()) - 1; }
-  double PlaneError(int b, uint32_t q) const {
-    return plane_error_[static_cast<size_t>(b)][q];
+  double PlaneError(int b, uint32_t c) const {
+    return plane_error_[static_cast<size_t>(b)][c];
   }
   // The precinct of subband j that finest precinct q lies in.
   uint32_t Ancestor(int j, uint32_t q) const {
@@ -56,8 +70,12 @@ class StreamScreenErrors {
   }
 
  private:
-  std::vector<std::vector<float>> error_;  // [k][q], non-increasing in k
-  std::vector<std::vector<float>> plane_error_;  // [b][q], non-decreasing in b
+  std::vector<std::vector<float>> error_;        // [k][c], non-increasing in k
+  std::vector<std::vector<float>> plane_error_;  // [b][c], non-decreasing in b
+  std::vector<Vec3> centre_;                     // [c]
+  std::vector<double> radius_;                   // [c]
+  std::vector<uint32_t> cluster_precinct_;       // [c]
+  std::vector<uint32_t> neighbour_first_, neighbours_;
   std::vector<int> rank_;                  // [id]
   std::vector<std::vector<uint32_t>> ancestor_;  // [j][q]
   uint32_t finest_count_ = 0;
