@@ -1,9 +1,12 @@
 #include "meshwave/region_order.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <queue>
+#include <span>
 #include <utility>
 #include <variant>
 
@@ -74,7 +77,7 @@ struct ScreenErrorBounds {
     }
     if (measured && levels > 0 && measured->levels() == levels &&
         measured->finest_precincts() == precincts.count(levels - 1)) {
-      out.Allocate(*measured, *view, region, header, layout, part_lengths, held);
+      out.Allocate(*measured, *view, header, layout, part_lengths, held);
     }
     return out;
   }
@@ -88,7 +91,7 @@ struct ScreenErrorBounds {
   // clusters. A unit is needed when the schedule of some finest precinct
   // below its own precinct holds it (a packet that travels whole: of any).
   void Allocate(const StreamScreenErrors& m, const ViewRegion& view,
-                const Region& region, const StreamHeader& h,
+                const StreamHeader& h,
                 const PacketLayout& layout,
                 std::span<const std::vector<uint32_t>> part_lengths,
                 const HeldUnits& held) {
@@ -103,17 +106,39 @@ struct ScreenErrorBounds {
     }
     whole_plane = std::numeric_limits<int>::max();
     constexpr int kNone = std::numeric_limits<int>::max();
-    std::vector<int> cluster_rank(m.clusters(), 0), cluster_plane(m.clusters(), kNone);
+    // Per finest precinct: the longest rd prefix and the lowest plane its
+    // clusters, or the clusters around them, ask for.
+    std::vector<int> rank(m.finest_precincts(), 0), plane(m.finest_precincts(), kNone);
+    // RegionWeight's cone test and PixelsPerUnit without a trigonometric
+    // call per cluster: a ball is seen when the cosine of the angle to its
+    // centre is at least cos(cone + its angular radius).
+    const Vec3 forward = view.direction.normalized();
+    const double tan_half = std::tan(view.fov_degrees * std::numbers::pi / 360);
+    const double aspect = static_cast<double>(view.width) / static_cast<double>(view.height);
+    const double cone = std::atan(tan_half * std::sqrt(1 + aspect * aspect));
+    const double cos_cone = std::cos(cone), sin_cone = std::sin(cone);
+    const double half_height = 0.5 * static_cast<double>(view.height);
+    // The error allowed at depth z is tolerance / px(z) = z * per_depth.
+    const double per_depth = tolerance * tan_half / half_height;
     for (uint32_t c = 0; c < m.clusters(); ++c) {
       // Only where the view sees the cluster's precinct at all.
       if (!(pixels[static_cast<size_t>(finest)][m.Precinct(c)] > 0)) continue;
-      if (!(RegionWeight(region, m.centre(c), m.radius(c)) > 0)) continue;
-      const double px = PixelsPerUnit(view, m.centre(c), m.radius(c));
+      const Vec3 to = m.centre(c) - view.eye;
+      const double r = m.radius(c), along = to.dot(forward);
+      const double distance2 = to.squaredNorm();
+      if (distance2 > r * r) {
+        // along >= cos_cone sqrt(d^2 - r^2) - sin_cone r, squared.
+        const double lhs = along + sin_cone * r;
+        if (lhs < 0 || lhs * lhs < cos_cone * cos_cone * (distance2 - r * r)) continue;
+      }
+      const double depth = along - r;
+      const double allowed = depth > 0 ? depth * per_depth : 0;
+      if (m.Error(0, c) <= allowed) continue;  // the header's base mesh does
       // Errors do not increase along either sequence: bisections.
       int k = 0;
       for (int hi = m.steps(); k < hi;) {
         const int mid = (k + hi) / 2;
-        if (m.Error(mid, c) * px <= tolerance) {
+        if (m.Error(mid, c) <= allowed) {
           hi = mid;
         } else {
           k = mid + 1;
@@ -122,25 +147,19 @@ struct ScreenErrorBounds {
       int b = m.planes();  // the largest plane within the tolerance
       for (int lo = 0; lo < b;) {
         const int mid = (lo + b + 1) / 2;
-        if (m.PlaneError(mid, c) * px <= tolerance) {
+        if (m.PlaneError(mid, c) <= allowed) {
           lo = mid;
         } else {
           b = mid - 1;
         }
       }
-      if (k == 0 && b == m.planes()) continue;  // the header's base mesh does
-      auto ask = [&](uint32_t to) {
-        cluster_rank[to] = std::max(cluster_rank[to], k);
-        cluster_plane[to] = std::min(cluster_plane[to], b);
-      };
-      ask(c);
-      for (uint32_t n : m.Neighbours(c)) ask(n);
-    }
-    std::vector<int> rank(m.finest_precincts(), 0), plane(m.finest_precincts(), kNone);
-    for (uint32_t c = 0; c < m.clusters(); ++c) {
-      const uint32_t q = m.Precinct(c);
-      rank[q] = std::max(rank[q], cluster_rank[c]);
-      plane[q] = std::min(plane[q], cluster_plane[c]);
+      const uint32_t own = m.Precinct(c);
+      rank[own] = std::max(rank[own], k);
+      plane[own] = std::min(plane[own], b);
+      for (uint32_t q : m.NeighbourPrecincts(c)) {
+        rank[q] = std::max(rank[q], k);
+        plane[q] = std::min(plane[q], b);
+      }
     }
     // What packet id costs finest precinct q: its part of q's precinct, or
     // the packet; nothing once held.
@@ -370,26 +389,17 @@ std::vector<StreamUnit> RegionOrder(
                             region, levels, measured);
   // By the screen-space error, when one is asked.
   std::vector<char> needed(count, 1);
-  std::vector<std::vector<uint32_t>> needs_of(count);
   std::vector<double> gain(count, 0), cost(count, 0);
   std::vector<char> in_region(count, 0);  // before every other unit
   std::vector<uint32_t> pending(count, 0);
-  std::vector<std::vector<uint32_t>> dependants(count);
-  auto units_of = [&](uint32_t id, int jj, const StreamUnit& of, int j) {
-    // The units of packet `id` that `of` (of subband j) needs: its
-    // precinct's part (or the parent precinct's), else all of them.
-    std::vector<uint32_t> out;
-    const uint32_t first = first_unit[id];
-    const uint32_t last =
-        id + 1 < n ? first_unit[id + 1] : static_cast<uint32_t>(count);
-    if (last - first <= 1 || of.whole()) {
-      for (uint32_t k = first; k < last; ++k) out.push_back(k);
-    } else {
-      const uint32_t p = jj == j ? of.part : precincts.parent(j, of.part);
-      out.push_back(first + p);
-    }
-    return out;
-  };
+  // Dependencies as edges (d, k): unit k needs unit d; generated in
+  // increasing k, so each unit's needs are one run of `edges`.
+  std::vector<std::pair<uint32_t, uint32_t>> edges;
+  std::vector<uint32_t> needs_first(count + 1, 0);
+  std::vector<uint64_t> packet_total(n, 0);  // a split packet's part bytes
+  for (uint32_t id = 0; id < n && id < part_lengths.size(); ++id) {
+    for (uint32_t l : part_lengths[id]) packet_total[id] += l;
+  }
   for (uint32_t k = 0; k < count; ++k) {
     const StreamUnit& u = units[k];
     const uint32_t bytes =
@@ -412,8 +422,7 @@ std::vector<StreamUnit> RegionOrder(
       in_region[k] = subband_inside[static_cast<size_t>(j)];
       if (screen.active) needed[k] = screen.PacketNeeded(u.id, j, b);
     } else {
-      uint64_t total = 0;
-      for (uint32_t l : part_lengths[u.id]) total += l;
+      const uint64_t total = packet_total[u.id];
       reduction *= total > 0
                        ? static_cast<double>(bytes) / static_cast<double>(total)
                        : 0;
@@ -427,33 +436,58 @@ std::vector<StreamUnit> RegionOrder(
     const double g = w * reduction;
     gain[k] = g > 0 ? g : 0;
     cost[k] = bytes == 0 ? 0 : bytes + 4.0;
-    std::vector<std::pair<int, int>> needs;  // (packet, its subband)
+    std::array<std::pair<int, int>, 2> needs{};  // (packet, its subband)
+    int need_count = 0;
     if (layout.IsTexture(u.id)) {
       // A map's levels go coarsest first, as in the rd order.
-      if (b > 0) needs.push_back({static_cast<int>(u.id) - 1, -1});
+      if (b > 0) needs[need_count++] = {static_cast<int>(u.id) - 1, -1};
     } else if (j < 0) {
-      needs.push_back({layout.BaseId(b + 1), -1});
+      needs[need_count++] = {layout.BaseId(b + 1), -1};
     } else {
-      needs.push_back({layout.Id(j, b + 1), j});
+      needs[need_count++] = {layout.Id(j, b + 1), j};
       if (header.coder == StreamCoder::k3xC && j > 0)
-        needs.push_back({layout.Id(j - 1, b), j - 1});
+        needs[need_count++] = {layout.Id(j - 1, b), j - 1};
     }
-    for (auto [id, jj] : needs) {
+    auto need = [&](uint32_t d) {
+      if (held.Has(units[d])) return;
+      ++pending[k];
+      edges.push_back({d, k});
+    };
+    for (int i = 0; i < need_count; ++i) {
+      const auto [id, jj] = needs[static_cast<size_t>(i)];
       if (id < 0 || !wanted[static_cast<uint32_t>(id)]) continue;
+      // The units of packet `id` that u needs: its precinct's part (or
+      // the parent precinct's), else all of them.
       const auto q = static_cast<uint32_t>(id);
-      for (uint32_t d : units_of(q, jj, u, j)) {
-        if (held.Has(units[d])) continue;
-        ++pending[k];
-        dependants[d].push_back(k);
-        needs_of[k].push_back(d);
+      const uint32_t first = first_unit[q];
+      const uint32_t last =
+          q + 1 < n ? first_unit[q + 1] : static_cast<uint32_t>(count);
+      if (last - first <= 1 || u.whole()) {
+        for (uint32_t d = first; d < last; ++d) need(d);
+      } else {
+        need(first + (jj == j ? u.part : precincts.parent(j, u.part)));
       }
     }
+    needs_first[k + 1] = static_cast<uint32_t>(edges.size());
   }
+  // Each unit's dependants, in increasing order (a counting sort of the
+  // edges by d keeps their order of k).
+  std::vector<uint32_t> dependants_first(count + 1, 0), dependants(edges.size());
+  for (const auto& e : edges) ++dependants_first[e.first + 1];
+  for (size_t k = 0; k < count; ++k) dependants_first[k + 1] += dependants_first[k];
+  {
+    std::vector<uint32_t> at(dependants_first.begin(), dependants_first.end() - 1);
+    for (const auto& e : edges) dependants[at[e.first]++] = e.second;
+  }
+  auto dependants_of = [&](uint32_t k) {
+    return std::span<const uint32_t>(dependants.data() + dependants_first[k],
+                                     dependants.data() + dependants_first[k + 1]);
+  };
   // What a needed unit needs is needed too (dependencies have lower
   // indices: one pass from the end). Whatever is not needed is not sent.
   for (uint32_t k = static_cast<uint32_t>(count); k-- > 0;) {
     if (needed[k]) {
-      for (uint32_t d : needs_of[k]) needed[d] = 1;
+      for (uint32_t e = needs_first[k]; e < needs_first[k + 1]; ++e) needed[edges[e].first] = 1;
     }
   }
   // A unit's value: the best gain per byte of a chain of units starting
@@ -469,7 +503,7 @@ std::vector<StreamUnit> RegionOrder(
   };
   std::vector<double> chain_gain(gain), chain_cost(cost), value(count, 0);
   for (uint32_t k = static_cast<uint32_t>(count); k-- > 0;) {
-    for (uint32_t d : dependants[k]) {
+    for (uint32_t d : dependants_of(k)) {
       const double g = gain[k] + chain_gain[d], c = cost[k] + chain_cost[d];
       if (ratio(g, c) > ratio(chain_gain[k], chain_cost[k])) {
         chain_gain[k] = g;
@@ -491,11 +525,12 @@ std::vector<StreamUnit> RegionOrder(
     if (needed[k] && !held.Has(units[k]) && pending[k] == 0) ready.push(k);
   }
   std::vector<StreamUnit> order;
+  order.reserve(count);
   while (!ready.empty()) {
     const uint32_t k = ready.top();
     ready.pop();
     order.push_back(units[k]);
-    for (uint32_t d : dependants[k]) {
+    for (uint32_t d : dependants_of(k)) {
       if (--pending[d] == 0 && needed[d]) ready.push(d);
     }
   }

@@ -16,6 +16,10 @@
 namespace meshwave {
 namespace {
 
+// Coefficients of the finest subband per cluster at least: 1, a base face
+// each (coarser clusters judge a close camera's view far less well).
+constexpr uint32_t kClusterCoefficients = 1;
+
 std::vector<Vec3> VertexNormals(const std::vector<Vec3>& positions,
                                 const std::vector<Face>& faces) {
   std::vector<Vec3> normals(positions.size(), Vec3::Zero());
@@ -79,27 +83,52 @@ Result<StreamScreenErrors> StreamScreenErrors::Measure(const StreamHeader& heade
       if (j > 0) p = precincts.parent(j, p);
     }
   }
-  // Clusters: base faces; their neighbours share a vertex with them.
-  const std::vector<uint32_t> cluster_of_vertex = VertexBaseFaces(h);
+  // Clusters: runs of base faces in the precincts' order, cut where the
+  // finest precinct changes or a run holds kClusterCoefficients of the
+  // finest subband.
   const auto& base_faces = h.faces(0);
-  const uint32_t clusters = static_cast<uint32_t>(base_faces.size());
-  out.cluster_precinct_ = partition.FacePrecincts(finest);
+  const std::vector<uint32_t> face_precinct = partition.FacePrecincts(finest);
+  std::vector<uint32_t> held_by_face(base_faces.size(), 0);
+  AddCoefficientsPerBaseFace(h, finest, held_by_face);
+  std::vector<uint32_t> cluster_of_face(base_faces.size(), 0);
   {
-    std::vector<std::vector<uint32_t>> faces_of(h.vertex_count(0));
-    for (uint32_t f = 0; f < clusters; ++f) {
-      for (uint32_t v : base_faces[f]) faces_of[v].push_back(f);
+    uint32_t in_run = 0;
+    for (size_t i = 0; i < partition.face_order.size(); ++i) {
+      const uint32_t f = partition.face_order[i];
+      if (i == 0 || face_precinct[f] != out.cluster_precinct_.back() ||
+          in_run >= kClusterCoefficients) {
+        out.cluster_precinct_.push_back(face_precinct[f]);
+        in_run = 0;
+      }
+      cluster_of_face[f] = static_cast<uint32_t>(out.cluster_precinct_.size() - 1);
+      in_run += held_by_face[f];
     }
-    out.neighbour_first_.push_back(0);
-    for (uint32_t f = 0; f < clusters; ++f) {
-      std::vector<uint32_t> ring;
+  }
+  const uint32_t clusters = static_cast<uint32_t>(out.cluster_precinct_.size());
+  std::vector<uint32_t> cluster_of_vertex = VertexBaseFaces(h);
+  for (uint32_t& c : cluster_of_vertex) c = cluster_of_face[c];
+  {
+    std::vector<std::vector<uint32_t>> clusters_of(h.vertex_count(0));
+    for (uint32_t f = 0; f < base_faces.size(); ++f) {
+      for (uint32_t v : base_faces[f]) clusters_of[v].push_back(cluster_of_face[f]);
+    }
+    // The finest precincts of the clusters around each cluster, but its
+    // own: within a precinct every cluster's schedule counts anyway.
+    std::vector<std::vector<uint32_t>> ring(clusters);
+    for (uint32_t f = 0; f < base_faces.size(); ++f) {
+      const uint32_t c = cluster_of_face[f];
       for (uint32_t v : base_faces[f]) {
-        for (uint32_t g : faces_of[v]) {
-          if (g != f) ring.push_back(g);
+        for (uint32_t g : clusters_of[v]) {
+          const uint32_t q = out.cluster_precinct_[g];
+          if (q != out.cluster_precinct_[c]) ring[c].push_back(q);
         }
       }
-      std::sort(ring.begin(), ring.end());
-      ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
-      out.neighbours_.insert(out.neighbours_.end(), ring.begin(), ring.end());
+    }
+    out.neighbour_first_.push_back(0);
+    for (auto& r : ring) {
+      std::sort(r.begin(), r.end());
+      r.erase(std::unique(r.begin(), r.end()), r.end());
+      out.neighbours_.insert(out.neighbours_.end(), r.begin(), r.end());
       out.neighbour_first_.push_back(static_cast<uint32_t>(out.neighbours_.size()));
     }
   }
@@ -133,7 +162,7 @@ Result<StreamScreenErrors> StreamScreenErrors::Measure(const StreamHeader& heade
   }
   // State by state along the order.
   out.rank_.assign(payloads.size(), -1);
-  out.error_.assign(order.size() + 1, std::vector<float>(clusters, 0.0f));
+  std::vector<std::vector<float>> error(order.size() + 1, std::vector<float>(clusters, 0.0f));
   d->Reset();
   for (size_t k = 0; k <= order.size(); ++k) {
     if (k > 0) {
@@ -141,7 +170,7 @@ Result<StreamScreenErrors> StreamScreenErrors::Measure(const StreamHeader& heade
       MW_RETURN_IF_ERROR(Add(*d, payloads, static_cast<int>(order[k - 1])));
     }
     const std::vector<Vec3> got = d->Positions();
-    std::vector<float>& row = out.error_[k];
+    std::vector<float>& row = error[k];
     for (size_t v = 0; v < got.size(); ++v) {
       const float e = std::abs(static_cast<float>(got[v].dot(normals[v])) - complete_along[v]);
       float& cell = row[cluster_of_vertex[v]];
@@ -152,14 +181,14 @@ Result<StreamScreenErrors> StreamScreenErrors::Measure(const StreamHeader& heade
   // within a tolerance stays within it.
   for (size_t k = order.size(); k-- > 0;) {
     for (uint32_t c = 0; c < clusters; ++c) {
-      out.error_[k][c] = std::max(out.error_[k][c], out.error_[k + 1][c]);
+      error[k][c] = std::max(error[k][c], error[k + 1][c]);
     }
   }
   // Bitplane by bitplane, from the header's base mesh alone.
   int top = layout.base_planes() - 1;
   for (int j = 0; j < layout.levels(); ++j) top = std::max(top, layout.Top(j));
   const int states = top + 2;
-  out.plane_error_.assign(static_cast<size_t>(states),
+  std::vector<std::vector<float>> plane_error(static_cast<size_t>(states),
                           std::vector<float>(clusters, 0.0f));
   d->Reset();
   for (int b = states - 1; b >= 0; --b) {
@@ -170,16 +199,26 @@ Result<StreamScreenErrors> StreamScreenErrors::Measure(const StreamHeader& heade
       MW_RETURN_IF_ERROR(Add(*d, payloads, layout.BaseId(b)));
     }
     const std::vector<Vec3> got = d->Positions();
-    std::vector<float>& row = out.plane_error_[static_cast<size_t>(b)];
+    std::vector<float>& row = plane_error[static_cast<size_t>(b)];
     for (size_t v = 0; v < got.size(); ++v) {
       const float e = std::abs(static_cast<float>(got[v].dot(normals[v])) - complete_along[v]);
       float& cell = row[cluster_of_vertex[v]];
       cell = std::max(cell, e);
     }
   }
-  for (size_t b = 1; b < out.plane_error_.size(); ++b) {
+  for (size_t b = 1; b < plane_error.size(); ++b) {
     for (uint32_t c = 0; c < clusters; ++c) {
-      out.plane_error_[b][c] = std::max(out.plane_error_[b][c], out.plane_error_[b - 1][c]);
+      plane_error[b][c] = std::max(plane_error[b][c], plane_error[b - 1][c]);
+    }
+  }
+  out.steps_ = static_cast<int>(order.size());
+  out.planes_ = states - 1;
+  out.error_.resize(static_cast<size_t>(clusters) * error.size());
+  out.plane_error_.resize(static_cast<size_t>(clusters) * plane_error.size());
+  for (uint32_t c = 0; c < clusters; ++c) {
+    for (size_t k = 0; k < error.size(); ++k) out.error_[c * error.size() + k] = error[k][c];
+    for (size_t b = 0; b < plane_error.size(); ++b) {
+      out.plane_error_[c * plane_error.size() + b] = plane_error[b][c];
     }
   }
   return out;

@@ -41,28 +41,31 @@ class StreamScreenErrors {
   double radius(uint32_t c) const { return radius_[c]; }
   // The finest precinct cluster c lies in.
   uint32_t Precinct(uint32_t c) const { return cluster_precinct_[c]; }
-  // The clusters whose base faces share a vertex with c's (c excluded):
-  // the vertices near c's border move with their coefficients too.
-  std::span<const uint32_t> Neighbours(uint32_t c) const {
+  // The finest precincts, other than c's own, of the clusters whose base
+  // faces share a vertex with c's: the vertices near c's border move with
+  // their coefficients too.
+  std::span<const uint32_t> NeighbourPrecincts(uint32_t c) const {
     return {neighbours_.data() + neighbour_first_[c], neighbours_.data() + neighbour_first_[c + 1]};
   }
   // The remesh's packets in the rd order (PacketOrder, Progression::kRd):
   // steps() of them; state k holds the first k.
-  int steps() const { return static_cast<int>(error_.size()) - 1; }
+  int steps() const { return steps_; }
   // Packet id's place in that order (state Rank + 1 is the first that holds
   // it); -1 for a packet not in it (texture, channel, original layer).
   int Rank(uint32_t id) const { return id < rank_.size() ? rank_[id] : -1; }
   // The largest distance, along the complete remesh's vertex normals,
   // between it and state k or any later state, over cluster c's vertices
   // (k in [0, steps()]).
-  double Error(int k, uint32_t c) const { return error_[static_cast<size_t>(k)][c]; }
+  double Error(int k, uint32_t c) const {
+    return error_[static_cast<size_t>(c) * static_cast<size_t>(steps_ + 1) + static_cast<size_t>(k)];
+  }
   // The same along bitplanes: state b holds every detail packet of
   // bitplane >= b and every base refinement plane >= b (b in [0,
   // planes()]; planes(): the header's base mesh alone); the largest
   // distance in state b or any state of more planes.
-  int planes() const { return static_cast<int>(plane_error_.size()) - 1; }
+  int planes() const { return planes_; }
   double PlaneError(int b, uint32_t c) const {
-    return plane_error_[static_cast<size_t>(b)][c];
+    return plane_error_[static_cast<size_t>(c) * static_cast<size_t>(planes_ + 1) + static_cast<size_t>(b)];
   }
   // The precinct of subband j that finest precinct q lies in.
   uint32_t Ancestor(int j, uint32_t q) const {
@@ -70,8 +73,10 @@ class StreamScreenErrors {
   }
 
  private:
-  std::vector<std::vector<float>> error_;        // [k][c], non-increasing in k
-  std::vector<std::vector<float>> plane_error_;  // [b][c], non-decreasing in b
+  // Cluster by cluster (a request's bisections stay in one cache line or
+  // two): [c][k], non-increasing in k; [c][b], non-decreasing in b.
+  std::vector<float> error_, plane_error_;
+  int steps_ = 0, planes_ = 0;
   std::vector<Vec3> centre_;                     // [c]
   std::vector<double> radius_;                   // [c]
   std::vector<uint32_t> cluster_precinct_;       // [c]
