@@ -1,12 +1,14 @@
 // Fuzz target: the region parameters a client sends (meshwave/region.h),
 // as the HTTP query and the WebSocket messages carry them. The first byte
 // picks the parser; a region that parses must format to text that parses
-// back to it, and weigh every ball in [0, 1].
+// back to it, weigh every ball in [0, 1] and, for a view, give every ball
+// a scale that is a number of pixels per unit length or +infinity.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
 #include <string_view>
+#include <variant>
 
 #include "meshwave/region_text.h"
 
@@ -41,6 +43,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     for (double r : {0.0, 1e-9, 1.0, 1e12}) {
       const double w = RegionWeight(*region, c, r);
       Check(std::isfinite(w) && w >= 0 && w <= 1);
+      // A view's scale for screen-space errors: a number of pixels per unit
+      // length, +infinity where the ball reaches the eye's plane.
+      if (const auto* view = std::get_if<ViewRegion>(&region->shape)) {
+        const double px = PixelsPerUnit(*view, c, r);
+        Check(!std::isnan(px) && px >= 0);
+      }
     }
   }
   return 0;
