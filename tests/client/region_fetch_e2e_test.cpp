@@ -24,6 +24,15 @@ using testing::RunCli;
 using testing::ServerProcess;
 using testing::TempDir;
 
+// Runs the CLI, expecting success and a JSON FetchReport on stdout.
+proto::FetchReport RunFetch(const std::vector<std::string>& args) {
+  const auto r = RunCli(args);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  proto::FetchReport report;
+  EXPECT_TRUE(google::protobuf::util::JsonStringToMessage(r.out, &report).ok()) << r.out;
+  return report;
+}
+
 class RegionFetchTest : public ::testing::TestWithParam<std::string> {
  protected:
   static void SetUpTestSuite() {
@@ -67,15 +76,8 @@ TEST_P(RegionFetchTest, RegionsAndViewsContinueFromTheStateAndEndInTheFullMesh) 
   const std::string state = (work / "state.mwv").string();
   const std::string sphere = "0.3,0,0,0.4";
   const std::string view = "-3,0,0,1,0,0,40,640,480";
-  auto run = [](const std::vector<std::string>& args) {
-    const auto r = RunCli(args);
-    EXPECT_EQ(r.exit_code, 0) << r.err;
-    proto::FetchReport report;
-    EXPECT_TRUE(google::protobuf::util::JsonStringToMessage(r.out, &report).ok()) << r.out;
-    return report;
-  };
   proto::FetchReport first =
-      run({"fetch", Url(), "--region", sphere, "--budget", std::to_string(bytes_ / 4), "--out",
+      RunFetch({"fetch", Url(), "--region", sphere, "--budget", std::to_string(bytes_ / 4), "--out",
            (work / "a.ply").string(), "--state", state, "--json"});
   EXPECT_EQ(first.order(), "region");
   EXPECT_FALSE(first.complete());
@@ -88,15 +90,15 @@ TEST_P(RegionFetchTest, RegionsAndViewsContinueFromTheStateAndEndInTheFullMesh) 
   // The packets held whole are a container `meshwave decode` reads.
   EXPECT_EQ(RunCli({"decode", state, (work / "whole.ply").string()}).exit_code, 0);
 
-  proto::FetchReport second = run({"refine", state, "--view", view, "--more",
+  proto::FetchReport second = RunFetch({"refine", state, "--view", view, "--more",
                                    std::to_string(bytes_ / 5), "--json"});
   EXPECT_GT(second.packets(), first.packets());
-  proto::FetchReport third = run({"refine", state, "--more", std::to_string(bytes_ / 10), "--json"});
+  proto::FetchReport third = RunFetch({"refine", state, "--more", std::to_string(bytes_ / 10), "--json"});
   EXPECT_GT(third.packets(), second.packets());
   EXPECT_FALSE(third.complete());
   const std::string final_ply = (work / "final.ply").string();
   proto::FetchReport last =
-      run({"refine", state, "--region", sphere, "--more", "1GiB", "--out", final_ply, "--json"});
+      RunFetch({"refine", state, "--region", sphere, "--more", "1GiB", "--out", final_ply, "--json"});
   EXPECT_TRUE(last.complete());
   EXPECT_EQ(last.packets(), last.packets_total());
 
@@ -123,23 +125,16 @@ TEST_P(RegionFetchTest, AScreenErrorFetchStopsWhenTheViewIsWithinIt) {
   std::filesystem::create_directories(work);
   const std::string state = (work / "state.mwv").string();
   const std::string view = "-3,0,0,1,0,0,40,640,480";
-  auto run = [](const std::vector<std::string>& args) {
-    const auto r = RunCli(args);
-    EXPECT_EQ(r.exit_code, 0) << r.err;
-    proto::FetchReport report;
-    EXPECT_TRUE(google::protobuf::util::JsonStringToMessage(r.out, &report).ok()) << r.out;
-    return report;
-  };
   const proto::FetchReport first =
-      run({"fetch", Url(), "--view", view, "--screen-error", "2", "--budget", "1GiB", "--out",
+      RunFetch({"fetch", Url(), "--view", view, "--screen-error", "2", "--budget", "1GiB", "--out",
            (work / "a.ply").string(), "--state", state, "--json"});
   EXPECT_GT(first.packets(), 0u);
   EXPECT_LT(first.bytes(), bytes_ / 2);
   const proto::FetchReport same =
-      run({"refine", state, "--view", view, "--screen-error", "2", "--more", "1GiB", "--json"});
+      RunFetch({"refine", state, "--view", view, "--screen-error", "2", "--more", "1GiB", "--json"});
   EXPECT_EQ(same.packets_received(), 0u) << same.bytes() << " against " << first.bytes();
   const proto::FetchReport finer =
-      run({"refine", state, "--view", view, "--screen-error", "0.25", "--more", "1GiB", "--json"});
+      RunFetch({"refine", state, "--view", view, "--screen-error", "0.25", "--more", "1GiB", "--json"});
   EXPECT_GT(finer.bytes(), first.bytes());
   EXPECT_FALSE(finer.complete());
 }

@@ -29,6 +29,7 @@
 #include "meshwave/progression.h"
 #include "meshwave/region.h"
 #include "meshwave/screen_errors.h"
+#include "mesh/vertex_normals.h"
 
 namespace meshwave::cli {
 namespace {
@@ -46,21 +47,6 @@ struct CameraPath {
   std::string name;
   std::vector<ViewRegion> cameras;
 };
-
-std::vector<Vec3> VertexNormals(const std::vector<Vec3>& positions,
-                                const std::vector<Face>& faces) {
-  std::vector<Vec3> normals(positions.size(), Vec3::Zero());
-  for (const Face& f : faces) {
-    const Vec3 n = (positions[f[1]] - positions[f[0]])
-                       .cross(positions[f[2]] - positions[f[0]]);
-    for (uint32_t v : f) normals[v] += n;  // area-weighted
-  }
-  for (Vec3& n : normals) {
-    const double length = n.norm();
-    n = length > 0 ? Vec3(n / length) : Vec3::Zero();
-  }
-  return normals;
-}
 
 // The largest projected normal deviation (pixels) of `got` from the
 // complete mesh over the vertices `camera` sees.
@@ -216,7 +202,7 @@ Status Run(const ViewArgs& args) {
   const CompleteStream& s = *loaded;
   MW_ASSIGN_OR_RETURN(std::vector<double> tolerances,
                       ParseTolerances(args.tolerances));
-  const std::vector<Vec3> normals = VertexNormals(s.full, s.faces);
+  const std::vector<Vec3> normals = VertexNormals(s.faces, s.full, s.full.size());
   MW_ASSIGN_OR_RETURN(
       StreamScreenErrors measured,
       StreamScreenErrors::Measure(s.header(), s.payload, *s.precincts));

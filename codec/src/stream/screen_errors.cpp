@@ -12,6 +12,7 @@
 #include "stream/packet_index.h"
 #include "stream/precinct_partition.h"
 #include "stream/stream_format.h"
+#include "mesh/vertex_normals.h"
 
 namespace meshwave {
 namespace {
@@ -19,20 +20,6 @@ namespace {
 // Coefficients of the finest subband per cluster at least: 1, a base face
 // each (coarser clusters judge a close camera's view far less well).
 constexpr uint32_t kClusterCoefficients = 1;
-
-std::vector<Vec3> VertexNormals(const std::vector<Vec3>& positions,
-                                const std::vector<Face>& faces) {
-  std::vector<Vec3> normals(positions.size(), Vec3::Zero());
-  for (const Face& f : faces) {
-    const Vec3 n = (positions[f[1]] - positions[f[0]]).cross(positions[f[2]] - positions[f[0]]);
-    for (uint32_t v : f) normals[v] += n;  // area-weighted
-  }
-  for (Vec3& n : normals) {
-    const double length = n.norm();
-    n = length > 0 ? Vec3(n / length) : Vec3::Zero();
-  }
-  return normals;
-}
 
 // The base face of every finest vertex: a base vertex's first face, the
 // vertex that splits edge k of M^j the base face of coefficient k of d^j.
@@ -142,7 +129,7 @@ Result<StreamScreenErrors> StreamScreenErrors::Measure(const StreamHeader& heade
   MW_ASSIGN_OR_RETURN(auto d, ProgressiveDecoder::Create(header));
   for (uint32_t id : order) MW_RETURN_IF_ERROR(Add(*d, payloads, static_cast<int>(id)));
   const std::vector<Vec3> full = d->Positions();
-  const std::vector<Vec3> normals = VertexNormals(full, d->Faces());
+  const std::vector<Vec3> normals = VertexNormals(d->Faces(), full, full.size());
   std::vector<float> complete_along(full.size());
   for (size_t v = 0; v < full.size(); ++v) {
     complete_along[v] = static_cast<float>(full[v].dot(normals[v]));
