@@ -29,10 +29,27 @@
 #include "meshwave/progression.h"
 #include "meshwave/region.h"
 #include "meshwave/screen_errors.h"
-#include "mesh/vertex_normals.h"
 
 namespace meshwave::cli {
 namespace {
+
+// Area-weighted unit normals of the complete mesh. Computed here, not
+// with the codec's own (which measures the errors this command judges):
+// the instrument stays apart from what it measures.
+std::vector<Vec3> VertexNormals(const std::vector<Vec3>& positions,
+                                const std::vector<Face>& faces) {
+  std::vector<Vec3> normals(positions.size(), Vec3::Zero());
+  for (const Face& f : faces) {
+    const Vec3 n = (positions[f[1]] - positions[f[0]])
+                       .cross(positions[f[2]] - positions[f[0]]);
+    for (uint32_t v : f) normals[v] += n;
+  }
+  for (Vec3& n : normals) {
+    const double length = n.norm();
+    n = length > 0 ? Vec3(n / length) : Vec3::Zero();
+  }
+  return normals;
+}
 
 struct ViewArgs {
   std::string file;
@@ -202,7 +219,7 @@ Status Run(const ViewArgs& args) {
   const CompleteStream& s = *loaded;
   MW_ASSIGN_OR_RETURN(std::vector<double> tolerances,
                       ParseTolerances(args.tolerances));
-  const std::vector<Vec3> normals = VertexNormals(s.faces, s.full, s.full.size());
+  const std::vector<Vec3> normals = VertexNormals(s.full, s.faces);
   MW_ASSIGN_OR_RETURN(
       StreamScreenErrors measured,
       StreamScreenErrors::Measure(s.header(), s.payload, *s.precincts));
