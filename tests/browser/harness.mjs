@@ -10,6 +10,7 @@ import { tmpdir } from 'node:os';
 import path from 'node:path';
 import { setTimeout as sleep } from 'node:timers/promises';
 import { pathToFileURL } from 'node:url';
+import { parseArgs } from 'node:util';
 
 export const CHROMIUM = '/usr/bin/chromium';
 export const SKIP = 77;  // ctest's SKIP_RETURN_CODE for these tests
@@ -17,6 +18,29 @@ export const SKIP = 77;  // ctest's SKIP_RETURN_CODE for these tests
 export function skip(message) {
   console.log(`SKIP: ${message}`);
   process.exit(SKIP);
+}
+
+// The options every browser test against the real decoder takes (--server,
+// --cli, --decoder, --viewer, --mesh, --node-modules, --artefacts): exits 2
+// on a missing one, skips without the decoder module or with the test-only
+// fake (`why` says what the test needs it for).
+export function realDecoderTestOptions(test, why) {
+  const { values: opt } = parseArgs({ options: {
+    server: { type: 'string' }, cli: { type: 'string' }, decoder: { type: 'string' },
+    viewer: { type: 'string' }, mesh: { type: 'string' }, 'node-modules': { type: 'string' },
+    artefacts: { type: 'string' },
+  } });
+  for (const k of ['server', 'viewer', 'mesh', 'node-modules', 'artefacts']) {
+    if (!opt[k]) { console.error(`${test}: --${k} is required`); process.exit(2); }
+  }
+  if (!opt.decoder || !existsSync(opt.decoder)) {
+    skip(`the WebAssembly decoder module is not built (${opt.decoder || 'no path given'}): ` +
+         'configure with -DMESHWAVE_DECODER_JS=PATH/meshwave_decoder.js');
+  }
+  if (readFileSync(opt.decoder, 'utf8').includes('isFakeTestOnly')) {
+    skip(`the test-only fake decoder ${why}: this test needs the real module`);
+  }
+  return opt;
 }
 
 // Named checks, one line each ("ok: NAME" or "FAIL: NAME: why"); a failure

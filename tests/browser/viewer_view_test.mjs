@@ -27,30 +27,15 @@
 // the test-only fake decoder, which cannot read a header here).
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
-import { existsSync, mkdirSync, readFileSync, rmSync } from 'node:fs';
+import { mkdirSync, rmSync } from 'node:fs';
 import path from 'node:path';
 import { setTimeout as sleep } from 'node:timers/promises';
 import { fileURLToPath } from 'node:url';
-import { parseArgs } from 'node:util';
-import { Server, checkEachUnitOnce, ingest, launchChromium, loadDecoderModule, skip, tempDir, viewerDir,
+import { Server, checkEachUnitOnce, realDecoderTestOptions, ingest, launchChromium, loadDecoderModule, tempDir, viewerDir,
   checks } from './harness.mjs';
 import { decodeServerMessage } from '../../web/viewer/ws_protocol.js';
 
-const { values: opt } = parseArgs({ options: {
-  server: { type: 'string' }, cli: { type: 'string' }, decoder: { type: 'string' },
-  viewer: { type: 'string' }, mesh: { type: 'string' }, 'node-modules': { type: 'string' },
-  artefacts: { type: 'string' },
-} });
-for (const k of ['server', 'viewer', 'mesh', 'node-modules', 'artefacts']) {
-  if (!opt[k]) { console.error(`viewer_view_test: --${k} is required`); process.exit(2); }
-}
-if (!opt.decoder || !existsSync(opt.decoder)) {
-  skip(`the WebAssembly decoder module is not built (${opt.decoder || 'no path given'}): ` +
-       'configure with -DMESHWAVE_DECODER_JS=PATH/meshwave_decoder.js');
-}
-if (readFileSync(opt.decoder, 'utf8').includes('isFakeTestOnly')) {
-  skip('the test-only fake decoder reads no header: this test needs the real module');
-}
+const opt = realDecoderTestOptions('viewer_view_test', 'reads no header');
 
 // As viewer_region_test.mjs: data/holes.off with 50 precincts in its finest
 // subband, the low bitplanes split. A first stream of 2 KiB (1.2 KB of it
