@@ -17,10 +17,6 @@
 namespace meshwave {
 namespace {
 
-// Coefficients of the finest subband per cluster at least: 1, a base face
-// each (coarser clusters judge a close camera's view far less well).
-constexpr uint32_t kClusterCoefficients = 1;
-
 // The base face of every finest vertex: a base vertex's first face, the
 // vertex that splits edge k of M^j the base face of coefficient k of d^j.
 std::vector<uint32_t> VertexBaseFaces(const SemiRegularHierarchy& h) {
@@ -70,41 +66,22 @@ Result<StreamScreenErrors> StreamScreenErrors::Measure(const StreamHeader& heade
       if (j > 0) p = precincts.parent(j, p);
     }
   }
-  // Clusters: runs of base faces in the precincts' order, cut where the
-  // finest precinct changes or a run holds kClusterCoefficients of the
-  // finest subband.
+  // Clusters: base faces (coarser ones judge a close camera's view far
+  // less well), each in its face's finest precinct.
   const auto& base_faces = h.faces(0);
-  const std::vector<uint32_t> face_precinct = partition.FacePrecincts(finest);
-  std::vector<uint32_t> held_by_face(base_faces.size(), 0);
-  AddCoefficientsPerBaseFace(h, finest, held_by_face);
-  std::vector<uint32_t> cluster_of_face(base_faces.size(), 0);
-  {
-    uint32_t in_run = 0;
-    for (size_t i = 0; i < partition.face_order.size(); ++i) {
-      const uint32_t f = partition.face_order[i];
-      if (i == 0 || face_precinct[f] != out.cluster_precinct_.back() ||
-          in_run >= kClusterCoefficients) {
-        out.cluster_precinct_.push_back(face_precinct[f]);
-        in_run = 0;
-      }
-      cluster_of_face[f] = static_cast<uint32_t>(out.cluster_precinct_.size() - 1);
-      in_run += held_by_face[f];
-    }
-  }
-  const uint32_t clusters = static_cast<uint32_t>(out.cluster_precinct_.size());
-  std::vector<uint32_t> cluster_of_vertex = VertexBaseFaces(h);
-  for (uint32_t& c : cluster_of_vertex) c = cluster_of_face[c];
+  out.cluster_precinct_ = partition.FacePrecincts(finest);
+  const uint32_t clusters = static_cast<uint32_t>(base_faces.size());
+  const std::vector<uint32_t> cluster_of_vertex = VertexBaseFaces(h);
   {
     std::vector<std::vector<uint32_t>> clusters_of(h.vertex_count(0));
-    for (uint32_t f = 0; f < base_faces.size(); ++f) {
-      for (uint32_t v : base_faces[f]) clusters_of[v].push_back(cluster_of_face[f]);
+    for (uint32_t f = 0; f < clusters; ++f) {
+      for (uint32_t v : base_faces[f]) clusters_of[v].push_back(f);
     }
     // The finest precincts of the clusters around each cluster, but its
     // own: within a precinct every cluster's schedule counts anyway.
     std::vector<std::vector<uint32_t>> ring(clusters);
-    for (uint32_t f = 0; f < base_faces.size(); ++f) {
-      const uint32_t c = cluster_of_face[f];
-      for (uint32_t v : base_faces[f]) {
+    for (uint32_t c = 0; c < clusters; ++c) {
+      for (uint32_t v : base_faces[c]) {
         for (uint32_t g : clusters_of[v]) {
           const uint32_t q = out.cluster_precinct_[g];
           if (q != out.cluster_precinct_[c]) ring[c].push_back(q);
