@@ -1,6 +1,7 @@
 // End-to-end: `meshwave analyze` (JSON report, --plots CSVs) and `meshwave
 // render` (a PNG of the asked size; textures and vertex colours drawn, grey
 // with --plain or without them, error colours with --reference), and the
+// render-compare's luma PSNR of decodes against the original, and the
 // PNG writer read back by an independent reader (signature, chunk CRCs,
 // IHDR, inflated pixels).
 #include <gtest/gtest.h>
@@ -245,6 +246,38 @@ TEST(RenderCliTest, AMissingTextureOrFileFailsAndWritesNoPicture) {
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("--plain and --reference"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "d.png"));
+}
+
+// render-compare: a textured stream's decodes look closer to the original
+// the more of the stream they hold; the original against itself is exact;
+// an unreadable mesh of a batch is named and the others still measured.
+TEST(RenderCompareCliTest, LongerPrefixesLookCloserToTheOriginal) {
+  TempDir dir;
+  const auto original = testing::SampleMesh("textured/die.obj");
+  const auto stream = dir / "die.mwv";
+  auto r = RunCli({"encode", original.string(), stream.string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = RunCli({"decode", "--budget", "12000", stream.string(), (dir / "small.glb").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = RunCli({"decode", stream.string(), (dir / "complete.glb").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = RunCli({"render-compare", "--views", "4", "--size", "128", original.string(),
+              (dir / "small.glb").string(), (dir / "complete.glb").string(), original.string(),
+              (dir / "none.glb").string()});
+  EXPECT_EQ(r.exit_code, 1);  // none.glb
+  EXPECT_NE(r.err.find("none.glb"), std::string::npos) << r.err;
+  const std::regex line(R"(([0-9.]+|inf)\t([0-9]+)\t(\S+))");
+  std::vector<double> db;
+  for (auto it = std::sregex_iterator(r.out.begin(), r.out.end(), line);
+       it != std::sregex_iterator(); ++it) {
+    db.push_back((*it)[1].str() == "inf" ? INFINITY : std::stod((*it)[1].str()));
+    EXPECT_GT(std::stoul((*it)[2].str()), 4u * 128 * 128 / 10) << (*it)[3].str();
+  }
+  ASSERT_EQ(db.size(), 3u) << r.out;
+  EXPECT_GT(db[0], 10);
+  EXPECT_GT(db[1], db[0] + 1);
+  EXPECT_LT(db[1], 80);
+  EXPECT_TRUE(std::isinf(db[2]));
 }
 
 TEST(RenderCliTest, ErrorColoursIgnoreTheTexture) {

@@ -17,9 +17,9 @@ bool HasAppearance(const MeshAsset& asset) {
   return false;
 }
 
-PixelShader AppearanceShader(const MeshAsset& asset) {
+PixelShader AppearanceShader(const MeshAsset& asset, bool lit) {
   BaseColorFunction base_color = AssetBaseColor(asset);
-  return [base_color](uint32_t face, const Vec3& weights,
+  return [base_color, lit](uint32_t face, const Vec3& weights,
                       const Vec3& light) -> std::optional<Rgb8> {
     const std::optional<Eigen::Vector4f> color = base_color(face, weights);
     if (!color) return std::nullopt;  // cut by a masked material
@@ -27,9 +27,9 @@ PixelShader AppearanceShader(const MeshAsset& asset) {
     // Shaded in linear light (the sampler decodes the sRGB texture and the
     // vertex colours are linear), then encoded to sRGB for the PNG, so a
     // texel under full light comes back to its own byte.
-    const auto lit = static_cast<float>(weights.dot(light));
+    const auto light_level = lit ? static_cast<float>(weights.dot(light)) : 1.0f;
     Rgb8 out;
-    for (int k = 0; k < 3; ++k) out[static_cast<size_t>(k)] = LinearToSrgb8(base[k] * lit);
+    for (int k = 0; k < 3; ++k) out[static_cast<size_t>(k)] = LinearToSrgb8(base[k] * light_level);
     return out;
   };
 }

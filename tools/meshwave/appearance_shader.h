@@ -17,8 +17,10 @@ bool HasAppearance(const MeshAsset& asset);
 // A shader for Rasterize(asset.mesh, ...). The texture is sampled
 // bilinearly at the interpolated UV with its slot's transform and wrap
 // modes; `asset` must outlive the shader. Masked materials leave their
-// cut-out texels see-through; blended ones are drawn opaque.
-PixelShader AppearanceShader(const MeshAsset& asset);
+// cut-out texels see-through; blended ones are drawn opaque. `lit` false
+// draws the base colour as it is (no light): what an image metric of the
+// surface's colours compares.
+PixelShader AppearanceShader(const MeshAsset& asset, bool lit = true);
 
 }  // namespace meshwave::cli
 

@@ -20,6 +20,7 @@ void AddRefineCommand(CLI::App& app, int& exit_code);
 void AddCatalogCommand(CLI::App& app, int& exit_code);
 void AddAnalyzeCommand(CLI::App& app, int& exit_code);
 void AddRenderCommand(CLI::App& app, int& exit_code);
+void AddRenderCompareCommand(CLI::App& app, int& exit_code);
 void AddRegionCommand(CLI::App& app, int& exit_code);
 void AddViewCommand(CLI::App& app, int& exit_code);
 

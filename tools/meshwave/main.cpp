@@ -31,6 +31,7 @@ int main(int argc, char** argv) {
   meshwave::cli::AddCatalogCommand(app, exit_code);
   meshwave::cli::AddAnalyzeCommand(app, exit_code);
   meshwave::cli::AddRenderCommand(app, exit_code);
+  meshwave::cli::AddRenderCompareCommand(app, exit_code);
 
   CLI11_PARSE(app, argc, argv);
   return exit_code;

@@ -8,23 +8,42 @@
 namespace meshwave::cli {
 namespace {
 
-// Screen space: x, y in pixels (y down), depth growing towards the viewer.
-std::vector<Vec3> ProjectToScreen(const std::vector<Vec3>& eye, const View& view) {
+Eigen::Matrix3d ViewRotation(const View& view) {
+  const double a = view.azimuth_deg * std::numbers::pi / 180;
+  const double e = view.elevation_deg * std::numbers::pi / 180;
+  return (Eigen::AngleAxisd(e, Vec3::UnitX()) * Eigen::AngleAxisd(a, Vec3::UnitY()))
+      .toRotationMatrix();
+}
+
+Framing FitEye(const std::vector<Vec3>& eye, const View& view) {
   Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
   for (const Vec3& p : eye) {
     lo = lo.cwiseMin(p);
     hi = hi.cwiseMax(p);
   }
-  const int w = view.width, h = view.height;
+  if (eye.empty()) return Framing{};
   const double extent = std::max({hi.x() - lo.x(), hi.y() - lo.y(), 1e-300});
-  const double scale = 0.92 * std::min(w, h) / extent;
-  const Vec3 centre = (lo + hi) / 2;
+  return Framing{(lo + hi) / 2, 0.92 * std::min(view.width, view.height) / extent};
+}
+
+// Screen space: x, y in pixels (y down), depth growing towards the viewer.
+std::vector<Vec3> ProjectToScreen(const std::vector<Vec3>& eye, const View& view) {
+  const Framing f = view.framing ? *view.framing : FitEye(eye, view);
+  const int w = view.width, h = view.height;
   std::vector<Vec3> s(eye.size());
   for (size_t i = 0; i < eye.size(); ++i) {
-    s[i] = Vec3(w / 2.0 + (eye[i].x() - centre.x()) * scale,
-                h / 2.0 - (eye[i].y() - centre.y()) * scale, eye[i].z());
+    s[i] = Vec3(w / 2.0 + (eye[i].x() - f.centre.x()) * f.pixels_per_unit,
+                h / 2.0 - (eye[i].y() - f.centre.y()) * f.pixels_per_unit, eye[i].z());
   }
   return s;
+}
+
+std::vector<Vec3> ToEye(const TriMesh& mesh, const View& view) {
+  const Eigen::Matrix3d rot = ViewRotation(view);
+  // Eye space: x right, y up, z towards the viewer.
+  std::vector<Vec3> eye(mesh.positions.size());
+  for (size_t i = 0; i < eye.size(); ++i) eye[i] = rot * mesh.positions[i];
+  return eye;
 }
 
 // Lambert light per vertex from area-weighted normals, with a quarter of
@@ -49,6 +68,7 @@ struct Target {
   int width, height;
   std::vector<uint8_t>& rgb;
   std::vector<double>& depth;
+  std::vector<uint8_t>* covered;
 };
 
 void DrawFace(uint32_t face, const std::array<Vec3, 3>& v, const Vec3& light,
@@ -75,6 +95,7 @@ void DrawFace(uint32_t face, const std::array<Vec3, 3>& v, const Vec3& light,
       const std::optional<Rgb8> colour = shade(face, Vec3(b0, b1, b2), light);
       if (!colour) continue;  // see-through: the depth stays for what lies behind
       target.depth[at] = z;
+      if (target.covered) (*target.covered)[at] = 1;
       std::copy(colour->begin(), colour->end(), target.rgb.begin() + static_cast<ptrdiff_t>(at * 3));
     }
   }
@@ -82,23 +103,23 @@ void DrawFace(uint32_t face, const std::array<Vec3, 3>& v, const Vec3& light,
 
 }  // namespace
 
-std::vector<uint8_t> Rasterize(const TriMesh& mesh, const PixelShader& shade, const View& view) {
+Framing FitFraming(const TriMesh& mesh, const View& view) {
+  return FitEye(ToEye(mesh, view), view);
+}
+
+std::vector<uint8_t> Rasterize(const TriMesh& mesh, const PixelShader& shade, const View& view,
+                               std::vector<uint8_t>* covered) {
   const int w = view.width, h = view.height;
   std::vector<uint8_t> rgb(static_cast<size_t>(w) * static_cast<size_t>(h) * 3, 255);
+  if (covered) covered->assign(static_cast<size_t>(w) * static_cast<size_t>(h), 0);
   if (mesh.positions.empty()) return rgb;
-  const double a = view.azimuth_deg * std::numbers::pi / 180;
-  const double e = view.elevation_deg * std::numbers::pi / 180;
-  const Eigen::Matrix3d rot =
-      (Eigen::AngleAxisd(e, Vec3::UnitX()) * Eigen::AngleAxisd(a, Vec3::UnitY())).toRotationMatrix();
-  // Eye space: x right, y up, z towards the viewer.
-  std::vector<Vec3> eye(mesh.positions.size());
-  for (size_t i = 0; i < eye.size(); ++i) eye[i] = rot * mesh.positions[i];
+  const std::vector<Vec3> eye = ToEye(mesh, view);
   const std::vector<Vec3> s = ProjectToScreen(eye, view);
   const std::vector<double> light = VertexLight(mesh, eye);
 
   std::vector<double> depth(static_cast<size_t>(w) * static_cast<size_t>(h),
                             -std::numeric_limits<double>::infinity());
-  Target target{w, h, rgb, depth};
+  Target target{w, h, rgb, depth, covered};
   for (size_t i = 0; i < mesh.faces.size(); ++i) {
     const Face& f = mesh.faces[i];
     DrawFace(static_cast<uint32_t>(i), {s[f[0]], s[f[1]], s[f[2]]},

@@ -43,7 +43,7 @@ MeshAsset TexturedSquare(const std::array<Rgba, 4>& texels) {
 constexpr int kSide = 64;
 
 std::vector<uint8_t> Render(const MeshAsset& asset) {
-  return Rasterize(asset.mesh, AppearanceShader(asset), View{0, 0, kSide, kSide});
+  return Rasterize(asset.mesh, AppearanceShader(asset), View{0, 0, kSide, kSide, std::nullopt});
 }
 
 // The pixel at (x, y), rows top to bottom.
