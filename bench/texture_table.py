@@ -51,9 +51,11 @@ import tempfile
 
 
 def run(args, **kw):
-    r = subprocess.run(args, capture_output=True, text=True, **kw)
+    kw.setdefault('text', True)
+    r = subprocess.run(args, capture_output=True, **kw)
     if r.returncode != 0:
-        sys.exit(f'texture_table: {" ".join(map(str, args))} failed:\n{r.stderr[-2000:]}')
+        err = r.stderr if isinstance(r.stderr, str) else r.stderr.decode(errors='replace')
+        sys.exit(f'texture_table: {" ".join(map(str, args))} failed:\n{err[-2000:]}')
     return r
 
 
@@ -88,6 +90,23 @@ def base_colour_only(src_dir, main, work):
             for key in ('normalTexture', 'occlusionTexture', 'emissiveTexture', 'extensions'):
                 m.pop(key, None)
             m.get('pbrMetallicRoughness', {}).pop('metallicRoughnessTexture', None)
+        # Only the textures and images the base colours use (a packer keeps
+        # unused images, and their bytes would count).
+        used = [m['pbrMetallicRoughness']['baseColorTexture'] for m in doc.get('materials', [])
+                if 'baseColorTexture' in m.get('pbrMetallicRoughness', {})]
+        textures, images = [], []
+        for ref in used:
+            texture = dict(doc['textures'][ref['index']])
+            image = doc['images'][texture['source']]
+            if image not in images:
+                images.append(image)
+            texture['source'] = images.index(image)
+            ref['index'] = len(textures)
+            textures.append(texture)
+        doc['textures'], doc['images'] = textures, images
+        for key in ('textures', 'images'):
+            if not doc[key]:
+                del doc[key]
         json.dump(doc, open(path, 'w'))
     return path
 

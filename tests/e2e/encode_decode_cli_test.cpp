@@ -391,7 +391,7 @@ TEST(EncodeDecodeCliTest, TexturedStreamInfoAndDecode) {
   }
   auto info = RunCli({"info", mwv.string()});
   ASSERT_EQ(info.exit_code, 0) << info.err;
-  EXPECT_NE(info.out.find("format version 10"), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("format version 11"), std::string::npos) << info.out;
   EXPECT_NE(info.out.find("texture map:            base colour, image/png, 2 levels: 16 x 16"),
             std::string::npos)
       << info.out;

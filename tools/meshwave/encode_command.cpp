@@ -276,8 +276,9 @@ void AddEncodeCommand(CLI::App& app, int& exit_code) {
                   "the input's texel density)")
       ->check(CLI::Range(64, 16384))
       ->capture_default_str();
-  cmd->add_option("--texture-quality", args->bake.jpeg_quality,
-                  "Textured inputs: JPEG quality of the baked colour maps (normal maps are PNG)")
+  cmd->add_option("--texture-quality", args->bake.quality,
+                  "Textured inputs: quality of the baked colour maps (WebP) and the "
+                  "metallic-roughness map (JPEG); normal maps are lossless PNG")
       ->check(CLI::Range(1, 100))
       ->capture_default_str();
   cmd->add_flag("!--no-original", args->original_layer,

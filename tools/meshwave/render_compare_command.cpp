@@ -41,7 +41,7 @@ Status WritePictures(const std::string& dir, const std::string& stem, const Pict
 Status Run(const RenderCompareArgs& args) {
   MW_ASSIGN_OR_RETURN(const MeshAsset reference, ReadForRender(args.reference));
   std::vector<View> views = MetricViews(args.options.views, args.options.size);
-  const Pictures ref = RenderReference(reference, views, args.options.lit);
+  const Pictures ref = RenderReference(reference, views, args.options);
   if (!args.pictures.empty()) {
     MW_RETURN_IF_ERROR(WritePictures(args.pictures, "reference", ref, views));
   }
@@ -54,7 +54,7 @@ Status Run(const RenderCompareArgs& args) {
       if (first_error.ok()) first_error = mesh.status();
       continue;
     }
-    const Pictures pictures = RenderLike(*mesh, views, args.options.lit);
+    const Pictures pictures = RenderLike(*mesh, views, args.options);
     if (!args.pictures.empty()) {
       MW_RETURN_IF_ERROR(WritePictures(args.pictures, "mesh" + std::to_string(i), pictures, views));
     }
@@ -86,6 +86,10 @@ void AddRenderCompareCommand(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   cmd->add_option("--size", args->options.size, "Pixels a side of each picture")
       ->check(CLI::Range(16, 8192))
+      ->capture_default_str();
+  cmd->add_option("--supersample", args->options.supersample,
+                  "Samples a side per pixel, averaged (antialiased edges, filtered texture)")
+      ->check(CLI::Range(1, 8))
       ->capture_default_str();
   cmd->add_flag("--lit", args->options.lit,
                 "Shade with the Lambert light of `meshwave render` (geometry's shading counts)");

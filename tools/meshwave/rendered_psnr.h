@@ -17,6 +17,10 @@ namespace meshwave::cli {
 struct RenderedPsnrOptions {
   int views = 16;    // cameras around the object (MetricViews)
   int size = 1024;   // pixels a side of each picture
+  // Samples a side per pixel, averaged: what a screen shows with
+  // antialiasing and filtered textures. One sample a pixel makes the
+  // measure hang on sub-pixel shifts of silhouettes and of fine texture.
+  int supersample = 2;
   bool lit = false;  // true: Lambert light as `meshwave render` draws
 };
 
@@ -24,16 +28,18 @@ struct RenderedPsnrOptions {
 // half 25 below, their azimuths interleaved, so that every side is seen.
 std::vector<View> MetricViews(int count, int size);
 
-// One picture per view and the pixels the mesh covered.
+// One picture per view and the pixels the mesh covered (any sample).
 struct Pictures {
   std::vector<std::vector<uint8_t>> rgb, covered;
 };
 
 // The reference's pictures; its framing is stored in `views` for the others.
-Pictures RenderReference(const MeshAsset& reference, std::vector<View>& views, bool lit);
+Pictures RenderReference(const MeshAsset& reference, std::vector<View>& views,
+                         const RenderedPsnrOptions& options);
 
 // `asset` drawn with the views RenderReference framed.
-Pictures RenderLike(const MeshAsset& asset, const std::vector<View>& views, bool lit);
+Pictures RenderLike(const MeshAsset& asset, const std::vector<View>& views,
+                    const RenderedPsnrOptions& options);
 
 struct LumaPsnr {
   double db = 0;            // +inf when the pictures are equal

@@ -7,6 +7,7 @@
 
 #include <png.h>
 #include <turbojpeg.h>
+#include <webp/encode.h>
 
 #include <csetjmp>
 #include <cstdio>
@@ -119,6 +120,46 @@ Result<std::string> EncodeJpeg(const ImageView& image, const JpegEncodeOptions& 
   }
   std::string bytes(reinterpret_cast<const char*>(out), size);
   tjFree(out);
+  return bytes;
+}
+
+Result<std::string> EncodeWebp(const ImageView& image, int quality) {
+  MW_RETURN_IF_ERROR(CheckView(image, "WebP"));
+  if (quality < 0 || quality > 100) {
+    return InvalidArgument("WebP encoder: quality " + std::to_string(quality) + " (0..100)");
+  }
+  if (image.width > WEBP_MAX_DIMENSION || image.height > WEBP_MAX_DIMENSION) {
+    return InvalidArgument("WebP encoder: " + std::to_string(image.width) + " x " +
+                           std::to_string(image.height) + " pixels (at most " +
+                           std::to_string(WEBP_MAX_DIMENSION) + " a side)");
+  }
+  WebPConfig config;
+  WebPPicture picture;
+  if (!WebPConfigPreset(&config, WEBP_PRESET_DEFAULT, static_cast<float>(quality)) ||
+      !WebPPictureInit(&picture)) {
+    return Status(StatusCode::kInternal, "libwebp: version mismatch");
+  }
+  config.thread_level = 0;  // the same bytes on every machine
+  picture.use_argb = 0;
+  picture.width = static_cast<int>(image.width);
+  picture.height = static_cast<int>(image.height);
+  WebPMemoryWriter writer;
+  WebPMemoryWriterInit(&writer);
+  picture.writer = WebPMemoryWrite;
+  picture.custom_ptr = &writer;
+  const int stride = static_cast<int>(image.width) * image.channels;
+  const bool imported = image.channels == 4
+                            ? WebPPictureImportRGBA(&picture, image.pixels, stride)
+                            : WebPPictureImportRGB(&picture, image.pixels, stride);
+  const bool encoded = imported && WebPEncode(&config, &picture);
+  const WebPEncodingError error = picture.error_code;
+  WebPPictureFree(&picture);
+  std::string bytes(reinterpret_cast<const char*>(writer.mem), writer.size);
+  WebPMemoryWriterClear(&writer);
+  if (!encoded) {
+    return Status(StatusCode::kInternal,
+                  "WebP encoder: libwebp error " + std::to_string(static_cast<int>(error)));
+  }
   return bytes;
 }
 

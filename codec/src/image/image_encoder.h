@@ -34,6 +34,11 @@ struct JpegEncodeOptions {
 // or a quality outside 1..100; kInternal when libjpeg-turbo fails.
 Result<std::string> EncodeJpeg(const ImageView& image, const JpegEncodeOptions& options = {});
 
+// A lossy WebP of the image (libwebp's default preset at `quality`, 0..100;
+// alpha, when present, coded losslessly beside it). Errors as EncodeJpeg's,
+// and kInvalidArgument beyond WebP's 16383 pixels a side.
+Result<std::string> EncodeWebp(const ImageView& image, int quality);
+
 // A PNG of the image, RGB or RGBA as given, 8 bits a sample, zlib level
 // `compression` (0..9). Errors as EncodeJpeg's.
 Result<std::string> EncodePng(const ImageView& image, int compression = 6);

@@ -232,6 +232,13 @@ std::string SerializeTexturedGltf(const TriMesh& mesh, GltfForm form,
   }
 
   std::string json = R"({"asset":{"version":"2.0","generator":"meshwave"},"scene":0,)";
+  // A WebP image needs EXT_texture_webp (glTF 2.0 core knows PNG and JPEG
+  // only); required, as no fallback image travels.
+  bool webp = false;
+  for (const TextureImage& image : images) webp = webp || image.mime_type == "image/webp";
+  if (webp) {
+    json += R"("extensionsUsed":["EXT_texture_webp"],"extensionsRequired":["EXT_texture_webp"],)";
+  }
   json += R"("scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)";
   json += R"("meshes":[{"primitives":[{"attributes":{"POSITION":0,"TEXCOORD_0":2)";
   for (size_t a = 0; a < attributes.size(); ++a) {
@@ -327,9 +334,15 @@ std::string SerializeTexturedGltf(const TriMesh& mesh, GltfForm form,
     json += R"(],"textures":[)";
     for (size_t i = 0; i < images.size(); ++i) {
       if (i) json += ',';
-      json += R"({"sampler":0,"source":)";
-      AppendJsonNumber(json, uint64_t{i});
-      json += '}';
+      if (images[i].mime_type == "image/webp") {
+        json += R"({"sampler":0,"extensions":{"EXT_texture_webp":{"source":)";
+        AppendJsonNumber(json, uint64_t{i});
+        json += "}}}";
+      } else {
+        json += R"({"sampler":0,"source":)";
+        AppendJsonNumber(json, uint64_t{i});
+        json += '}';
+      }
     }
     json += ']';
   }

@@ -311,12 +311,27 @@ bool AnyTranslucent(const BakedImage& rgba) {
   return false;
 }
 
+// How a map's levels are coded: colour as lossy WebP (a third to half the
+// bytes of JPEG at the same PSNR on baked atlases, docs/RD_RESULTS.md
+// "Texture code"), alpha included; data whose channels are independent
+// (occlusion, roughness, metallic) as 4:4:4 JPEG, which WebP's 4:2:0 lacks;
+// normals as lossless PNG.
+enum class MapCodec { kWebp, kJpeg444, kPng };
+
+const char* MimeType(MapCodec codec) {
+  switch (codec) {
+    case MapCodec::kWebp: return "image/webp";
+    case MapCodec::kJpeg444: return "image/jpeg";
+    case MapCodec::kPng: return "image/png";
+  }
+  return "";
+}
+
 struct MapJob {
   TextureRole role;
   TexelKind kind;
   BakedImage full;
-  bool png;
-  bool subsample_chroma;
+  MapCodec codec;
 };
 
 }  // namespace
@@ -332,8 +347,8 @@ Result<std::optional<BakedTexture>> BakeTexture(const MeshAsset& asset,
   if (remesh.positions.size() != remesh.hierarchy->vertex_count(remesh.levels())) {
     return InvalidArgument("texture bake: the remesh's positions do not fit its hierarchy");
   }
-  if (options.jpeg_quality < 1 || options.jpeg_quality > 100) {
-    return InvalidArgument("texture bake: JPEG quality " + std::to_string(options.jpeg_quality) +
+  if (options.quality < 1 || options.quality > 100) {
+    return InvalidArgument("texture bake: quality " + std::to_string(options.quality) +
                            " (1..100)");
   }
   if (options.cell != 0 &&
@@ -372,17 +387,18 @@ Result<std::optional<BakedTexture>> BakeTexture(const MeshAsset& asset,
 
   std::vector<MapJob> jobs;
   jobs.push_back({TextureRole::kBaseColor, TexelKind::kSrgbColor, std::move(maps.base_color),
-                  translucent, true});
+                  MapCodec::kWebp});
   if (plan.metallic_roughness) {
-    jobs.push_back(
-        {TextureRole::kMetallicRoughness, TexelKind::kLinear, std::move(maps.orm), false, false});
+    jobs.push_back({TextureRole::kMetallicRoughness, TexelKind::kLinear, std::move(maps.orm),
+                    MapCodec::kJpeg444});
   }
   if (plan.emissive) {
-    jobs.push_back(
-        {TextureRole::kEmissive, TexelKind::kSrgbColor, std::move(maps.emissive), false, true});
+    jobs.push_back({TextureRole::kEmissive, TexelKind::kSrgbColor, std::move(maps.emissive),
+                    MapCodec::kWebp});
   }
   if (plan.normal) {
-    jobs.push_back({TextureRole::kNormal, TexelKind::kNormal, std::move(maps.normal), true, false});
+    jobs.push_back(
+        {TextureRole::kNormal, TexelKind::kNormal, std::move(maps.normal), MapCodec::kPng});
   }
   const int levels = atlas_plan.levels;
   // Each map's pyramid in one task; the encodings of its levels are
@@ -395,17 +411,19 @@ Result<std::optional<BakedTexture>> BakeTexture(const MeshAsset& asset,
     for (int level = 0; level < levels; ++level) {
       if (level > 0) image = HalveImage(image, job.kind);
       ImageView view{image.pixels.data(), image.width, image.height, image.channels};
-      if (job.png) {
-        levels_out.push_back(EncodePng(view));
-      } else {
-        levels_out.push_back(EncodeJpeg(view, {options.jpeg_quality, job.subsample_chroma}));
+      switch (job.codec) {
+        case MapCodec::kWebp: levels_out.push_back(EncodeWebp(view, options.quality)); break;
+        case MapCodec::kJpeg444:
+          levels_out.push_back(EncodeJpeg(view, {options.quality, false}));
+          break;
+        case MapCodec::kPng: levels_out.push_back(EncodePng(view)); break;
       }
     }
   });
   for (size_t i = 0; i < jobs.size(); ++i) {
     TextureMap map;
     map.role = jobs[i].role;
-    map.mime_type = jobs[i].png ? "image/png" : "image/jpeg";
+    map.mime_type = MimeType(jobs[i].codec);
     for (auto it = encoded[i].rbegin(); it != encoded[i].rend(); ++it) {
       MW_RETURN_IF_ERROR(it->status());
       map.levels.push_back(std::move(**it));

@@ -145,7 +145,7 @@ Status ValidateTexture(const StreamHeader& h) {
     for (const char* mime : kTextureMimeTypes) known = known || map.mime_type == mime;
     if (!known) {
       return ParseError(owner + "image type " + Quoted(map.mime_type) +
-                        " (image/jpeg or image/png)");
+                        " (image/jpeg, image/png or image/webp)");
     }
     const size_t levels = map.levels.size();
     if (levels == 0 || levels > kMaxTextureLevels) {

@@ -52,6 +52,14 @@ inline Status CheckFormatVersion(const StreamHeader& h) {
     return ParseError("header: a version-" + std::to_string(h.format_version) +
                       " stream with an original layer (it came with version 10)");
   }
+  if (h.format_version < 11 && h.texture) {
+    for (const StreamHeader::Texture::Map& map : h.texture->maps) {
+      if (map.mime_type == "image/webp") {
+        return ParseError("header: a version-" + std::to_string(h.format_version) +
+                          " stream with a WebP texture (WebP came with version 11)");
+      }
+    }
+  }
   return Status::Ok();
 }
 inline constexpr char kContainerMagic[4] = {'M', 'W', 'V', '1'};

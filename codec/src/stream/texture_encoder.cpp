@@ -114,9 +114,11 @@ Result<EncodedTexture> EncodeTexture(const BakedTexture& texture, const SemiRegu
       return InvalidArgument(owner + std::to_string(levels) + " levels (1 to " +
                              std::to_string(kMaxTextureLevels) + ")");
     }
-    if (map.mime_type != "image/jpeg" && map.mime_type != "image/png") {
+    bool known = false;
+    for (const char* mime : kTextureMimeTypes) known = known || map.mime_type == mime;
+    if (!known) {
       return InvalidArgument(owner + "image type \"" + map.mime_type +
-                             "\" (image/jpeg or image/png)");
+                             "\" (image/jpeg, image/png or image/webp)");
     }
     proto::TextureMap& out_map = *header.add_maps();
     out_map.set_role(ToProto(map.role));

@@ -50,13 +50,46 @@ Result<ImageSize> JpegSize(std::string_view b) {
   return InvalidArgument("JPEG: no frame header");
 }
 
+uint32_t LittleEndian(std::string_view b, size_t at, int bytes) {
+  uint32_t v = 0;
+  for (int i = bytes - 1; i >= 0; --i) {
+    v = v << 8 | static_cast<uint8_t>(b[at + static_cast<size_t>(i)]);
+  }
+  return v;
+}
+
+// RIFF "WEBP" and its first chunk: VP8 (lossy: the key frame's 14-bit
+// sizes), VP8L (lossless: 14-bit sizes minus one) or VP8X (extended: the
+// canvas's 24-bit sizes minus one), as libwebp's container spec lays out.
+Result<ImageSize> WebpSize(std::string_view b) {
+  if (b.size() < 30 || b.substr(0, 4) != "RIFF" || b.substr(8, 4) != "WEBP") {
+    return InvalidArgument("not a WebP (no RIFF WEBP header)");
+  }
+  const std::string_view chunk = b.substr(12, 4);
+  if (chunk == "VP8 ") {
+    if (static_cast<uint8_t>(b[23]) != 0x9d || static_cast<uint8_t>(b[24]) != 0x01 ||
+        static_cast<uint8_t>(b[25]) != 0x2a) {
+      return InvalidArgument("WebP: a VP8 chunk without a key frame's start code");
+    }
+    return ImageSize{LittleEndian(b, 26, 2) & 0x3fff, LittleEndian(b, 28, 2) & 0x3fff};
+  }
+  if (chunk == "VP8L") {
+    if (static_cast<uint8_t>(b[20]) != 0x2f) return InvalidArgument("WebP: a VP8L chunk without its signature");
+    const uint32_t bits = LittleEndian(b, 21, 4);
+    return ImageSize{(bits & 0x3fff) + 1, ((bits >> 14) & 0x3fff) + 1};
+  }
+  if (chunk == "VP8X") return ImageSize{LittleEndian(b, 24, 3) + 1, LittleEndian(b, 27, 3) + 1};
+  return InvalidArgument("WebP: an unknown first chunk");
+}
+
 }  // namespace
 
 Result<ImageSize> ReadImageSize(std::string_view bytes, std::string_view mime_type) {
   if (mime_type == "image/png") return PngSize(bytes);
   if (mime_type == "image/jpeg") return JpegSize(bytes);
+  if (mime_type == "image/webp") return WebpSize(bytes);
   return InvalidArgument("image type \"" + std::string(mime_type) +
-                         "\" (image/jpeg or image/png)");
+                         "\" (image/jpeg, image/png or image/webp)");
 }
 
 }  // namespace meshwave

@@ -16,8 +16,8 @@ struct ImageSize {
   uint32_t height = 0;
 };
 
-// The size of a PNG (mime "image/png") or baseline/progressive JPEG
-// ("image/jpeg"); kInvalidArgument when the bytes are not of that type or
+// The size of a PNG (mime "image/png"), baseline/progressive JPEG
+// ("image/jpeg") or WebP ("image/webp"); kInvalidArgument when the bytes are not of that type or
 // their header ends early.
 Result<ImageSize> ReadImageSize(std::string_view bytes, std::string_view mime_type);
 

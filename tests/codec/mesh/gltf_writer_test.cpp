@@ -207,6 +207,28 @@ TEST(GltfWriterTest, TexturedGlbSplitsVerticesByUvAndEmbedsTheImages) {
   // Without images: the untextured file.
   EXPECT_EQ(SerializeTexturedGltf(mesh, GltfForm::kBinary, uvs, {}, material),
             SerializeGltf(mesh, GltfForm::kBinary));
+  EXPECT_THAT(glb.json, Not(HasSubstr("EXT_texture_webp")));
+}
+
+// A WebP image is what glTF 2.0's core does not know: its texture names it
+// through EXT_texture_webp, which the file uses and requires.
+TEST(GltfWriterTest, AWebpTextureGoesThroughExtTextureWebp) {
+  TriMesh mesh;
+  mesh.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}};
+  mesh.faces = {{0, 1, 2}};
+  const std::vector<float> uvs = {0, 0, 1, 0, 1, 1};
+  std::vector<TextureImage> images(2);
+  images[0].role = TextureRole::kBaseColor;
+  images[0].mime_type = "image/webp";
+  images[0].bytes = "RIFF....WEBPVP8 ";
+  images[1].role = TextureRole::kMetallicRoughness;
+  images[1].mime_type = "image/jpeg";
+  images[1].bytes = "\xff\xd8jpeg";
+  const Glb glb =
+      SplitGlb(SerializeTexturedGltf(mesh, GltfForm::kBinary, uvs, images, TextureMaterial{}));
+  EXPECT_THAT(glb.json, HasSubstr(R"("extensionsUsed":["EXT_texture_webp"],"extensionsRequired":["EXT_texture_webp"])"));
+  EXPECT_THAT(glb.json, HasSubstr(R"("textures":[{"sampler":0,"extensions":{"EXT_texture_webp":{"source":0}}},{"sampler":0,"source":1}])"));
+  EXPECT_THAT(glb.json, HasSubstr(R"("mimeType":"image/webp")"));
 }
 
 TEST(GltfWriterTest, AMeshWithoutFacesIsAnEmptyScene) {

@@ -90,7 +90,7 @@ TEST(OriginalLayerStreamTest, CompleteDecodeIsTheOriginalWithinThePrecision) {
   const Streams& s = TestStreams();
   const StreamHeader& h = s.layered.header;
   ASSERT_TRUE(h.original.has_value());
-  EXPECT_EQ(h.format_version, 10u);
+  EXPECT_EQ(h.format_version, kStreamFormatVersion);
   auto d = testing::DecoderOf(s.layered);
   ASSERT_TRUE(d->HasOriginal());
   for (uint32_t id : PacketOrder(h, Progression::kRd)) {

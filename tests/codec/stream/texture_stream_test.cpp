@@ -157,8 +157,13 @@ TEST(TextureStreamTest, RefusesTextureFieldsThatDoNotFit) {
   const std::vector<Case> cases = {
       {"with a texture (textures came with version 9)",
        [](proto::StreamHeader& p) { p.set_format_version(8); }},
-      {"image type \"image/webp\" (image/jpeg or image/png)",
-       [](proto::StreamHeader& p) { p.mutable_texture()->mutable_maps(0)->set_mime_type("image/webp"); }},
+      {"image type \"image/gif\" (image/jpeg, image/png or image/webp)",
+       [](proto::StreamHeader& p) { p.mutable_texture()->mutable_maps(0)->set_mime_type("image/gif"); }},
+      {"with a WebP texture (WebP came with version 11)",
+       [](proto::StreamHeader& p) {
+         p.set_format_version(10);
+         p.mutable_texture()->mutable_maps(0)->set_mime_type("image/webp");
+       }},
       {"level 1 is 96 x 65, not 96 x 64 (the atlas's size / 2^1)",
        [](proto::StreamHeader& p) {
          p.mutable_texture()->mutable_maps(0)->mutable_levels(1)->set_height(65);
@@ -217,6 +222,7 @@ TEST(TextureStreamTest, EncoderRefusesATextureThatDoesNotFitTheMesh) {
        [](BakedTexture& t) { t.atlas.columns = 6; }},
       {"image type \"image/gif\"", [](BakedTexture& t) { t.maps[1].mime_type = "image/gif"; }},
       {"not a JPEG", [](BakedTexture& t) { t.maps[1].mime_type = "image/jpeg"; }},
+      {"not a WebP", [](BakedTexture& t) { t.maps[1].mime_type = "image/webp"; }},
       {"a second map of its role", [](BakedTexture& t) { t.maps[1].role = TextureRole::kBaseColor; }},
       {"0 levels (1 to 8)", [](BakedTexture& t) { t.maps[1].levels.clear(); }},
       {"0 maps", [](BakedTexture& t) { t.maps.clear(); }},

@@ -115,7 +115,7 @@ TEST(TextureBakeTest, BakedTexelsMatchTheOriginalTextureAndGuttersRepeatEdges) {
   const MeshAsset die = Die();
   const SemiRegularMesh mesh = Refined(die.mesh, 1);
   TextureBakeOptions options;
-  options.jpeg_quality = 100;
+  options.quality = 100;
   options.threads = 2;
   auto baked = BakeTexture(die, mesh, options);
   ASSERT_TRUE(baked.ok()) << baked.status().ToString();
@@ -124,7 +124,7 @@ TEST(TextureBakeTest, BakedTexelsMatchTheOriginalTextureAndGuttersRepeatEdges) {
   ASSERT_EQ(texture.maps.size(), 1u);  // base colour only: the die has no other map
   const TextureMap& map = texture.maps[0];
   EXPECT_EQ(map.role, TextureRole::kBaseColor);
-  EXPECT_EQ(map.mime_type, "image/jpeg");
+  EXPECT_EQ(map.mime_type, "image/webp");
   const DecodedImage image = Decode(map.levels.back());
   auto layout =
       AtlasLayout::Create(static_cast<uint32_t>(mesh.hierarchy->faces(0).size()),
@@ -173,13 +173,13 @@ TEST(TextureBakeTest, BakedTexelsMatchTheOriginalTextureAndGuttersRepeatEdges) {
   std::sort(errors.begin(), errors.end());
   double mean = 0;
   for (double e : errors) mean += e / static_cast<double>(errors.size());
-  // JPEG at quality 100 with 4:2:0 chroma: small errors, larger only at
+  // WebP at quality 100 with 4:2:0 chroma: small errors, larger only at
   // the pips' sharp colour edges.
   EXPECT_LT(mean, 3.0);
   EXPECT_LT(errors[errors.size() * 9 / 10], 8.0);
 
   // A gutter texel repeats the triangle texel its nearest point lies in
-  // (within JPEG error: the codec smooths across the gutter's border too).
+  // (within WebP's error: the codec smooths across the gutter's border too).
   int gutter_texels = 0;
   double gutter_error = 0;
   for (uint32_t y = 0; y < image.height; ++y) {

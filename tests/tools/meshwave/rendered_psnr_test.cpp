@@ -25,6 +25,8 @@ MeshAsset Tetrahedron(float grey, double scale = 1) {
   return a;
 }
 
+const RenderedPsnrOptions kOneSample{16, 96, 1, false};
+
 TEST(RenderedPsnrTest, ViewsCircleTheObjectAboveAndBelow) {
   const std::vector<View> views = MetricViews(16, 64);
   ASSERT_EQ(views.size(), 16u);
@@ -42,8 +44,8 @@ TEST(RenderedPsnrTest, ViewsCircleTheObjectAboveAndBelow) {
 
 TEST(RenderedPsnrTest, TheSameMeshIsInfinitelyClose) {
   std::vector<View> views = MetricViews(4, 96);
-  const Pictures a = RenderReference(Tetrahedron(0.5f), views, false);
-  const LumaPsnr psnr = CompareLuma(a, RenderLike(Tetrahedron(0.5f), views, false));
+  const Pictures a = RenderReference(Tetrahedron(0.5f), views, kOneSample);
+  const LumaPsnr psnr = CompareLuma(a, RenderLike(Tetrahedron(0.5f), views, kOneSample));
   EXPECT_TRUE(std::isinf(psnr.db));
   EXPECT_GT(psnr.object_pixels, 4u * 96 * 96 / 4);
 }
@@ -54,8 +56,8 @@ TEST(RenderedPsnrTest, AUniformLumaErrorGivesItsPsnr) {
   std::vector<View> views = MetricViews(4, 96);
   const float linear100 = std::pow((100 / 255.0f + 0.055f) / 1.055f, 2.4f);
   const float linear110 = std::pow((110 / 255.0f + 0.055f) / 1.055f, 2.4f);
-  const Pictures a = RenderReference(Tetrahedron(linear100), views, false);
-  const LumaPsnr psnr = CompareLuma(a, RenderLike(Tetrahedron(linear110), views, false));
+  const Pictures a = RenderReference(Tetrahedron(linear100), views, kOneSample);
+  const LumaPsnr psnr = CompareLuma(a, RenderLike(Tetrahedron(linear110), views, kOneSample));
   EXPECT_NEAR(psnr.db, 20 * std::log10(255.0 / 10), 0.05);
 }
 
@@ -64,8 +66,8 @@ TEST(RenderedPsnrTest, TheOtherMeshIsFramedAsTheReference) {
   // would blow it up to fill the picture), so the reference's pixels it
   // leaves bare count against it, at white's distance from the grey.
   std::vector<View> views = MetricViews(2, 96);
-  const Pictures a = RenderReference(Tetrahedron(0.2f), views, false);
-  const Pictures half = RenderLike(Tetrahedron(0.2f, 0.5), views, false);
+  const Pictures a = RenderReference(Tetrahedron(0.2f), views, kOneSample);
+  const Pictures half = RenderLike(Tetrahedron(0.2f, 0.5), views, kOneSample);
   size_t covered_a = 0, covered_half = 0;
   for (size_t v = 0; v < views.size(); ++v) {
     for (size_t i = 0; i < a.covered[v].size(); ++i) {
@@ -77,6 +79,26 @@ TEST(RenderedPsnrTest, TheOtherMeshIsFramedAsTheReference) {
   const LumaPsnr psnr = CompareLuma(a, half);
   EXPECT_EQ(psnr.object_pixels, covered_a);  // the half copy lies inside the reference
   EXPECT_LT(psnr.db, 10);
+}
+
+TEST(RenderedPsnrTest, SupersamplingAveragesEdgesAndKeepsFlatColour) {
+  // Inside the tetrahedron every sample is the same grey, so the supersampled
+  // picture keeps it; on its edges pixels take partial coverage, so the
+  // picture holds greys between the object's and the white background.
+  std::vector<View> views = MetricViews(1, 64);
+  RenderedPsnrOptions options{1, 64, 4, false};
+  const Pictures p = RenderReference(Tetrahedron(0.2f), views, options);
+  const Pictures one = RenderLike(Tetrahedron(0.2f), views, kOneSample);
+  const uint8_t inside = one.rgb[0][3 * (32 * 64 + 32)];
+  EXPECT_EQ(p.rgb[0][3 * (32 * 64 + 32)], inside);
+  int between = 0;
+  for (size_t i = 0; i < p.covered[0].size(); ++i) {
+    const uint8_t v = p.rgb[0][3 * i];
+    between += p.covered[0][i] && v > inside + 2 && v < 253;
+  }
+  EXPECT_GT(between, 20);
+  // Each picture is still compared with itself exactly.
+  EXPECT_TRUE(std::isinf(CompareLuma(p, RenderLike(Tetrahedron(0.2f), views, options)).db));
 }
 
 }  // namespace

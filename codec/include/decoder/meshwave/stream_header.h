@@ -24,8 +24,8 @@ namespace meshwave {
 // Transform.sawt; 4: compact packet index; 5: base refinement packets; 6:
 // 3xC's significance contexts count significant neighbours; 7: precincts
 // and split packets; 8: channels (per-vertex colours); 9: textures; 10:
-// the original mesh as a final layer.
-inline constexpr uint32_t kStreamFormatVersion = 10;
+// the original mesh as a final layer; 11: WebP texture levels.
+inline constexpr uint32_t kStreamFormatVersion = 11;
 
 // Enum fields keep whatever value the bytes hold, as protobuf's open proto3
 // enums do: validation (ValidateStreamHeader), not reading, refuses values

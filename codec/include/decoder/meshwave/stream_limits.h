@@ -18,10 +18,11 @@ inline constexpr uint32_t kMaxHeaderBytes = 64u << 20;
 
 // Textures (docs/FORMAT.md 2.4): at most one map per role, each of at most
 // kMaxTextureLevels levels (8 levels of a 16384-texel atlas go down to 128
-// texels), each level one whole image of one of these types.
+// texels), each level one whole image of one of these types (WebP from
+// format version 11).
 inline constexpr uint32_t kMaxTextureMaps = 5;
 inline constexpr uint32_t kMaxTextureLevels = 8;
-inline constexpr const char* kTextureMimeTypes[] = {"image/jpeg", "image/png"};
+inline constexpr const char* kTextureMimeTypes[] = {"image/jpeg", "image/png", "image/webp"};
 
 // The original layer (docs/FORMAT.md 2.5): the user's mesh, at most this
 // many vertices and faces (a decoder may accept fewer faces:

@@ -19,6 +19,8 @@
 
 namespace meshwave {
 
+inline constexpr int kDefaultTextureQuality = 50;
+
 struct TextureBakeOptions {
   // Texels a side of an atlas cell (two base faces a cell): a power of two
   // from 16 to 4096. 0: chosen so that the atlas's triangles hold about as
@@ -32,7 +34,11 @@ struct TextureBakeOptions {
   // Gutter texels around each triangle at full size. -1: 2^(levels - 1),
   // so the coarsest level keeps one.
   int gutter = -1;
-  int jpeg_quality = 90;
+  // Lossy quality (1..100) of the colour maps (WebP) and the
+  // metallic-roughness map (JPEG). Low by default: seen on screen a map's
+  // resolution counts far more than its quality (docs/RD_RESULTS.md,
+  // "Texture code").
+  int quality = kDefaultTextureQuality;
   // Worker threads (0: the machine's cores); the result does not depend on
   // it.
   int threads = 0;
@@ -46,10 +52,10 @@ struct TextureBakeNotes {
 };
 
 // The asset's material channels baked into an atlas over `remesh`'s base
-// faces: base colour (always; RGBA as PNG when any texel is not opaque,
-// else RGB JPEG), metallic-roughness with occlusion in R when any material
-// has occlusion (glTF's ORM packing; JPEG), emissive (JPEG) and
-// normal (tangent space of the atlas, PNG) when some material has them;
+// faces: base colour (always; WebP, with alpha when any texel is not
+// opaque), metallic-roughness with occlusion in R when any material has
+// occlusion (glTF's ORM packing; 4:4:4 JPEG), emissive (WebP) and normal
+// (tangent space of the atlas, PNG) when some material has them;
 // each a pyramid of `levels` images, coarsest first. Material scalars no
 // map holds go into BakedTexture::material.
 //
