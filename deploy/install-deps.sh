@@ -43,7 +43,7 @@ test=(
 )
 bench=(
   draco jq bc                  # bench/: Draco 1.5, the baseline, and the tables' arithmetic
-  gltfpack                     # bench/texture_table.py: the meshopt anchor of textured meshes
+  gltfpack webp libjpeg-turbo-progs libopenjp2-tools  # bench/texture_*.py: anchors and texture codecs
   wrk nginx-light              # bench/http_load.sh: the load generator and the nginx reference
   time                         # /usr/bin/time: wall time and peak memory (bench/ingest_scale.sh)
 )
