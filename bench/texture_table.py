@@ -38,6 +38,9 @@ Usage: bench/texture_table.py [BUILD_DIR] [TEXTURED_DIR] [OUT_DIR]
   TEXTURED_DIR: default ../shared/data/textured
   MESHES="spot/cow.obj IridescenceAbalone/IridescenceAbalone.gltf"
   QPS="8 10 12 14"  QTS="10 12"  QUALITIES=50,65,80,95  VIEWS=16  SIZE=1024
+  ENCODE_ARGS="..."  more `meshwave encode` options (e.g. --texture-quality 30)
+  REUSE_ANCHORS=1: take the anchors' rows from OUT/<name>/curves.tsv of an
+  earlier run with the same settings instead of measuring them again
 Needs draco_encoder, draco_decoder, gltfpack, jq (bash deploy/install-deps.sh bench).
 """
 import json
@@ -217,7 +220,7 @@ class Meshwave:
     def __init__(self, cli, asset, scorer, work, fidelity):
         self.cli, self.scorer, self.work = cli, scorer, work
         self.stream = os.path.join(work, 'meshwave.mwv')
-        args = [cli, 'encode', asset, self.stream]
+        args = [cli, 'encode', asset, self.stream] + os.environ.get('ENCODE_ARGS', '').split()
         if fidelity is not None:
             args += ['--fidelity', fidelity]
         run(args)
@@ -288,6 +291,13 @@ def main():
         if not os.path.exists(src):
             sys.exit(f'texture_table: no {src}')
         work = os.path.join(out_dir, name)
+        curves_path = os.path.join(work, 'curves.tsv')
+        earlier = []
+        if os.environ.get('REUSE_ANCHORS') and os.path.exists(curves_path):
+            for line in open(curves_path).read().splitlines()[1:]:
+                coder, setting, size, db = line.split('\t')
+                if coder != 'meshwave':
+                    earlier.append((coder, setting, int(size), float(db)))
         shutil.rmtree(work, ignore_errors=True)
         os.makedirs(work)
         asset = base_colour_only(os.path.dirname(src), os.path.basename(src), work)
@@ -297,10 +307,13 @@ def main():
         images = base_colour_images(asset)
         print(f'{name}: base colour {", ".join(os.path.basename(i) for i in images)}',
               file=sys.stderr)
-        variants = texture_variants(build, images, work)
-        rows = gltfpack_anchor(asset, variants, scorer, work)
-        if len(images) == 1:
-            rows += draco_anchor(asset, images[0], variants, scorer, work)
+        if earlier:
+            rows = earlier
+        else:
+            variants = texture_variants(build, images, work)
+            rows = gltfpack_anchor(asset, variants, scorer, work)
+            if len(images) == 1:
+                rows += draco_anchor(asset, images[0], variants, scorer, work)
         print(f'{name}: {len(rows)} anchor combinations measured', file=sys.stderr)
         mw = Meshwave(cli, asset, scorer, work, os.environ.get(f'FIDELITY_{name}'))
         budget = 1024
@@ -310,7 +323,7 @@ def main():
         mw.at(mw.total)
         lo = min(rows, key=lambda r: r[2])[3]  # the cheapest combination's
         hi = max(r[3] for r in rows)
-        with open(os.path.join(out_dir, name, 'curves.tsv'), 'w') as curves:
+        with open(curves_path, 'w') as curves:
             curves.write('coder\tsetting\tbytes\tdB\n')
             for r in sorted(rows, key=lambda r: (r[0], r[2])):
                 curves.write(f'{r[0]}\t{r[1]}\t{r[2]}\t{r[3]:.3f}\n')

@@ -19,7 +19,7 @@
 
 namespace meshwave {
 
-inline constexpr int kDefaultTextureQuality = 50;
+inline constexpr int kDefaultTextureQuality = 30;
 
 struct TextureBakeOptions {
   // Texels a side of an atlas cell (two base faces a cell): a power of two
