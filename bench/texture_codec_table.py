@@ -32,10 +32,9 @@ import shutil
 import struct
 import subprocess
 import sys
-import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from texture_table import base_colour_only, run  # noqa: E402
+from texture_table import arguments, base_colour_only, run  # noqa: E402
 
 
 def read_ppm(path):
@@ -91,14 +90,10 @@ def split_glb(glb, out_dir):
 
 
 def main():
-    if len(sys.argv) > 1 and sys.argv[1] in ('-h', '--help'):
-        print(__doc__)
+    args = arguments(__doc__)
+    if args is None:
         return
-    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-    build = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else os.path.join(root, 'build-bench'))
-    textured = os.path.abspath(sys.argv[2] if len(sys.argv) > 2 else
-                               os.path.join(root, '..', 'shared', 'data', 'textured'))
-    out_dir = os.path.abspath(sys.argv[3] if len(sys.argv) > 3 else tempfile.mkdtemp())
+    build, textured, out_dir = args
     for tool in ('cjpeg', 'djpeg', 'cwebp', 'dwebp', 'opj_compress', 'opj_decompress'):
         if shutil.which(tool) is None:
             sys.exit(f'{tool} is needed (bash deploy/install-deps.sh bench)')

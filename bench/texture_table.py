@@ -264,15 +264,25 @@ class Meshwave:
         return self.at(hi)
 
 
-def main():
+def arguments(usage):
+    """BUILD_DIR, TEXTURED_DIR and OUT_DIR from the command line, with their
+    defaults; None after printing `usage` for -h."""
     if len(sys.argv) > 1 and sys.argv[1] in ('-h', '--help'):
-        print(__doc__)
-        return
+        print(usage)
+        return None
     root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
     build = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else os.path.join(root, 'build-bench'))
     textured = os.path.abspath(sys.argv[2] if len(sys.argv) > 2 else
                                os.path.join(root, '..', 'shared', 'data', 'textured'))
     out_dir = os.path.abspath(sys.argv[3] if len(sys.argv) > 3 else tempfile.mkdtemp())
+    return build, textured, out_dir
+
+
+def main():
+    args = arguments(__doc__)
+    if args is None:
+        return
+    build, textured, out_dir = args
     cli = os.path.join(build, 'tools', 'meshwave', 'meshwave')
     for tool in ('draco_encoder', 'draco_decoder', 'gltfpack'):
         if shutil.which(tool) is None:
