@@ -2,6 +2,8 @@
 # Time to the first drawn mesh in the browser viewer (headless Chromium,
 # loopback), from navigation to /viewer/?mesh=ID, warm and cold:
 # bench/viewer_first_mesh.mjs, with the npm packages of web/package-lock.json.
+# A textured mesh (MESH=data/textured/die.obj) also gets the time to the
+# first frame drawn with a texture level applied, from the same runs.
 #
 # Usage: bench/viewer_first_mesh.sh [BUILD_DIR]     (default: build)
 #   Needs BUILD_DIR/server/meshwave-server, BUILD_DIR/tools/meshwave/meshwave

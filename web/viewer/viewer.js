@@ -32,7 +32,7 @@ let view = null;      // MeshView, null without WebGL
 let session = null;   // the current StreamSession
 let lastMesh = null;  // what is drawn: {positions, faces, level}
 let reference = null; // {meshId, order, decoder, positions: level -> Float32Array} of the complete stream
-let streamStarted = 0, firstMeshShown = false;
+let streamStarted = 0, firstMeshShown = false, firstTextureShown = false;
 let settleTimer = 0;      // the pending "refine where I look"
 let viewWanted = false;   // a view refine is owed: after the running request, or the first mesh
 let viewRefines = 0;      // refines with a view sent (body[data-view-refines])
@@ -97,17 +97,34 @@ function draw(fitCamera) {
   if (viewWanted && session && !session.stats.streaming) refineWhereLooking();
   if (!firstMeshShown) {
     firstMeshShown = true;
-    // After the frame that shows it: from the stream's start, and from the
-    // page's navigation (performance.now()'s origin), which counts loading
-    // the page, its modules and the decoder too.
-    requestAnimationFrame(() => {
-      const now = performance.now();
-      $('r-first').textContent = `${(now - streamStarted).toFixed(0)} ms ` +
-                                 `(${now.toFixed(0)} ms after the page opened)`;
-      $('r-first').dataset.fromNavigation = now;
-      $('r-first').dataset.value = now - streamStarted;
-    });
+    stampFrame($('r-first'));
   }
+  // The first frame drawn with a texture level applied (the same as the
+  // first mesh's when its texture was decoded in time).
+  if (!firstTextureShown && texture?.image) {
+    firstTextureShown = true;
+    stampFrame($('r-first-texture'));
+  }
+}
+
+// After the frame that shows what was just drawn: its time from the
+// stream's start, and from the page's navigation (performance.now()'s
+// origin), which counts loading the page, its modules and the decoder too.
+function stampFrame(cell) {
+  const stream = streamStarted;
+  requestAnimationFrame(() => {
+    if (stream !== streamStarted) return;  // a new stream began meanwhile
+    const now = performance.now();
+    cell.textContent = `${(now - stream).toFixed(0)} ms (${now.toFixed(0)} ms after the page opened)`;
+    cell.dataset.fromNavigation = now;
+    cell.dataset.value = now - stream;
+  });
+}
+
+function clearFrameStamp(cell) {
+  cell.textContent = '–';
+  delete cell.dataset.fromNavigation;
+  delete cell.dataset.value;
 }
 
 function onMesh(mesh) {
@@ -125,11 +142,13 @@ function startStream(meshId = $('mesh').value) {
   clearError();
   lastMesh = null;
   firstMeshShown = false;
+  firstTextureShown = false;
   clearTimeout(settleTimer);
   // With a tolerance, the view is refined to it as soon as the stream is done.
   viewWanted = $('follow-view').checked && screenError() !== null;
   toleranceView = null;
-  $('r-first').textContent = '–';
+  clearFrameStamp($('r-first'));
+  clearFrameStamp($('r-first-texture'));
   const budgetKiB = parseFloat($('budget').value);
   const rateKiB = parseFloat($('rate').value);
   const request = {
