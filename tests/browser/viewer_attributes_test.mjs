@@ -127,12 +127,12 @@ try {
 
   await test('the texture on screen, then refined', async () => {
     const errors = [];
-    const page = await openViewer(textured, 12, errors);
+    const page = await openViewer(textured, 6, errors);
     await page.click('#stream');
     await waitDone(page);
     await page.waitForFunction(() => document.getElementById('r-texture').dataset.value !== '');
     const first = await page.evaluate(() => document.getElementById('r-texture').textContent);
-    const { shown, grey } = await withAndWithout(page, 'viewer_texture_12KiB');
+    const { shown, grey } = await withAndWithout(page, 'viewer_texture_6KiB');
     const m = await measure(shown, grey);
     console.log(`  texture ${first}; ${m.drawn} pixels drawn, ${m.chromaticA} chromatic, ` +
                 `${m.differ} differ from the grey render`);
