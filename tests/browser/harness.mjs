@@ -3,6 +3,7 @@
 // it with a given viewer directory, and Debian's Chromium driven by
 // playwright-core (pinned by web/package-lock.json) with the flags this
 // machine's closed network needs.
+import assert from 'node:assert/strict';
 import { execFileSync, spawn } from 'node:child_process';
 import { cpSync, existsSync, mkdtempSync, readFileSync, rmSync } from 'node:fs';
 import { createRequire } from 'node:module';
@@ -165,6 +166,35 @@ export async function launchChromium(nodeModules) {
       rmSync(profile, { recursive: true, force: true });
     },
   };
+}
+
+// A viewer page on `meshId` set to stream `budgetKiB` in the quality order,
+// unpaced, with no pixel tolerance (nothing but the budget and the refines
+// asked for is streamed), its console errors and uncaught exceptions
+// collected into `errors`. The Stream button is left to the caller.
+export async function openQualityViewer(browser, serverUrl, meshId, budgetKiB, errors) {
+  const page = await browser.context.newPage();
+  page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
+  page.on('pageerror', (e) => errors.push(`uncaught: ${e.message}`));
+  await page.goto(`${serverUrl}/viewer/`);
+  await page.waitForSelector('body[data-state="ready"], body[data-state="error"]');
+  await page.selectOption('#mesh', meshId);
+  await page.selectOption('#order', 'quality');
+  await page.fill('#budget', String(budgetKiB));
+  await page.fill('#rate', '0');
+  await page.fill('#screen-error', '');
+  return page;
+}
+
+// Waits until the page's stream (or refine) is done, and fails on the error
+// it shows if it ended in one.
+export async function waitStreamDone(page) {
+  await page.waitForSelector('body[data-state="done"], body[data-state="error"]');
+  const error = await page.evaluate(() => {
+    const e = document.getElementById('error');
+    return e.hidden ? '' : e.textContent;
+  });
+  assert.equal(error, '', 'the viewer reported an error');
 }
 
 // Of two screenshots (PNG buffers of the same size), decoded by the

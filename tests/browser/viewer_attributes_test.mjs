@@ -17,7 +17,10 @@ import assert from 'node:assert/strict';
 import { existsSync, mkdirSync, readFileSync, rmSync } from 'node:fs';
 import path from 'node:path';
 import { parseArgs } from 'node:util';
-import { Server, checks, comparePictures, ingest, launchChromium, skip, tempDir, viewerDir } from './harness.mjs';
+import {
+  Server, checks, comparePictures, ingest, launchChromium, openQualityViewer, skip, tempDir, viewerDir,
+  waitStreamDone,
+} from './harness.mjs';
 
 const { values: opt } = parseArgs({ options: {
   server: { type: 'string' }, cli: { type: 'string' }, decoder: { type: 'string' },
@@ -43,30 +46,9 @@ const server = await Server.start(opt.server, catalog,
   viewerDir(opt.viewer, opt.decoder, path.join(work, 'viewer')), work);
 const browser = await launchChromium(opt['node-modules']);
 
-async function openViewer(meshId, budgetKiB, errors) {
-  const page = await browser.context.newPage();
-  page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
-  page.on('pageerror', (e) => errors.push(`uncaught: ${e.message}`));
-  await page.goto(`${server.url}/viewer/`);
-  await page.waitForSelector('body[data-state="ready"], body[data-state="error"]');
-  await page.selectOption('#mesh', meshId);
-  await page.selectOption('#order', 'quality');
-  await page.fill('#budget', String(budgetKiB));
-  await page.fill('#rate', '0');
-  // No pixel tolerance: nothing but the budget (and the refines asked for)
-  // is streamed; the camera does not move here.
-  await page.fill('#screen-error', '');
-  return page;
-}
-
-async function waitDone(page) {
-  await page.waitForSelector('body[data-state="done"], body[data-state="error"]');
-  const error = await page.evaluate(() => {
-    const e = document.getElementById('error');
-    return e.hidden ? '' : e.textContent;
-  });
-  assert.equal(error, '', 'the viewer reported an error');
-}
+const openViewer = (meshId, budgetKiB, errors) =>
+  openQualityViewer(browser, server.url, meshId, budgetKiB, errors);
+const waitDone = waitStreamDone;
 
 async function shot(page, name) {
   await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));

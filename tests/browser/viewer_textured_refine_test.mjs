@@ -27,7 +27,9 @@ import assert from 'node:assert/strict';
 import { existsSync, mkdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import path from 'node:path';
 import { parseArgs } from 'node:util';
-import { Server, checks, ingest, launchChromium, skip, tempDir, viewerDir } from './harness.mjs';
+import {
+  Server, checks, ingest, launchChromium, openQualityViewer, skip, tempDir, viewerDir, waitStreamDone,
+} from './harness.mjs';
 
 const { values: opt } = parseArgs({ options: {
   server: { type: 'string' }, cli: { type: 'string' }, decoder: { type: 'string' },
@@ -61,15 +63,6 @@ const id = ingest(opt.server, catalog, opt.mesh);
 const server = await Server.start(opt.server, catalog,
   viewerDir(opt.viewer, opt.decoder, path.join(work, 'viewer')), work);
 const browser = await launchChromium(opt['node-modules']);
-
-async function waitDone(page) {
-  await page.waitForSelector('body[data-state="done"], body[data-state="error"]');
-  const error = await page.evaluate(() => {
-    const e = document.getElementById('error');
-    return e.hidden ? '' : e.textContent;
-  });
-  assert.equal(error, '', 'the viewer reported an error');
-}
 
 // The canvas's pixels once the page has stopped changing them: a texture
 // level is decoded (createImageBitmap) and drawn a frame or two after the
@@ -158,18 +151,9 @@ try {
   await test(`${path.basename(opt.mesh)} refined from ${BUDGET_KIB} KiB by +${STEP_KIB} KiB: ` +
              'textured at every step, its rendered error never up, none at the end', async () => {
     const errors = [];
-    const page = await browser.context.newPage();
-    page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
-    page.on('pageerror', (e) => errors.push(`uncaught: ${e.message}`));
-    await page.goto(`${server.url}/viewer/`);
-    await page.waitForSelector('body[data-state="ready"], body[data-state="error"]');
-    await page.selectOption('#mesh', id);
-    await page.selectOption('#order', 'quality');
-    await page.fill('#budget', String(BUDGET_KIB));
-    await page.fill('#rate', '0');
-    // Only the budget and the refines asked for: no tolerance, no view
-    // refines (the camera does not move anyway).
-    await page.fill('#screen-error', '');
+    const page = await openQualityViewer(browser, server.url, id, BUDGET_KIB, errors);
+    // Only the budget and the refines asked for: no view refines either
+    // (the camera does not move anyway).
     await page.uncheck('#follow-view');
     await page.fill('#refine-kib', String(STEP_KIB));
 
@@ -177,7 +161,7 @@ try {
     await page.click('#stream');
     let request = `start ${BUDGET_KIB} KiB`;
     for (;;) {
-      await waitDone(page);
+      await waitStreamDone(page);
       const step = steps.length;
       // A texture level within the bytes held reaches the drawn mesh once
       // the browser has decoded it: waited for (it fails (a) below if never).
